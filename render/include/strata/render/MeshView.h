@@ -1,0 +1,23 @@
+#pragma once
+/// \file
+/// A non-owning view of an indexed triangle mesh, so the renderer needs no
+/// mesh type of its own and no dependency on the meshing library.
+
+#include <glm/vec3.hpp>
+
+#include <cstddef>
+#include <cstdint>
+
+namespace strata::render {
+
+struct MeshView
+{
+    const glm::vec3* positions = nullptr; ///< world metres, relative to `origin`
+    const glm::vec3* normals = nullptr;   ///< unit, per vertex
+    std::size_t vertexCount = 0;
+    const std::uint32_t* indices = nullptr; ///< counter-clockwise seen from outside
+    std::size_t indexCount = 0;             ///< multiple of 3
+    glm::dvec3 origin{0.0};                 ///< world position of the mesh's local (0,0,0)
+};
+
+} // namespace strata::render
