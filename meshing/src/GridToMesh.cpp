@@ -1,0 +1,71 @@
+#include <strata/meshing/GridToMesh.h>
+
+#include <strata/Error.h>
+#include <strata/meshing/GridNormals.h>
+
+#include <openvdb/tools/VolumeToMesh.h>
+
+#include <cmath>
+#include <string>
+
+namespace strata::meshing {
+
+namespace {
+
+double distance2(const openvdb::Vec3s& a, const openvdb::Vec3s& b)
+{
+    return double((a - b).lengthSqr());
+}
+
+} // namespace
+
+TriangleMesh gridToMesh(const openvdb::FloatGrid& grid, const GridToMeshOptions& options)
+{
+    if (!std::isfinite(options.isovalue)) {
+        throw Error("meshing: isovalue = " + std::to_string(options.isovalue) + " must be finite");
+    }
+    if (!(options.adaptivity >= 0.0 && options.adaptivity <= 1.0)) {
+        throw Error("meshing: adaptivity = " + std::to_string(options.adaptivity) + " must be in [0, 1]");
+    }
+    if (!std::isfinite(options.origin.x) || !std::isfinite(options.origin.y) || !std::isfinite(options.origin.z)) {
+        throw Error("meshing: origin must be finite");
+    }
+
+    std::vector<openvdb::Vec3s> points;
+    std::vector<openvdb::Vec3I> triangles;
+    std::vector<openvdb::Vec4I> quads;
+    openvdb::tools::volumeToMesh(grid, points, triangles, quads, options.isovalue, options.adaptivity);
+
+    TriangleMesh mesh;
+    mesh.origin = options.origin;
+    mesh.positions.resize(points.size());
+    for (std::size_t i = 0; i < points.size(); ++i) {
+        // Subtract the origin in double so far-out meshes keep their precision.
+        mesh.positions[i] = glm::vec3(double(points[i].x()) - options.origin.x,
+                                      double(points[i].y()) - options.origin.y,
+                                      double(points[i].z()) - options.origin.z);
+    }
+
+    // volumeToMesh winds level-set polygons clockwise seen from outside:
+    // every polygon is emitted reversed.
+    mesh.indices.reserve(3 * triangles.size() + 6 * quads.size());
+    for (const openvdb::Vec3I& t : triangles) {
+        mesh.indices.insert(mesh.indices.end(), {t[2], t[1], t[0]});
+    }
+    for (const openvdb::Vec4I& q : quads) {
+        const std::uint32_t a = q[3], b = q[2], c = q[1], d = q[0];
+        // Split along the shorter diagonal: better-shaped triangles.
+        if (distance2(points[a], points[c]) <= distance2(points[b], points[d])) {
+            mesh.indices.insert(mesh.indices.end(), {a, b, c, a, c, d});
+        } else {
+            mesh.indices.insert(mesh.indices.end(), {b, c, d, b, d, a});
+        }
+    }
+
+    if (options.computeNormals) {
+        computeGridNormals(grid, mesh);
+    }
+    return mesh;
+}
+
+} // namespace strata::meshing

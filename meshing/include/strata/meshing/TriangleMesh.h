@@ -1,0 +1,27 @@
+#pragma once
+/// \file
+/// The plain, engine-ready mesh buffers every mesher returns.
+
+#include <glm/vec3.hpp>
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace strata::meshing {
+
+/// An indexed triangle mesh. Positions are in metres relative to `origin`
+/// (kept in double), so float precision holds far from the world origin.
+/// Triangles are counter-clockwise seen from outside (outward normals).
+struct TriangleMesh
+{
+    std::vector<glm::vec3> positions;
+    std::vector<glm::vec3> normals; ///< unit, one per position, or empty
+    std::vector<std::uint32_t> indices;
+    glm::dvec3 origin{0.0};
+
+    std::size_t vertexCount() const { return positions.size(); }
+    std::size_t triangleCount() const { return indices.size() / 3; }
+};
+
+} // namespace strata::meshing

@@ -1,0 +1,177 @@
+#include <strata/render/Image.h>
+
+#include <strata/Error.h>
+
+#include <OpenImageIO/imageio.h>
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <system_error>
+
+namespace strata::render {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+/// sRGB transfer functions (IEC 61966-2-1), for formats that store linear light.
+float srgbToLinear(float c)
+{
+    return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
+}
+
+float linearToSrgb(float c)
+{
+    c = std::clamp(c, 0.0f, 1.0f);
+    return c <= 0.0031308f ? c * 12.92f : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f;
+}
+
+std::uint8_t toByte(float v)
+{
+    return std::uint8_t(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f));
+}
+
+/// OpenImageIO keeps its error messages per thread; take the global one when
+/// the object has none.
+std::string oiioError(const std::string& objectError)
+{
+    std::string message = objectError.empty() ? OIIO::geterror() : objectError;
+    while (!message.empty() && (message.back() == '\n' || message.back() == ' ')) {
+        message.pop_back();
+    }
+    std::replace(message.begin(), message.end(), '\n', ' ');
+    return message.empty() ? "unknown OpenImageIO error" : message;
+}
+
+/// True for formats whose pixels are linear light, not sRGB-encoded.
+bool isLinearFormat(const std::string& formatName)
+{
+    return formatName == "openexr" || formatName == "hdr";
+}
+
+[[noreturn]] void throwWriteError(const fs::path& path, const std::string& reason)
+{
+    throw Error("cannot write image '" + path.string() + "': " + reason);
+}
+
+} // namespace
+
+void writeImage(const Image& image, const fs::path& path)
+{
+    if (image.width <= 0 || image.height <= 0 ||
+        image.pixels.size() != std::size_t(image.width) * std::size_t(image.height) * 4) {
+        throwWriteError(path, "invalid image " + std::to_string(image.width) + "x" + std::to_string(image.height) +
+                                  " with " + std::to_string(image.pixels.size()) + " bytes");
+    }
+
+    // Same folder (so the rename is atomic) and same extension (so
+    // OpenImageIO picks the format from it).
+    const fs::path temporary = path.parent_path() / ("." + path.stem().string() + ".partial-" +
+                                                     std::to_string(::getpid()) + path.extension().string());
+    auto removeTemporary = [&] {
+        std::error_code ignored;
+        fs::remove(temporary, ignored);
+    };
+
+    auto output = OIIO::ImageOutput::create(temporary.string());
+    if (!output) {
+        throwWriteError(path, oiioError({}));
+    }
+    const std::string formatName = output->format_name();
+    const bool linear = isLinearFormat(formatName);
+    const int channels = output->supports("alpha") ? 4 : 3;
+    const std::size_t pixelCount = std::size_t(image.width) * std::size_t(image.height);
+
+    OIIO::ImageSpec spec(image.width, image.height, channels, linear ? OIIO::TypeDesc::HALF : OIIO::TypeDesc::UINT8);
+    spec.attribute("oiio:ColorSpace", linear ? "Linear" : "sRGB");
+    if (channels == 4) {
+        // Our alpha is unassociated: do not let the writer un-premultiply.
+        spec.attribute("oiio:UnassociatedAlpha", 1);
+    }
+
+    bool ok = output->open(temporary.string(), spec);
+    if (ok) {
+        if (linear) {
+            std::vector<float> data(pixelCount * std::size_t(channels));
+            for (std::size_t i = 0; i < pixelCount; ++i) {
+                for (int c = 0; c < channels; ++c) {
+                    const float v = image.pixels[i * 4 + std::size_t(c)] / 255.0f;
+                    data[i * std::size_t(channels) + std::size_t(c)] = c < 3 ? srgbToLinear(v) : v;
+                }
+            }
+            ok = output->write_image(OIIO::TypeDesc::FLOAT, data.data());
+        } else {
+            // xstride 4 bytes: drops alpha when the format has none.
+            ok = output->write_image(OIIO::TypeDesc::UINT8, image.pixels.data(), 4);
+        }
+        ok = output->close() && ok;
+    }
+    if (!ok) {
+        const std::string reason = oiioError(output->geterror());
+        output.reset();
+        removeTemporary();
+        throwWriteError(path, reason);
+    }
+    output.reset();
+
+    std::error_code error;
+    fs::rename(temporary, path, error);
+    if (error) {
+        removeTemporary();
+        throwWriteError(path, "cannot rename '" + temporary.string() + "': " + error.message());
+    }
+}
+
+Image readImage(const fs::path& path)
+{
+    OIIO::ImageSpec config;
+    config.attribute("oiio:UnassociatedAlpha", 1);
+    auto input = OIIO::ImageInput::open(path.string(), &config);
+    if (!input) {
+        throw Error("cannot read image '" + path.string() + "': " + oiioError({}));
+    }
+    const OIIO::ImageSpec& spec = input->spec();
+    const int channels = spec.nchannels;
+    if (spec.width <= 0 || spec.height <= 0 || channels <= 0 || spec.depth > 1) {
+        throw Error("cannot read image '" + path.string() + "': unsupported size " + std::to_string(spec.width) +
+                    "x" + std::to_string(spec.height) + "x" + std::to_string(spec.depth) + " with " +
+                    std::to_string(channels) + " channels");
+    }
+    const std::string colorSpace = spec.get_string_attribute("oiio:ColorSpace");
+    const bool linear = isLinearFormat(input->format_name()) || colorSpace == "Linear" ||
+                        colorSpace == "lin_srgb" || colorSpace == "scene_linear";
+    const int alphaChannel = spec.alpha_channel >= 0 ? spec.alpha_channel : (channels == 2 ? 1 : channels >= 4 ? 3 : -1);
+
+    const std::size_t pixelCount = std::size_t(spec.width) * std::size_t(spec.height);
+    std::vector<float> data(pixelCount * std::size_t(channels));
+    if (!input->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, data.data())) {
+        throw Error("cannot read image '" + path.string() + "': " + oiioError(input->geterror()));
+    }
+
+    Image image;
+    image.width = spec.width;
+    image.height = spec.height;
+    image.pixels.resize(pixelCount * 4);
+    for (std::size_t i = 0; i < pixelCount; ++i) {
+        const float* src = data.data() + i * std::size_t(channels);
+        float rgb[3];
+        if (channels >= 3) {
+            rgb[0] = src[0];
+            rgb[1] = src[1];
+            rgb[2] = src[2];
+        } else {
+            rgb[0] = rgb[1] = rgb[2] = src[0]; // grey (and grey + alpha)
+        }
+        std::uint8_t* dst = image.pixels.data() + i * 4;
+        for (int c = 0; c < 3; ++c) {
+            dst[c] = toByte(linear ? linearToSrgb(rgb[c]) : rgb[c]);
+        }
+        dst[3] = alphaChannel >= 0 ? toByte(src[alphaChannel]) : 255;
+    }
+    return image;
+}
+
+} // namespace strata::render

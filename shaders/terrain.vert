@@ -1,0 +1,20 @@
+// Terrain vertex shader. Positions are world metres relative to the mesh
+// origin; the view matrix is relative to the same origin (computed in double
+// on the CPU), so large worlds keep their precision.
+
+layout(location = 0) in vec3 aPosition; // metres, relative to the mesh origin
+layout(location = 1) in vec3 aNormal;   // unit, world space
+
+uniform mat4 uViewProjection;  // projection · view(origin)
+uniform float uMapScale;       // texture repeats per metre
+uniform vec3 uTextureOffset;   // fract(origin · mapScale), computed in double
+
+out vec3 vTexturePosition; // texture space: (world position) · mapScale, mod 1
+out vec3 vNormal;
+
+void main()
+{
+    vTexturePosition = aPosition * uMapScale + uTextureOffset;
+    vNormal = aNormal;
+    gl_Position = uViewProjection * vec4(aPosition, 1.0f);
+}

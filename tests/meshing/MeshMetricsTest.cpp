@@ -1,0 +1,86 @@
+#include <strata/meshing/GridNormals.h>
+#include <strata/meshing/MeshMetrics.h>
+
+#include <glm/geometric.hpp>
+#include <gtest/gtest.h>
+
+using namespace strata::meshing;
+
+namespace {
+
+// A unit cube [0,1]³, 12 triangles, counter-clockwise seen from outside.
+TriangleMesh unitCube()
+{
+    TriangleMesh m;
+    for (int i = 0; i < 8; ++i) m.positions.emplace_back(i & 1, (i >> 1) & 1, (i >> 2) & 1);
+    m.indices = {0, 2, 3, 0, 3, 1,  // z = 0, normal −z
+                 4, 5, 7, 4, 7, 6,  // z = 1, normal +z
+                 0, 1, 5, 0, 5, 4,  // y = 0, normal −y
+                 2, 6, 7, 2, 7, 3,  // y = 1, normal +y
+                 0, 4, 6, 0, 6, 2,  // x = 0, normal −x
+                 1, 3, 7, 1, 7, 5}; // x = 1, normal +x
+    return m;
+}
+
+} // namespace
+
+TEST(MeshMetrics, CubeIsWatertightWithUnitVolume)
+{
+    const TriangleMesh cube = unitCube();
+    const MeshTopology t = analyzeTopology(cube);
+    EXPECT_EQ(t.edges, 18u);
+    EXPECT_TRUE(t.watertight());
+    EXPECT_EQ(t.degenerateTriangles, 0u);
+    EXPECT_DOUBLE_EQ(signedVolume(cube), 1.0);
+}
+
+TEST(MeshMetrics, FlippedTriangleAndHoleAreDetected)
+{
+    TriangleMesh flipped = unitCube();
+    std::swap(flipped.indices[1], flipped.indices[2]);
+    const MeshTopology t = analyzeTopology(flipped);
+    EXPECT_EQ(t.inconsistentEdges, 3u);
+    EXPECT_FALSE(t.watertight());
+
+    TriangleMesh open = unitCube();
+    open.indices.resize(open.indices.size() - 3);
+    EXPECT_EQ(analyzeTopology(open).boundaryEdges, 3u);
+
+    TriangleMesh inverted = unitCube();
+    for (std::size_t i = 0; i < inverted.indices.size(); i += 3) std::swap(inverted.indices[i + 1], inverted.indices[i + 2]);
+    EXPECT_DOUBLE_EQ(signedVolume(inverted), -1.0);
+}
+
+TEST(MeshMetrics, DegenerateAndNonManifoldAreCounted)
+{
+    TriangleMesh m = unitCube();
+    m.indices.insert(m.indices.end(), {0, 0, 1});          // repeated index
+    m.indices.insert(m.indices.end(), {0, 2, 4});          // third triangle on edge 0-2
+    const MeshTopology t = analyzeTopology(m);
+    EXPECT_EQ(t.degenerateTriangles, 1u);
+    EXPECT_GE(t.nonManifoldEdges, 1u);
+}
+
+TEST(MeshMetrics, FaceNormalsAreUnitAndFiniteEvenForDegenerateInput)
+{
+    TriangleMesh m = unitCube();
+    m.positions.emplace_back(5.0f, 5.0f, 5.0f); // isolated vertex
+    computeFaceNormals(m);
+    ASSERT_EQ(m.normals.size(), m.positions.size());
+    for (const glm::vec3& n : m.normals) EXPECT_NEAR(glm::length(n), 1.0f, 1e-6f);
+    // Corner 7 = (1,1,1) averages +x, +y, +z faces.
+    EXPECT_GT(m.normals[7].x, 0.3f);
+    EXPECT_GT(m.normals[7].y, 0.3f);
+    EXPECT_GT(m.normals[7].z, 0.3f);
+    EXPECT_EQ(m.normals[8], glm::vec3(0, 1, 0));
+}
+
+TEST(MeshMetrics, WorldBoundsAddTheOrigin)
+{
+    TriangleMesh m = unitCube();
+    m.origin = {1e6, -2.0, 3.0};
+    const Bounds b = worldBounds(m);
+    EXPECT_DOUBLE_EQ(b.min.x, 1e6);
+    EXPECT_DOUBLE_EQ(b.max.x, 1e6 + 1.0);
+    EXPECT_DOUBLE_EQ(b.min.y, -2.0);
+}
