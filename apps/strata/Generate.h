@@ -1,0 +1,47 @@
+#pragma once
+/// \file
+/// `strata generate`: scene → grid → mesh → files and snapshot.
+
+#include "Scene.h"
+
+#include <cstdint>
+#include <filesystem>
+#include <iosfwd>
+#include <map>
+#include <optional>
+#include <string>
+
+namespace strata::app {
+
+struct GenerateOptions
+{
+    std::filesystem::path outputDir;     ///< created if missing
+    std::optional<std::uint64_t> seed;   ///< overrides the scene's seed
+    std::optional<int> width, height;    ///< override the snapshot size
+    bool snapshot = true;                ///< render snapshot.png (needs EGL)
+    bool writePly = false;               ///< also write terrain.ply
+    bool quiet = false;                  ///< no terminal output
+    int threads = 0;                     ///< 0 = all cores; recorded in the report
+};
+
+struct GenerateResult
+{
+    std::uint64_t seed = 0;
+    double voxelSize = 0.0;
+    std::uint64_t activeVoxels = 0;
+    std::uint64_t evaluatedPoints = 0;
+    std::uint64_t gridMemoryBytes = 0;
+    std::uint64_t vertices = 0;
+    std::uint64_t triangles = 0;
+    std::string renderer;                  ///< GL renderer description, empty without snapshot
+    std::map<std::string, double> timings; ///< seconds per stage, and "total"
+};
+
+/// Runs the whole pipeline and writes DIR/terrain.vdb, DIR/terrain.glb,
+/// (DIR/terrain.ply), DIR/snapshot.png and DIR/report.json, each atomically.
+/// When a snapshot is requested the EGL context is created first, so a
+/// machine without one fails before any work is done.
+/// Throws strata::Error on bad input or an unavailable GL context.
+GenerateResult generate(const Scene& scene, const GenerateOptions& options, std::ostream& out);
+
+} // namespace strata::app

@@ -1,0 +1,70 @@
+#pragma once
+/// \file
+/// The scene file: everything `strata generate` needs, read from TOML.
+
+#include <strata/render/Material.h>
+#include <strata/terrain/SampleLevelSet.h>
+#include <strata/terrain/TerrainField.h>
+
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <string_view>
+
+namespace strata::app {
+
+/// Where the camera looks from: an orbit around the terrain's bounds, or an
+/// explicit position and target (world metres).
+struct CameraSettings
+{
+    double azimuth = 35.0;   ///< degrees around +Y; 0 looks towards −Z
+    double elevation = 30.0; ///< degrees above the horizon
+    double zoom = 1.0;       ///< > 1 moves the orbit camera closer
+    double fov = 50.0;       ///< vertical field of view, degrees
+    std::optional<glm::dvec3> position;
+    std::optional<glm::dvec3> target;
+};
+
+struct SnapshotSettings
+{
+    int width = 1280;
+    int height = 720;
+    int samples = 4; ///< MSAA samples
+};
+
+struct MaterialSettings
+{
+    float mapScale = 0.125f;
+    float blendOffset = 0.25f;
+    float blendExponent = 4.0f;
+    int textureSize = 512;
+    std::uint32_t textureSeed = 7;
+};
+
+struct Scene
+{
+    std::string source; ///< file path, or "<default scene>"
+    terrain::TerrainOptions terrain;
+    terrain::Region region;
+    double voxelSize = 0.5;
+    int halfWidth = 3;
+    double adaptivity = 0.0;
+    CameraSettings camera;
+    SnapshotSettings snapshot;
+    MaterialSettings material;
+    render::Lighting lighting;
+};
+
+/// The scene compiled into the executable.
+std::string_view defaultSceneText();
+
+/// Parses TOML scene text. `source` names it in error messages. Throws
+/// strata::Error "SOURCE:LINE: KEY = VALUE ..." on a syntax error, an unknown
+/// key, a wrong type or an out-of-range value.
+Scene parseScene(std::string_view text, const std::string& source);
+
+/// Reads and parses a scene file. Throws strata::Error naming the file.
+Scene loadScene(const std::filesystem::path& path);
+
+} // namespace strata::app
