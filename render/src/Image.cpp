@@ -1,15 +1,13 @@
 #include <strata/render/Image.h>
 
+#include <strata/AtomicFile.h>
 #include <strata/Error.h>
 
 #include <OpenImageIO/imageio.h>
 
-#include <unistd.h>
-
 #include <algorithm>
 #include <cmath>
 #include <string>
-#include <system_error>
 
 namespace strata::render {
 
@@ -67,62 +65,47 @@ void writeImage(const Image& image, const fs::path& path)
                                   " with " + std::to_string(image.pixels.size()) + " bytes");
     }
 
-    // Same folder (so the rename is atomic) and same extension (so
-    // OpenImageIO picks the format from it).
-    const fs::path temporary = path.parent_path() / ("." + path.stem().string() + ".partial-" +
-                                                     std::to_string(::getpid()) + path.extension().string());
-    auto removeTemporary = [&] {
-        std::error_code ignored;
-        fs::remove(temporary, ignored);
-    };
-
-    auto output = OIIO::ImageOutput::create(temporary.string());
-    if (!output) {
-        throwWriteError(path, oiioError({}));
-    }
-    const std::string formatName = output->format_name();
-    const bool linear = isLinearFormat(formatName);
-    const int channels = output->supports("alpha") ? 4 : 3;
-    const std::size_t pixelCount = std::size_t(image.width) * std::size_t(image.height);
-
-    OIIO::ImageSpec spec(image.width, image.height, channels, linear ? OIIO::TypeDesc::HALF : OIIO::TypeDesc::UINT8);
-    spec.attribute("oiio:ColorSpace", linear ? "Linear" : "sRGB");
-    if (channels == 4) {
-        // Our alpha is unassociated: do not let the writer un-premultiply.
-        spec.attribute("oiio:UnassociatedAlpha", 1);
-    }
-
-    bool ok = output->open(temporary.string(), spec);
-    if (ok) {
-        if (linear) {
-            std::vector<float> data(pixelCount * std::size_t(channels));
-            for (std::size_t i = 0; i < pixelCount; ++i) {
-                for (int c = 0; c < channels; ++c) {
-                    const float v = image.pixels[i * 4 + std::size_t(c)] / 255.0f;
-                    data[i * std::size_t(channels) + std::size_t(c)] = c < 3 ? srgbToLinear(v) : v;
-                }
-            }
-            ok = output->write_image(OIIO::TypeDesc::FLOAT, data.data());
-        } else {
-            // xstride 4 bytes: drops alpha when the format has none.
-            ok = output->write_image(OIIO::TypeDesc::UINT8, image.pixels.data(), 4);
+    // Written beside `path` under a temporary name that keeps the extension
+    // (OpenImageIO picks the format from it), then renamed.
+    writeAtomically(path, [&](const fs::path& temporary) {
+        auto output = OIIO::ImageOutput::create(temporary.string());
+        if (!output) {
+            throwWriteError(path, oiioError({}));
         }
-        ok = output->close() && ok;
-    }
-    if (!ok) {
-        const std::string reason = oiioError(output->geterror());
-        output.reset();
-        removeTemporary();
-        throwWriteError(path, reason);
-    }
-    output.reset();
+        const std::string formatName = output->format_name();
+        const bool linear = isLinearFormat(formatName);
+        const int channels = output->supports("alpha") ? 4 : 3;
+        const std::size_t pixelCount = std::size_t(image.width) * std::size_t(image.height);
 
-    std::error_code error;
-    fs::rename(temporary, path, error);
-    if (error) {
-        removeTemporary();
-        throwWriteError(path, "cannot rename '" + temporary.string() + "': " + error.message());
-    }
+        OIIO::ImageSpec spec(image.width, image.height, channels,
+                             linear ? OIIO::TypeDesc::HALF : OIIO::TypeDesc::UINT8);
+        spec.attribute("oiio:ColorSpace", linear ? "Linear" : "sRGB");
+        if (channels == 4) {
+            // Our alpha is unassociated: do not let the writer un-premultiply.
+            spec.attribute("oiio:UnassociatedAlpha", 1);
+        }
+
+        bool ok = output->open(temporary.string(), spec);
+        if (ok) {
+            if (linear) {
+                std::vector<float> data(pixelCount * std::size_t(channels));
+                for (std::size_t i = 0; i < pixelCount; ++i) {
+                    for (int c = 0; c < channels; ++c) {
+                        const float v = image.pixels[i * 4 + std::size_t(c)] / 255.0f;
+                        data[i * std::size_t(channels) + std::size_t(c)] = c < 3 ? srgbToLinear(v) : v;
+                    }
+                }
+                ok = output->write_image(OIIO::TypeDesc::FLOAT, data.data());
+            } else {
+                // xstride 4 bytes: drops alpha when the format has none.
+                ok = output->write_image(OIIO::TypeDesc::UINT8, image.pixels.data(), 4);
+            }
+            ok = output->close() && ok;
+        }
+        if (!ok) {
+            throwWriteError(path, oiioError(output->geterror()));
+        }
+    });
 }
 
 Image readImage(const fs::path& path)
@@ -143,7 +126,8 @@ Image readImage(const fs::path& path)
     const std::string colorSpace = spec.get_string_attribute("oiio:ColorSpace");
     const bool linear = isLinearFormat(input->format_name()) || colorSpace == "Linear" ||
                         colorSpace == "lin_srgb" || colorSpace == "scene_linear";
-    const int alphaChannel = spec.alpha_channel >= 0 ? spec.alpha_channel : (channels == 2 ? 1 : channels >= 4 ? 3 : -1);
+    const int alphaChannel =
+        spec.alpha_channel >= 0 ? spec.alpha_channel : (channels == 2 ? 1 : channels >= 4 ? 3 : -1);
 
     const std::size_t pixelCount = std::size_t(spec.width) * std::size_t(spec.height);
     std::vector<float> data(pixelCount * std::size_t(channels));

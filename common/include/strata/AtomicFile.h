@@ -17,8 +17,12 @@ namespace strata {
 /// format from it: "dir/terrain.glb" → "dir/.terrain.partial-<pid>.glb".
 inline std::filesystem::path temporarySibling(const std::filesystem::path& target)
 {
-    std::string name = "." + target.stem().string() + ".partial-" + std::to_string(::getpid()) +
-                       target.extension().string();
+    // Appended piece by piece: GCC 12 warns falsely (-Wrestrict) on a chain of +.
+    std::string name = ".";
+    name += target.stem().string();
+    name += ".partial-";
+    name += std::to_string(::getpid());
+    name += target.extension().string();
     return target.parent_path() / name;
 }
 

@@ -22,6 +22,13 @@ struct Camera
 /// the given azimuth (degrees around +Y, 0 = looking towards −Z) and
 /// elevation (degrees above the horizon), far enough that the box fits the
 /// vertical field of view. Near and far planes are set from the box.
+///
+/// Details: the distance is the smallest at which all eight corners fit a
+/// square view of `fovYDegrees` with a 5% margin, so the whole box is seen
+/// at any aspect ratio >= 1. Positive azimuth turns counter-clockwise seen
+/// from above; positive elevation looks down. `up` is orthogonal to the view
+/// direction (well defined at ±90°, where the top of the image faces the
+/// azimuth's horizontal direction).
 Camera orbitCamera(const glm::dvec3& boundsMin, const glm::dvec3& boundsMax, double azimuthDegrees,
                    double elevationDegrees, double fovYDegrees = 50.0);
 

@@ -15,13 +15,25 @@ public:
     /// Creates the context and makes it current on the calling thread.
     /// Throws strata::Error with a one-line reason when no EGL display or no
     /// OpenGL 4.5 core context can be had.
+    ///
+    /// Tries, in order, every device from eglQueryDevicesEXT on
+    /// EGL_PLATFORM_DEVICE_EXT, then EGL_PLATFORM_SURFACELESS_MESA; no window
+    /// system is needed. The context is surfaceless (EGL_KHR_surfaceless_context)
+    /// or, without that extension, has a 1×1 pbuffer: render into framebuffer
+    /// objects. As EGL requires, a context is current on one thread at a time.
     static std::unique_ptr<EglContext> create();
 
+    /// Destroys the context (unbinding it first if it is current on the
+    /// calling thread) and its surface, if any. The EGL display stays
+    /// initialised: EGL hands the same display to the whole process, and
+    /// terminating it would break other users (the embedding application,
+    /// another EglContext); creating a context again reuses it.
     ~EglContext();
     EglContext(const EglContext&) = delete;
     EglContext& operator=(const EglContext&) = delete;
 
-    /// Makes the context current on the calling thread.
+    /// Makes the context current on the calling thread (a no-op if it is).
+    /// Throws strata::Error if EGL refuses (e.g. it is current on another thread).
     void makeCurrent();
 
     /// "GL_RENDERER (GL_VERSION) via <platform>", for logs and reports.

@@ -15,7 +15,7 @@ struct TriplanarMaterial
     float mapScale = 0.125f;     ///< texture repeats per metre, > 0
     float blendOffset = 0.25f;   ///< subtracted from |n| before weighting, 0..0.5
     float blendExponent = 4.0f;  ///< sharpness of the projection blend, 1..8
-    Image sideAlbedo;            ///< sRGB; used by all projections
+    Image sideAlbedo;            ///< sRGB; used by all projections (empty: plain light grey)
     Image topAlbedo;             ///< sRGB; optional, replaces the Y projection where n.y > 0
 };
 
