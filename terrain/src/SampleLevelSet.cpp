@@ -1,0 +1,417 @@
+#include <strata/terrain/SampleLevelSet.h>
+
+#include <strata/Error.h>
+
+#include <openvdb/tools/Prune.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <memory>
+#include <numeric>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace strata::terrain {
+
+namespace {
+
+using openvdb::Coord;
+using openvdb::CoordBBox;
+using Tree = openvdb::FloatTree;
+using Leaf = Tree::LeafNodeType;
+
+constexpr int LEAF_DIM = int(Leaf::DIM); // 8: the tiles we evaluate
+/// Top-level pruning blocks, subdivided down to tiles: the size of a
+/// level-1 internal node, so a block found all inside is one tile.
+constexpr int BLOCK_DIM = int(Tree::RootNodeType::ChildNodeType::ChildNodeType::DIM); // 128
+constexpr int SUB_DIM = 2;               // last pruning level, inside an evaluated tile
+constexpr int MAX_HALF_WIDTH = 64;
+/// Index coordinates stay well inside int32 (OpenVDB's Coord).
+constexpr double MAX_INDEX = 1073741824.0; // 2^30
+/// At most this many voxels in the region (2^40), which bounds the coarse
+/// pass to 2^19 blocks.
+constexpr double MAX_VOXELS = 1099511627776.0;
+/// Relative slack on the pruning test: fields are evaluated through float
+/// noise, so their Lipschitz bound holds only up to rounding.
+constexpr double PRUNE_SLACK = 1e-4;
+
+std::string show(double value)
+{
+    std::ostringstream out;
+    out.precision(17);
+    out << value;
+    return out.str();
+}
+
+void validate(const SampleOptions& o)
+{
+    if (!(std::isfinite(o.voxelSize) && o.voxelSize > 0.0)) {
+        throw Error("sampling: voxel_size = " + show(o.voxelSize) + " must be a finite number > 0");
+    }
+    if (o.halfWidth < 3 || o.halfWidth > MAX_HALF_WIDTH) {
+        throw Error("sampling: half_width = " + std::to_string(o.halfWidth) + " is out of range 3.." +
+                    std::to_string(MAX_HALF_WIDTH));
+    }
+    const char* axes = "xyz";
+    for (int a = 0; a < 3; ++a) {
+        const double lo = o.region.min[a], hi = o.region.max[a];
+        const std::string key = std::string(".") + axes[a];
+        if (!std::isfinite(lo) || !std::isfinite(hi)) {
+            throw Error("sampling: region min" + key + " = " + show(lo) + ", max" + key + " = " + show(hi) +
+                        " must be finite numbers");
+        }
+        if (!(hi > lo)) {
+            throw Error("sampling: region is empty: max" + key + " = " + show(hi) + " is not greater than min" +
+                        key + " = " + show(lo));
+        }
+    }
+}
+
+/// The voxels whose centre i·voxelSize lies in [min, max), per axis.
+CoordBBox indexBox(const Region& region, double voxelSize)
+{
+    Coord lo, hi;
+    const char* axes = "xyz";
+    for (int a = 0; a < 3; ++a) {
+        const double first = std::ceil(region.min[a] / voxelSize), last = std::floor(region.max[a] / voxelSize);
+        if (!(std::abs(first) < MAX_INDEX && std::abs(last) < MAX_INDEX)) {
+            throw Error(std::string("sampling: region ") + axes[a] + " range [" + show(region.min[a]) + ", " +
+                        show(region.max[a]) + ") is too far out for voxel_size = " + show(voxelSize) +
+                        " (more than 2^30 voxels from the origin)");
+        }
+        // Fix the rounding of the divisions with the exact test on i·voxelSize.
+        std::int64_t i = std::int64_t(first), j = std::int64_t(last);
+        while (double(i - 1) * voxelSize >= region.min[a]) --i;
+        while (double(i) * voxelSize < region.min[a]) ++i;
+        while (double(j) * voxelSize >= region.max[a]) --j;
+        while (double(j + 1) * voxelSize < region.max[a]) ++j;
+        if (j < i) {
+            throw Error(std::string("sampling: region ") + axes[a] + " range [" + show(region.min[a]) + ", " +
+                        show(region.max[a]) + ") holds no voxel centre at voxel_size = " + show(voxelSize));
+        }
+        lo[a] = openvdb::Int32(i);
+        hi[a] = openvdb::Int32(j);
+    }
+    const double voxels = double(hi.x() - lo.x() + 1) * double(hi.y() - lo.y() + 1) * double(hi.z() - lo.z() + 1);
+    if (voxels > MAX_VOXELS) {
+        throw Error("sampling: region holds " + show(voxels) + " voxels at voxel_size = " + show(voxelSize) +
+                    ", more than the limit of 2^40: sample it in chunks or use larger voxels");
+    }
+    return CoordBBox(lo, hi);
+}
+
+/// Rounds down to a multiple of `dim` (a power of two), also for negatives.
+Coord alignDown(const Coord& c, int dim)
+{
+    return Coord(c.x() & ~(dim - 1), c.y() & ~(dim - 1), c.z() & ~(dim - 1));
+}
+
+/// The field as sampled: the user's field, intersected with the region box
+/// when the level set is to be closed.
+class Sampler
+{
+public:
+    Sampler(const DensityField& field, const SampleOptions& options, const CoordBBox& box)
+        : mField(field), mVoxelSize(options.voxelSize), mClosed(options.closed)
+    {
+        // The box surface runs half a voxel inside the outermost voxel
+        // centres, so the cap's zero crossing lies between sampled voxels.
+        const glm::dvec3 lo = world(box.min()) + 0.5 * mVoxelSize;
+        const glm::dvec3 hi = world(box.max()) - 0.5 * mVoxelSize;
+        mBoxCentre = 0.5 * (lo + hi);
+        mBoxHalf = 0.5 * (hi - lo);
+        mLipschitz = mClosed ? std::max(field.lipschitz(), 1.0) : field.lipschitz();
+    }
+
+    glm::dvec3 world(const Coord& ijk) const
+    {
+        return glm::dvec3(double(ijk.x()) * mVoxelSize, double(ijk.y()) * mVoxelSize, double(ijk.z()) * mVoxelSize);
+    }
+
+    double lipschitz() const { return mLipschitz; }
+
+    double operator()(const glm::dvec3& p) const
+    {
+        const double d = mField.density(p);
+        if (!mClosed) return d;
+        // Exact signed distance to the box: positive outside.
+        const glm::dvec3 q = glm::abs(p - mBoxCentre) - mBoxHalf;
+        const double box = glm::length(glm::max(q, 0.0)) + std::min(std::max(q.x, std::max(q.y, q.z)), 0.0);
+        return std::max(d, box);
+    }
+
+private:
+    const DensityField& mField;
+    double mVoxelSize;
+    bool mClosed;
+    glm::dvec3 mBoxCentre{0.0}, mBoxHalf{0.0};
+    double mLipschitz = 1.0;
+};
+
+/// An aligned cube of voxels (part of it may lie outside the index box)
+/// whose in-box voxels all have |density| >= background and the same sign.
+struct Uniform
+{
+    Coord origin;
+    int dim;
+    bool inside;
+};
+
+/// What the coarse pass found in one 128³ block.
+struct BlockResult
+{
+    std::vector<Coord> tiles;      ///< 8³ tiles that may hold the surface
+    std::vector<Uniform> uniforms; ///< cubes pruned away
+    std::uint64_t evaluated = 0;
+};
+
+/// What evaluating one 8³ tile gave.
+struct TileResult
+{
+    std::unique_ptr<Leaf> leaf; ///< null when the tile holds no active voxel
+    bool inside = false;        ///< the tile's sign when it has no leaf
+    std::uint64_t evaluated = 0;
+};
+
+class LevelSetSampler
+{
+public:
+    LevelSetSampler(const Sampler& field, const CoordBBox& box, double background, bool closed)
+        : mField(field), mBox(box), mBackground(background), mClosed(closed)
+    {
+    }
+
+    /// True when no voxel centre of `clip` can have |density| < background:
+    /// |d(c)| > L·r + background, with r the distance from the centre c of
+    /// the voxel centres to the farthest of them. `d` receives d(c).
+    bool prunable(const CoordBBox& clip, double& d) const
+    {
+        const glm::dvec3 lo = mField.world(clip.min()), hi = mField.world(clip.max());
+        d = mField(0.5 * (lo + hi));
+        const double radius = 0.5 * glm::length(hi - lo);
+        return std::abs(d) > (mField.lipschitz() * radius + mBackground) * (1.0 + PRUNE_SLACK);
+    }
+
+    /// Coarse pass: subdivides an aligned cube down to 8³ tiles, dropping
+    /// every cube that the probe at its centre proves far from the surface.
+    void visit(const Coord& origin, int dim, BlockResult& out) const
+    {
+        CoordBBox clip(origin, origin.offsetBy(dim - 1));
+        clip.intersect(mBox);
+        if (clip.empty()) return;
+        double d = 0.0;
+        ++out.evaluated;
+        if (prunable(clip, d)) {
+            out.uniforms.push_back({origin, dim, d < 0.0});
+        } else if (dim == LEAF_DIM) {
+            out.tiles.push_back(origin);
+        } else {
+            const int half = dim / 2;
+            for (int x = 0; x < 2; ++x)
+                for (int y = 0; y < 2; ++y)
+                    for (int z = 0; z < 2; ++z) visit(origin.offsetBy(x * half, y * half, z * half), half, out);
+        }
+    }
+
+    /// Fine pass: evaluates one 8³ tile (after one more pruning level of 2³
+    /// sub-blocks). Active voxels hold |d| < background; the others hold
+    /// ±background with the sign of d.
+    TileResult evaluate(const Coord& origin) const
+    {
+        TileResult result;
+        CoordBBox clip(origin, origin.offsetBy(LEAF_DIM - 1));
+        clip.intersect(mBox);
+
+        float values[Leaf::SIZE];
+        Leaf::NodeMaskType active;
+        bool anyInside = false, anyOutside = false;
+        const float inside = float(-mBackground), outside = float(mBackground);
+
+        for (int sx = 0; sx < LEAF_DIM; sx += SUB_DIM)
+            for (int sy = 0; sy < LEAF_DIM; sy += SUB_DIM)
+                for (int sz = 0; sz < LEAF_DIM; sz += SUB_DIM) {
+                    const Coord subOrigin = origin.offsetBy(sx, sy, sz);
+                    CoordBBox sub(subOrigin, subOrigin.offsetBy(SUB_DIM - 1));
+                    sub.intersect(clip);
+                    if (sub.empty()) continue;
+                    double probe = 0.0;
+                    ++result.evaluated;
+                    const bool pruned = prunable(sub, probe);
+                    for (int x = sub.min().x(); x <= sub.max().x(); ++x)
+                        for (int y = sub.min().y(); y <= sub.max().y(); ++y)
+                            for (int z = sub.min().z(); z <= sub.max().z(); ++z) {
+                                const Coord ijk(x, y, z);
+                                const openvdb::Index offset = Leaf::coordToOffset(ijk);
+                                double d = probe;
+                                if (!pruned) {
+                                    d = mField(mField.world(ijk));
+                                    ++result.evaluated;
+                                }
+                                if (!pruned && std::abs(d) < mBackground) {
+                                    values[offset] = float(d);
+                                    active.setOn(offset);
+                                } else {
+                                    values[offset] = d < 0.0 ? inside : outside;
+                                }
+                                (d < 0.0 ? anyInside : anyOutside) = true;
+                            }
+                }
+
+        if (clip != CoordBBox(origin, origin.offsetBy(LEAF_DIM - 1))) {
+            // Voxels outside the region: air when the level set is closed,
+            // else the sign of the nearest voxel inside (no crossing at the
+            // region boundary).
+            for (int x = 0; x < LEAF_DIM; ++x)
+                for (int y = 0; y < LEAF_DIM; ++y)
+                    for (int z = 0; z < LEAF_DIM; ++z) {
+                        const Coord ijk = origin.offsetBy(x, y, z);
+                        if (clip.isInside(ijk)) continue;
+                        const Coord nearest = Coord::maxComponent(clip.min(), Coord::minComponent(clip.max(), ijk));
+                        values[Leaf::coordToOffset(ijk)] =
+                            mClosed ? outside : (values[Leaf::coordToOffset(nearest)] < 0.0f ? inside : outside);
+                    }
+        }
+
+        // A tile with no active voxel is all one sign (the field cannot
+        // change sign between neighbours without passing |d| < background),
+        // unless its Lipschitz bound is very loose: then keep it as a leaf.
+        if (active.isOff() && !(anyInside && anyOutside)) {
+            result.inside = anyInside;
+            return result;
+        }
+        result.leaf = std::make_unique<Leaf>(origin, outside, false);
+        for (openvdb::Index i = 0; i < Leaf::SIZE; ++i) result.leaf->setValueOnly(i, values[i]);
+        result.leaf->setValueMask(active);
+        return result;
+    }
+
+private:
+    const Sampler& mField;
+    CoordBBox mBox;
+    double mBackground;
+    bool mClosed;
+};
+
+void reportProgress(const SampleOptions& options, double fraction)
+{
+    if (options.progress && !options.progress(fraction)) throw Error("sampling interrupted");
+}
+
+} // namespace
+
+openvdb::FloatGrid::Ptr sampleLevelSet(const DensityField& field, const SampleOptions& options, SampleStats* stats)
+{
+    validate(options);
+    openvdb::initialize();
+
+    const double background = double(options.halfWidth) * options.voxelSize;
+    const CoordBBox box = indexBox(options.region, options.voxelSize);
+    const Sampler sampler(field, options, box);
+    const LevelSetSampler levelSet(sampler, box, background, options.closed);
+    reportProgress(options, 0.0);
+
+    // Coarse pass over 128³ blocks, in parallel; each block's lists come out
+    // in a fixed order, and blocks are concatenated in index order.
+    std::vector<Coord> blocks;
+    const Coord blockMin = alignDown(box.min(), BLOCK_DIM), blockMax = alignDown(box.max(), BLOCK_DIM);
+    for (int x = blockMin.x(); x <= blockMax.x(); x += BLOCK_DIM)
+        for (int y = blockMin.y(); y <= blockMax.y(); y += BLOCK_DIM)
+            for (int z = blockMin.z(); z <= blockMax.z(); z += BLOCK_DIM) blocks.emplace_back(x, y, z);
+    std::vector<BlockResult> blockResults(blocks.size());
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, blocks.size()), [&](const tbb::blocked_range<std::size_t>& r) {
+        for (std::size_t i = r.begin(); i != r.end(); ++i) levelSet.visit(blocks[i], BLOCK_DIM, blockResults[i]);
+    });
+
+    std::vector<Coord> tiles;
+    std::vector<Uniform> uniforms;
+    std::uint64_t evaluated = 0;
+    for (const BlockResult& b : blockResults) {
+        tiles.insert(tiles.end(), b.tiles.begin(), b.tiles.end());
+        uniforms.insert(uniforms.end(), b.uniforms.begin(), b.uniforms.end());
+        evaluated += b.evaluated;
+    }
+    blockResults.clear();
+    constexpr double COARSE_SHARE = 0.05; // of the progress bar
+    reportProgress(options, COARSE_SHARE);
+
+    // Fine pass over the surviving tiles, in parallel, in chunks so that
+    // progress is reported (and interruption honoured) from this thread.
+    std::vector<TileResult> results(tiles.size());
+    const std::size_t chunk = std::max<std::size_t>(256, tiles.size() / 64);
+    for (std::size_t begin = 0; begin < tiles.size(); begin += chunk) {
+        const std::size_t end = std::min(tiles.size(), begin + chunk);
+        tbb::parallel_for(tbb::blocked_range<std::size_t>(begin, end), [&](const tbb::blocked_range<std::size_t>& r) {
+            for (std::size_t i = r.begin(); i != r.end(); ++i) results[i] = levelSet.evaluate(tiles[i]);
+        });
+        reportProgress(options, COARSE_SHARE + (1.0 - 2.0 * COARSE_SHARE) * double(end) / double(tiles.size()));
+    }
+
+    // Assemble serially, leaves sorted by origin: the tree is the same
+    // whatever the thread count.
+    std::vector<std::size_t> order(tiles.size());
+    std::iota(order.begin(), order.end(), std::size_t(0));
+    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return tiles[a] < tiles[b]; });
+
+    auto tree = std::make_shared<Tree>(float(background));
+    for (std::size_t i : order) {
+        evaluated += results[i].evaluated;
+        if (results[i].leaf) {
+            tree->addLeaf(results[i].leaf.release());
+        } else {
+            uniforms.push_back({tiles[i], LEAF_DIM, results[i].inside});
+        }
+    }
+    results.clear();
+
+    // Sign the interior explicitly. Every tile of the region is a leaf or
+    // lies in a uniform cube whose sign is known, so inside tiles become
+    // -background tiles and everything else stays background (air). This is
+    // what signedFloodFill would infer by scanlines, but stays right where
+    // the region boundary cuts the narrow band open, which the scanline
+    // inference does not.
+    {
+        openvdb::tree::ValueAccessor<Tree> acc(*tree);
+        for (const Uniform& u : uniforms) {
+            if (!u.inside) continue;
+            CoordBBox clip(u.origin, u.origin.offsetBy(u.dim - 1));
+            if (u.dim == BLOCK_DIM && box.isInside(clip)) {
+                acc.addTile(2, u.origin, float(-background), false); // a whole level-1 node
+                continue;
+            }
+            clip.intersect(box);
+            const Coord first = alignDown(clip.min(), LEAF_DIM), last = alignDown(clip.max(), LEAF_DIM);
+            for (int x = first.x(); x <= last.x(); x += LEAF_DIM)
+                for (int y = first.y(); y <= last.y(); y += LEAF_DIM)
+                    for (int z = first.z(); z <= last.z(); z += LEAF_DIM)
+                        acc.addTile(1, Coord(x, y, z), float(-background), false);
+        }
+    }
+    // Merge uniform tiles into coarser ones (deterministic).
+    openvdb::tools::prune(*tree);
+
+    auto grid = openvdb::FloatGrid::create(tree);
+    grid->setTransform(openvdb::math::Transform::createLinearTransform(options.voxelSize));
+    grid->setGridClass(openvdb::GRID_LEVEL_SET);
+    grid->setName("surface");
+
+    if (stats) {
+        const Coord tileMin = alignDown(box.min(), LEAF_DIM), tileMax = alignDown(box.max(), LEAF_DIM);
+        std::uint64_t visited = 1;
+        for (int a = 0; a < 3; ++a) visited *= std::uint64_t((tileMax[a] - tileMin[a]) / LEAF_DIM + 1);
+        stats->evaluatedPoints = evaluated;
+        stats->activeVoxels = grid->activeVoxelCount();
+        stats->tilesVisited = visited;
+        stats->tilesSkipped = visited - tiles.size();
+    }
+    reportProgress(options, 1.0);
+    return grid;
+}
+
+} // namespace strata::terrain

@@ -21,29 +21,48 @@ struct Region
 struct SampleOptions
 {
     double voxelSize = 0.5;  ///< metres, > 0
-    int halfWidth = 3;       ///< narrow-band half width in voxels, >= 3
+    int halfWidth = 3;       ///< narrow-band half width in voxels, 3..64
     Region region;           ///< what to sample; voxels whose centre lies inside
-    /// Called now and then with the fraction done (0..1); return false to stop,
-    /// which makes sampleLevelSet throw strata::Error("interrupted"). May be empty.
+    /// True: the field is intersected with the region box (its surface half a
+    /// voxel inside the outermost voxel centres), so the level set is closed:
+    /// solid cut by the region shows flat caps and meshes watertight. False:
+    /// the surface is left open at the region boundary (for chunks meshed
+    /// with overlap); a mesher should then drop faces outside the region.
+    bool closed = true;
+    /// Called now and then, from the calling thread, with the fraction done
+    /// (0..1); return false to stop, which makes sampleLevelSet throw
+    /// strata::Error("sampling interrupted"). May be empty.
     std::function<bool(double)> progress;
 };
 
 struct SampleStats
 {
-    std::uint64_t evaluatedPoints = 0; ///< density() calls
+    std::uint64_t evaluatedPoints = 0; ///< density() calls, pruning probes included
     std::uint64_t activeVoxels = 0;
-    std::uint64_t tilesVisited = 0;    ///< 8³ leaf tiles considered
-    std::uint64_t tilesSkipped = 0;    ///< tiles pruned by the gradient bound
+    std::uint64_t tilesVisited = 0;    ///< 8³ leaf tiles overlapping the region
+    std::uint64_t tilesSkipped = 0;    ///< of those, tiles pruned whole by the gradient bound
 };
 
-/// Samples `field` into a FloatGrid of class GRID_LEVEL_SET with background
-/// halfWidth·voxelSize and transform `linear(voxelSize)` (voxel (i,j,k) is
-/// centred on world (i,j,k)·voxelSize). Only 8³ tiles that can contain the
-/// surface (by the field's Lipschitz bound) are evaluated; within them, only
-/// voxels with |density| < background are stored as active. The interior is
-/// then signed with signedFloodFill. Multithreaded (TBB), and the result is
-/// bitwise identical whatever the thread count.
-/// Throws strata::Error on an invalid voxel size, half width or empty region.
+/// Samples `field` into a FloatGrid of class GRID_LEVEL_SET named "surface",
+/// with background halfWidth·voxelSize and transform `linear(voxelSize)`
+/// (voxel (i,j,k) is centred on world (i,j,k)·voxelSize).
+///
+/// Pruning: 128³ blocks are probed at their centre and subdivided down to 8³
+/// tiles and then 2³ sub-blocks; a part is skipped when
+/// |d(centre)| > L·radius + background, L = field.lipschitz(). Only the
+/// remaining voxels are evaluated; those with |density| < background are
+/// stored active, the others as inactive ±background. Every skipped part's
+/// sign is known from its probe, so the interior is signed exactly (inside
+/// tiles hold −background); this replaces signedFloodFill, whose scanline
+/// guess goes wrong where the region boundary cuts the band open. Outside the
+/// region the grid holds the background (air).
+///
+/// Multithreaded (TBB); the result is bitwise identical whatever the thread
+/// count. Memory and time grow with the surface area inside the region.
+/// Throws strata::Error on an invalid voxel size, half width or region (not
+/// finite, empty, more than 2^30 voxels from the origin or more than 2^40
+/// voxels in all), on interruption, and passes on whatever field.density()
+/// throws.
 openvdb::FloatGrid::Ptr sampleLevelSet(const DensityField& field, const SampleOptions& options,
                                        SampleStats* stats = nullptr);
 

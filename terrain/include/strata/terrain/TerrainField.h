@@ -10,24 +10,45 @@
 
 namespace strata::terrain {
 
-/// A heightfield y = h(x, z), all lengths in metres.
+/// A heightfield y = h(x, z) = baseHeight + amplitude · fbm2D((x, z) / wavelength),
+/// all lengths in metres.
 struct HeightfieldOptions
 {
-    double baseHeight = 0.0;   ///< mean surface height
-    double amplitude = 24.0;   ///< peak deviation from baseHeight
-    double wavelength = 96.0;  ///< horizontal size of the largest features
-    FbmOptions fbm{6, 2.0, 0.5};
+    double baseHeight = 0.0;   ///< mean surface height, finite
+    /// Height scale, >= 0: heights stay within about baseHeight ± amplitude, and
+    /// the fbm's spread makes them typically ± amplitude / 5 (hills of about
+    /// ±5 m, peaks near ±15 m with the defaults).
+    double amplitude = 24.0;
+    double wavelength = 96.0;  ///< horizontal size of the largest features, > 0
+    FbmOptions fbm{6, 2.0, 0.5}; ///< octaves 1..24; the finest is wavelength / lacunarity^(octaves−1)
 };
 
-/// Tunnels where two independent 3D noise fields are both near zero: long,
-/// winding, connected tubes that cross the surface here and there.
+/// Tunnels where two independent 3D fbm fields n1, n2, evaluated at
+/// (x, y·verticalSquash, z) / wavelength, are both near zero: long, winding,
+/// connected tubes that cross the surface here and there.
+///
+/// The cave term is (sqrt(n1² + n2²) − r) / (its gradient bound), which
+/// keeps the density 1-Lipschitz but underestimates the distance to a tunnel
+/// about tenfold: the sampled narrow band around tunnels is wide, and
+/// sampling cost grows with the tunnel count (shorter wavelength, more
+/// octaves, larger squash all cost more; see TerrainFieldTest).
+///
+/// Defaults: with seed 1, the region x, z in [−96, 96], y in [−40, 40] holds
+/// about 30 openings to the surface and tunnels take about 4% of the rock.
 struct CaveOptions
 {
     bool enabled = true;
-    double wavelength = 48.0;  ///< horizontal size of the tunnel meanders (m)
-    double radius = 3.0;       ///< approximate tunnel radius (m)
-    double verticalSquash = 1.6; ///< >1 makes tunnels run more horizontally
-    double maxHeight = 1e30;   ///< no tunnels above this height (m)
+    double wavelength = 48.0;  ///< horizontal size of the tunnel meanders (m), > 0
+    /// Tunnel radius (m), > 0: the mean horizontal radius (the median is
+    /// about 0.8·radius: tunnels widen where they meander slowly); vertically
+    /// about radius / verticalSquash.
+    double radius = 3.0;
+    double verticalSquash = 1.6; ///< > 0; > 1 makes tunnels run more horizontally
+    double maxHeight = 1e30;   ///< no tunnels above this height (m); not NaN
+    /// The two 3D fields (octaves 1..24). Few octaves keep the tunnels smooth
+    /// and the gradient bound, hence the sampling cost, low: one octave gives
+    /// simpler tubes at about 0.7× the active voxels.
+    FbmOptions fbm{2, 2.0, 0.5};
 };
 
 struct TerrainOptions
@@ -37,10 +58,14 @@ struct TerrainOptions
     CaveOptions caves;
 };
 
-/// Heightfield minus caves, as a distance-like field (negative in rock).
+/// Heightfield minus caves, as a distance-like field (negative in rock):
+/// density = max((y − h(x, z)) · s_h, −caveDistance), with s_h making the
+/// height term 1-Lipschitz, so density() is 1-Lipschitz.
 class TerrainField final : public DensityField
 {
 public:
+    /// Throws strata::Error naming the option (e.g. "terrain: height.octaves
+    /// = 40 is out of range 1..24") if one is not finite or out of range.
     explicit TerrainField(const TerrainOptions& options);
 
     double density(const glm::dvec3& p) const override;
@@ -49,15 +74,19 @@ public:
     /// The heightfield alone: surface height at (x, z), metres.
     double height(double x, double z) const;
 
-    /// The cave term alone: negative inside a tunnel, in metres (approx.).
+    /// The cave term alone: negative inside a tunnel, 1-Lipschitz, in metres
+    /// but an underestimate of the distance to the tunnel wall (see
+    /// CaveOptions). Ignores `enabled`.
     double caveDistance(const glm::dvec3& p) const;
 
     const TerrainOptions& options() const { return mOptions; }
 
 private:
     TerrainOptions mOptions;
-    double mHeightScale; ///< 1 / Lipschitz bound of (y − h), keeps density 1-Lipschitz
-    double mCaveScale;   ///< the same for the cave term
+    Fbm mHeight, mCaveA, mCaveB; ///< seeds derived from options.seed
+    double mHeightScale;     ///< 1 / Lipschitz bound of (y − h), keeps density 1-Lipschitz
+    double mCaveScale;       ///< the same for the cave term (metres per noise unit)
+    double mCaveNoiseRadius; ///< tunnel radius in noise units (see the constructor)
 };
 
 } // namespace strata::terrain

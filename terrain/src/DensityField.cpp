@@ -1,0 +1,12 @@
+#include <strata/terrain/DensityField.h>
+
+#include <glm/geometric.hpp>
+
+namespace strata::terrain {
+
+double SphereField::density(const glm::dvec3& p) const
+{
+    return glm::length(p - mCenter) - mRadius;
+}
+
+} // namespace strata::terrain
