@@ -16,6 +16,7 @@
 #include <nlohmann/json.hpp>
 
 #include <fstream>
+#include <iomanip>
 #include <memory>
 #include <sstream>
 
@@ -33,7 +34,7 @@ std::string withThousands(std::uint64_t n)
     return out;
 }
 
-render::Camera makeCamera(const Scene& scene, const meshing::Bounds& bounds)
+render::Camera makeCamera(const Scene& scene, const meshing::Bounds& bounds, double aspect)
 {
     const CameraSettings& settings = scene.camera;
     if (settings.position) {
@@ -47,8 +48,14 @@ render::Camera makeCamera(const Scene& scene, const meshing::Bounds& bounds)
         return camera;
     }
     render::Camera camera = render::orbitCamera(bounds.min, bounds.max, settings.azimuth, settings.elevation,
-                                                settings.fov);
-    camera.position = camera.target + (camera.position - camera.target) / settings.zoom;
+                                                settings.fov, aspect);
+    if (settings.zoom != 1.0) {
+        const double distance = glm::length(camera.position - camera.target) / settings.zoom;
+        const double radius = 0.5 * glm::length(bounds.max - bounds.min);
+        camera.position = camera.target + (camera.position - camera.target) / settings.zoom;
+        camera.nearPlane = std::max(distance - radius, distance * 1e-3);
+        camera.farPlane = distance + radius;
+    }
     return camera;
 }
 
@@ -147,7 +154,8 @@ GenerateResult generate(const Scene& scene, const GenerateOptions& options, std:
         snapshot.width = options.width.value_or(scene.snapshot.width);
         snapshot.height = options.height.value_or(scene.snapshot.height);
         snapshot.samples = scene.snapshot.samples;
-        snapshot.camera = makeCamera(scene, meshing::worldBounds(mesh));
+        snapshot.anisotropy = scene.snapshot.anisotropy;
+        snapshot.camera = makeCamera(scene, meshing::worldBounds(mesh), double(snapshot.width) / snapshot.height);
         snapshot.lighting = scene.lighting;
         snapshot.material.mapScale = scene.material.mapScale;
         snapshot.material.blendOffset = scene.material.blendOffset;

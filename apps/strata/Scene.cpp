@@ -7,6 +7,7 @@
 #include <toml++/toml.h>
 
 #include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
 
 #include <cmath>
 #include <fstream>
@@ -162,6 +163,7 @@ void readTerrain(TableReader& root, Scene& scene)
     c.wavelength = caves.number("wavelength", c.wavelength, 1e-3, 1e7);
     c.radius = caves.number("radius", c.radius, 1e-4, 1e6);
     c.verticalSquash = caves.number("vertical_squash", c.verticalSquash, 0.1, 10.0);
+    c.fbm.octaves = int(caves.integer("octaves", c.fbm.octaves, 1, 8));
     c.maxHeight = caves.number("max_height", c.maxHeight, -HUGE_LENGTH, 1e30);
     caves.finish();
     terrainTable.finish();
@@ -194,8 +196,8 @@ Scene parseScene(std::string_view text, const std::string& source)
     TableReader region = root.table("region");
     const std::optional<glm::dvec3> lo = region.vec3("min", HUGE_LENGTH);
     const std::optional<glm::dvec3> hi = region.vec3("max", HUGE_LENGTH);
-    scene.region.min = lo.value_or(glm::dvec3(-96.0, -40.0, -96.0));
-    scene.region.max = hi.value_or(glm::dvec3(96.0, 40.0, 96.0));
+    scene.region.min = lo.value_or(glm::dvec3(-96.0, -44.0, -96.0));
+    scene.region.max = hi.value_or(glm::dvec3(96.0, 44.0, 96.0));
     for (int i = 0; i < 3; ++i) {
         if (!(scene.region.min[i] < scene.region.max[i])) {
             region.fail(nullptr, "max", "must be greater than region.min on every axis (axis " +
@@ -255,6 +257,7 @@ Scene parseScene(std::string_view text, const std::string& source)
     scene.snapshot.width = int(snapshot.integer("width", scene.snapshot.width, 1, 16384));
     scene.snapshot.height = int(snapshot.integer("height", scene.snapshot.height, 1, 16384));
     scene.snapshot.samples = int(snapshot.integer("samples", scene.snapshot.samples, 1, 16));
+    scene.snapshot.anisotropy = float(snapshot.number("anisotropy", scene.snapshot.anisotropy, 1.0, 16.0));
     snapshot.finish();
 
     root.finish();

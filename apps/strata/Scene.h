@@ -18,10 +18,10 @@ namespace strata::app {
 /// explicit position and target (world metres).
 struct CameraSettings
 {
-    double azimuth = 35.0;   ///< degrees around +Y; 0 looks towards −Z
-    double elevation = 30.0; ///< degrees above the horizon
+    double azimuth = 30.0;   ///< degrees around +Y; 0 looks towards −Z
+    double elevation = 35.0; ///< degrees above the horizon
     double zoom = 1.0;       ///< > 1 moves the orbit camera closer
-    double fov = 50.0;       ///< vertical field of view, degrees
+    double fov = 35.0;       ///< vertical field of view, degrees
     std::optional<glm::dvec3> position;
     std::optional<glm::dvec3> target;
 };
@@ -31,6 +31,7 @@ struct SnapshotSettings
     int width = 1280;
     int height = 720;
     int samples = 4; ///< MSAA samples
+    float anisotropy = 1.0f; ///< 1 = trilinear; up to 16
 };
 
 struct MaterialSettings

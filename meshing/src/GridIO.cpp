@@ -5,7 +5,53 @@
 
 #include <openvdb/io/File.h>
 
+#include <cstdint>
+#include <cstdio>
+#include <fstream>
+#include <iterator>
+#include <vector>
+
 namespace strata::meshing {
+
+namespace {
+
+// OpenVDB stamps every file with a random UUID (at byte 21: after the magic
+// number, the file and library versions and the grid-offsets flag), so two
+// writes of the same grid differ. Replace it with a UUID derived from the
+// rest of the file: the same grid gives the same bytes, and the UUID still
+// identifies the content, which is what OpenVDB uses it for.
+constexpr std::size_t UUID_OFFSET = 21;
+constexpr std::size_t UUID_LENGTH = 36;
+
+void makeUuidDeterministic(const std::filesystem::path& file)
+{
+    std::vector<char> bytes;
+    {
+        std::ifstream in(file, std::ios::binary);
+        bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    }
+    if (bytes.size() < UUID_OFFSET + UUID_LENGTH || bytes[UUID_OFFSET + 8] != '-' || bytes[UUID_OFFSET + 13] != '-' ||
+        bytes[UUID_OFFSET + 18] != '-' || bytes[UUID_OFFSET + 23] != '-') {
+        return; // an unknown header layout: leave the file as OpenVDB wrote it
+    }
+    // Two 64-bit FNV-1a hashes with different offsets: 128 bits of content hash.
+    std::uint64_t h[2] = {0xcbf29ce484222325ull, 0x84222325cbf29ce4ull};
+    for (std::size_t i = 0; i < bytes.size(); ++i) {
+        if (i == UUID_OFFSET) i += UUID_LENGTH;
+        if (i >= bytes.size()) break;
+        for (std::uint64_t& v : h) v = (v ^ std::uint8_t(bytes[i])) * 0x100000001b3ull;
+    }
+    char uuid[UUID_LENGTH + 1];
+    std::snprintf(uuid, sizeof(uuid), "%08x-%04x-4%03x-%04x-%012llx", unsigned(h[0] >> 32), unsigned(h[0] >> 16) & 0xffffu,
+                  unsigned(h[0]) & 0xfffu, unsigned((h[1] >> 48) & 0x3fffu) | 0x8000u,
+                  static_cast<unsigned long long>(h[1] & 0xffffffffffffull));
+    std::fstream out(file, std::ios::binary | std::ios::in | std::ios::out);
+    out.seekp(std::streamoff(UUID_OFFSET));
+    out.write(uuid, UUID_LENGTH);
+    if (!out.flush()) throw Error("cannot write VDB file '" + file.string() + "'");
+}
+
+} // namespace
 
 void writeGrid(const openvdb::FloatGrid& grid, const std::filesystem::path& path)
 {
@@ -21,6 +67,7 @@ void writeGrid(const openvdb::FloatGrid& grid, const std::filesystem::path& path
         } catch (const openvdb::Exception& e) {
             throw Error("cannot write VDB file '" + path.string() + "': " + e.what());
         }
+        makeUuidDeterministic(temporary);
     });
 }
 

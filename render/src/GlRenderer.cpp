@@ -258,6 +258,8 @@ void checkOptions(const MeshView& mesh, const SnapshotOptions& options)
     require(options.width >= 1 && options.width <= 16384 && options.height >= 1 && options.height <= 16384,
             "size " + std::to_string(options.width) + "x" + std::to_string(options.height) + " outside 1..16384");
     require(options.samples >= 1, "samples " + std::to_string(options.samples) + " must be >= 1");
+    require(options.anisotropy >= 1.0f && options.anisotropy <= 16.0f,
+            "anisotropy " + std::to_string(options.anisotropy) + " outside 1..16");
     const TriplanarMaterial& m = options.material;
     require(std::isfinite(m.mapScale) && m.mapScale > 0.0f, "material mapScale must be > 0");
     require(m.blendOffset >= 0.0f && m.blendOffset <= 0.5f, "material blendOffset outside 0..0.5");
@@ -321,7 +323,7 @@ float maxAnisotropy()
     GLfloat maximum = 1.0f;
     glGetFloatv(GL_MAX_TEXTURE_MAX_ANISOTROPY_EXT, &maximum);
     clearGlErrors();
-    return std::min(maximum, 8.0f);
+    return maximum;
 }
 
 struct RenderTarget
@@ -425,7 +427,7 @@ Image renderSnapshot(EglContext& context, const MeshView& mesh, const SnapshotOp
     checkGl("building the terrain program");
 
     // Textures. Without a side map the material is a plain light grey.
-    const float anisotropy = maxAnisotropy();
+    const float anisotropy = std::min(options.anisotropy, maxAnisotropy());
     Image fallback;
     if (!hasSide) {
         fallback.width = 1;

@@ -74,3 +74,30 @@ TEST(GridIO, EachBadFileHasItsOwnError)
     writeRaw(empty, dir / "empty.vdb");
     expectReadError(dir / "empty.vdb", "empty");
 }
+
+TEST(GridIO, SameGridGivesSameBytes)
+{
+    openvdb::initialize();
+    const auto dir = strata::test::freshTestDir();
+    auto grid = openvdb::tools::createLevelSetSphere<openvdb::FloatGrid>(2.0f, {0.f, 0.f, 0.f}, 0.25f);
+    writeGrid(*grid, dir / "a.vdb");
+    writeGrid(*grid, dir / "b.vdb");
+    auto bytes = [](const std::filesystem::path& path) {
+        std::ifstream in(path, std::ios::binary);
+        return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    };
+    EXPECT_EQ(bytes(dir / "a.vdb"), bytes(dir / "b.vdb"));
+    // Still a valid OpenVDB file with a well-formed UUID.
+    openvdb::io::File file((dir / "a.vdb").string());
+    file.open();
+    const std::string uuid = file.getUniqueTag();
+    EXPECT_EQ(uuid.size(), 36u);
+    EXPECT_EQ(uuid[8], '-');
+    EXPECT_EQ(readLevelSet(dir / "a.vdb")->activeVoxelCount(), grid->activeVoxelCount());
+
+    auto other = openvdb::tools::createLevelSetSphere<openvdb::FloatGrid>(2.5f, {0.f, 0.f, 0.f}, 0.25f);
+    writeGrid(*other, dir / "c.vdb");
+    openvdb::io::File otherFile((dir / "c.vdb").string());
+    otherFile.open();
+    EXPECT_NE(otherFile.getUniqueTag(), uuid);
+}

@@ -9,6 +9,8 @@
 namespace strata::meshing {
 
 /// Writes `grid` (with its name and metadata) to a .vdb file atomically.
+/// The file's UUID, random in OpenVDB, is derived from the file's content
+/// instead, so the same grid always gives the same bytes.
 /// Throws strata::Error naming the path.
 void writeGrid(const openvdb::FloatGrid& grid, const std::filesystem::path& path);
 

@@ -18,19 +18,18 @@ struct Camera
     double farPlane = 2000.0; ///< metres, > nearPlane
 };
 
-/// A camera looking at the centre of the box [boundsMin, boundsMax] from
-/// the given azimuth (degrees around +Y, 0 = looking towards −Z) and
-/// elevation (degrees above the horizon), far enough that the box fits the
-/// vertical field of view. Near and far planes are set from the box.
+/// A camera that looks at the box [boundsMin, boundsMax] from the given
+/// azimuth (degrees around +Y, 0 = looking towards −Z) and elevation
+/// (degrees above the horizon), placed so that the box's projected corners
+/// fill a view of `aspect` (width / height) with a 5% margin and are centred
+/// in it. Near and far planes are set from the box.
 ///
-/// Details: the distance is the smallest at which all eight corners fit a
-/// square view of `fovYDegrees` with a 5% margin, so the whole box is seen
-/// at any aspect ratio >= 1. Positive azimuth turns counter-clockwise seen
-/// from above; positive elevation looks down. `up` is orthogonal to the view
-/// direction (well defined at ±90°, where the top of the image faces the
-/// azimuth's horizontal direction).
+/// Positive azimuth turns counter-clockwise seen from above; positive
+/// elevation looks down. `up` is orthogonal to the view direction (well
+/// defined at ±90°, where the top of the image faces the azimuth's
+/// horizontal direction). The target is on the view axis, near the box centre.
 Camera orbitCamera(const glm::dvec3& boundsMin, const glm::dvec3& boundsMax, double azimuthDegrees,
-                   double elevationDegrees, double fovYDegrees = 50.0);
+                   double elevationDegrees, double fovYDegrees = 50.0, double aspect = 1.0);
 
 /// View matrix of `camera` relative to `origin`: world point p maps through
 /// view · (p − origin). Computed in double, returned in float.

@@ -16,6 +16,11 @@ struct SnapshotOptions
     int width = 1280;   ///< pixels, 1..16384
     int height = 720;   ///< pixels, 1..16384
     int samples = 4;    ///< MSAA samples (1 = off)
+    /// Maximum anisotropic filtering (1 = plain trilinear, up to 16; clamped
+    /// to what the driver offers). Trilinear is what the CPU reference
+    /// sampler does; anisotropy sharpens grazing views but costs about 6×
+    /// the render time on Mesa llvmpipe (measured: 0.64 s → 4.4 s at 1280×720).
+    float anisotropy = 1.0f;
     Camera camera;
     Lighting lighting;
     TriplanarMaterial material;

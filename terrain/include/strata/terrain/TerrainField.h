@@ -17,10 +17,10 @@ struct HeightfieldOptions
     double baseHeight = 0.0;   ///< mean surface height, finite
     /// Height scale, >= 0: heights stay within about baseHeight ± amplitude, and
     /// the fbm's spread makes them typically ± amplitude / 5 (hills of about
-    /// ±5 m, peaks near ±15 m with the defaults).
-    double amplitude = 24.0;
-    double wavelength = 96.0;  ///< horizontal size of the largest features, > 0
-    FbmOptions fbm{6, 2.0, 0.5}; ///< octaves 1..24; the finest is wavelength / lacunarity^(octaves−1)
+    /// ±11 m, peaks near ±30 m with the defaults).
+    double amplitude = 55.0;
+    double wavelength = 150.0;  ///< horizontal size of the largest features, > 0
+    FbmOptions fbm{6, 2.0, 0.45}; ///< octaves 1..24; the finest is wavelength / lacunarity^(octaves−1)
 };
 
 /// Tunnels where two independent 3D fbm fields n1, n2, evaluated at
@@ -33,16 +33,16 @@ struct HeightfieldOptions
 /// sampling cost grows with the tunnel count (shorter wavelength, more
 /// octaves, larger squash all cost more; see TerrainFieldTest).
 ///
-/// Defaults: with seed 1, the region x, z in [−96, 96], y in [−40, 40] holds
-/// about 30 openings to the surface and tunnels take about 4% of the rock.
+/// Defaults: with seed 1, the default scene's region (x, z in [−96, 96],
+/// y in [−44, 44]) holds dozens of openings to the surface.
 struct CaveOptions
 {
     bool enabled = true;
-    double wavelength = 48.0;  ///< horizontal size of the tunnel meanders (m), > 0
+    double wavelength = 56.0;  ///< horizontal size of the tunnel meanders (m), > 0
     /// Tunnel radius (m), > 0: the mean horizontal radius (the median is
     /// about 0.8·radius: tunnels widen where they meander slowly); vertically
     /// about radius / verticalSquash.
-    double radius = 3.0;
+    double radius = 4.5;
     double verticalSquash = 1.6; ///< > 0; > 1 makes tunnels run more horizontally
     double maxHeight = 1e30;   ///< no tunnels above this height (m); not NaN
     /// The two 3D fields (octaves 1..24). Few octaves keep the tunnels smooth

@@ -1,0 +1,134 @@
+// The strata executable end to end, as a user runs it.
+
+#include "TestDir.h"
+
+#include <strata/meshing/GltfIO.h>
+#include <strata/meshing/GridIO.h>
+#include <strata/meshing/MeshMetrics.h>
+#include <strata/render/Image.h>
+
+#include <nlohmann/json.hpp>
+
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <fstream>
+#include <sys/wait.h>
+
+namespace {
+
+struct CommandResult
+{
+    int exitCode;
+    std::string output; // stdout and stderr
+};
+
+CommandResult runStrata(const std::string& arguments, const std::filesystem::path& dir)
+{
+    const std::filesystem::path log = dir / "command.log";
+    const std::string command = std::string(STRATA_EXECUTABLE) + " " + arguments + " > " + log.string() + " 2>&1";
+    const int status = std::system(command.c_str());
+    std::ifstream in(log);
+    std::string output((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    std::filesystem::remove(log);
+    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
+}
+
+} // namespace
+
+TEST(Cli, HelpListsTheCommands)
+{
+    const auto dir = strata::test::freshTestDir();
+    const CommandResult run = runStrata("--help", dir);
+    EXPECT_EQ(run.exitCode, 0);
+    EXPECT_NE(run.output.find("generate"), std::string::npos) << run.output;
+    const CommandResult generateHelp = runStrata("generate --help", dir);
+    EXPECT_EQ(generateHelp.exitCode, 0);
+    EXPECT_NE(generateHelp.output.find("--seed"), std::string::npos) << generateHelp.output;
+    EXPECT_NE(generateHelp.output.find("--size"), std::string::npos);
+}
+
+TEST(Cli, GenerateDefaultSceneEndToEnd)
+{
+    const auto dir = strata::test::freshTestDir();
+    const auto out = dir / "default";
+    const CommandResult run = runStrata("generate -o " + out.string() + " --size 320x180", dir);
+    ASSERT_EQ(run.exitCode, 0) << run.output;
+    for (const char* stage : {"generate", "mesh", "render", "total"}) {
+        EXPECT_NE(run.output.find(stage), std::string::npos) << "stage time missing: " << stage << "\n" << run.output;
+    }
+
+    std::ifstream reportFile(out / "report.json");
+    ASSERT_TRUE(reportFile) << "report.json missing";
+    const nlohmann::json report = nlohmann::json::parse(reportFile);
+    EXPECT_EQ(report.at("seed").get<int>(), 1);
+    EXPECT_DOUBLE_EQ(report.at("voxel_size").get<double>(), 0.5);
+    EXPECT_GT(report.at("active_voxels").get<long>(), 100000);
+    EXPECT_GT(report.at("vertices").get<long>(), 10000);
+    EXPECT_GT(report.at("triangles").get<long>(), 10000);
+    for (const char* stage : {"generate", "mesh", "render", "total"}) {
+        EXPECT_GT(report.at("timings").at(stage).get<double>(), 0.0) << stage;
+    }
+
+    const openvdb::FloatGrid::Ptr grid = strata::meshing::readLevelSet(out / "terrain.vdb");
+    EXPECT_EQ(std::uint64_t(grid->activeVoxelCount()), report.at("active_voxels").get<std::uint64_t>());
+
+    const strata::meshing::TriangleMesh mesh = strata::meshing::readGltf(out / "terrain.glb");
+    EXPECT_EQ(mesh.triangleCount(), report.at("triangles").get<std::size_t>());
+    EXPECT_EQ(mesh.normals.size(), mesh.positions.size());
+    EXPECT_EQ(strata::meshing::analyzeTopology(mesh).inconsistentEdges, 0u);
+
+    const strata::render::Image image = strata::render::readImage(out / "snapshot.png");
+    EXPECT_EQ(image.width, 320);
+    EXPECT_EQ(image.height, 180);
+    std::size_t differing = 0;
+    for (int y = 0; y < image.height; ++y) {
+        for (int x = 0; x < image.width; ++x) {
+            differing += std::memcmp(image.at(x, y), image.at(0, 0), 3) != 0;
+        }
+    }
+    EXPECT_GT(differing, std::size_t(image.width * image.height / 4)) << "the snapshot is nearly constant";
+
+    // Nothing else is left in the directory (no temporary files).
+    std::size_t files = 0;
+    for ([[maybe_unused]] const auto& entry : std::filesystem::directory_iterator(out)) ++files;
+    EXPECT_EQ(files, 4u);
+}
+
+TEST(Cli, SameSeedSameBytesOnAnyThreadCount)
+{
+    const auto dir = strata::test::freshTestDir();
+    // A small scene keeps this quick; the determinism is the same at any size.
+    {
+        std::ofstream(dir / "small.toml") << "seed = 5\n[region]\nmin = [-24, -20, -24]\nmax = [24, 20, 24]\n";
+    }
+    const std::string scene = (dir / "small.toml").string();
+    ASSERT_EQ(runStrata("generate " + scene + " -o " + (dir / "one").string() + " --threads 1 --no-snapshot", dir).exitCode, 0);
+    ASSERT_EQ(runStrata("generate " + scene + " -o " + (dir / "two").string() + " --threads 2 --no-snapshot", dir).exitCode, 0);
+    auto bytes = [](const std::filesystem::path& path) {
+        std::ifstream in(path, std::ios::binary);
+        return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    };
+    EXPECT_EQ(bytes(dir / "one" / "terrain.glb"), bytes(dir / "two" / "terrain.glb"));
+    EXPECT_EQ(bytes(dir / "one" / "terrain.vdb"), bytes(dir / "two" / "terrain.vdb"));
+}
+
+TEST(Cli, BadSceneExitsWithTwoAndWritesNothing)
+{
+    const auto dir = strata::test::freshTestDir();
+    {
+        std::ofstream(dir / "bad.toml") << "seed = 3\n[sampling]\nvoxel_size = 0\n";
+    }
+    const CommandResult run = runStrata("generate " + (dir / "bad.toml").string() + " -o " + (dir / "out").string(), dir);
+    EXPECT_EQ(run.exitCode, 2);
+    EXPECT_NE(run.output.find("bad.toml:3: sampling.voxel_size = 0"), std::string::npos) << run.output;
+    EXPECT_FALSE(std::filesystem::exists(dir / "out" / "terrain.vdb"));
+    EXPECT_FALSE(std::filesystem::exists(dir / "out" / "report.json"));
+
+    const CommandResult badSize = runStrata("generate -o " + (dir / "out").string() + " --size 12by3", dir);
+    EXPECT_EQ(badSize.exitCode, 2);
+    EXPECT_NE(badSize.output.find("--size"), std::string::npos) << badSize.output;
+
+    const CommandResult missing = runStrata("generate /nonexistent.toml -o " + (dir / "out").string(), dir);
+    EXPECT_EQ(missing.exitCode, 2);
+}
