@@ -1,0 +1,103 @@
+// `strata generate`: the command-line front of Generate.h.
+
+#include "Commands.h"
+#include "Generate.h"
+#include "Scene.h"
+
+#include <strata/Error.h>
+
+#include <tbb/global_control.h>
+
+#include <iostream>
+#include <memory>
+#include <optional>
+#include <regex>
+
+namespace strata::app {
+
+namespace {
+
+// "1280x720" → {1280, 720}; throws strata::Error otherwise.
+std::pair<int, int> parseSize(const std::string& text)
+{
+    static const std::regex pattern(R"((\d{1,5})[xX](\d{1,5}))");
+    std::smatch match;
+    if (!std::regex_match(text, match, pattern)) {
+        throw Error("--size '" + text + "' must look like WIDTHxHEIGHT, e.g. 1280x720");
+    }
+    const int width = std::stoi(match[1]), height = std::stoi(match[2]);
+    if (width < 1 || height < 1 || width > 16384 || height > 16384) {
+        throw Error("--size '" + text + "': width and height must be in [1, 16384]");
+    }
+    return {width, height};
+}
+
+struct GenerateArguments
+{
+    std::string scenePath;
+    std::string outputDir;
+    std::optional<std::uint64_t> seed;
+    int threads = 0;
+    std::string size;
+    bool noSnapshot = false;
+    bool writePly = false;
+    bool quiet = false;
+};
+
+} // namespace
+
+Command registerGenerateCommand(CLI::App& app)
+{
+    auto args = std::make_shared<GenerateArguments>();
+    CLI::App* generate = app.add_subcommand(
+        "generate", "Generate a terrain: writes DIR/terrain.vdb, DIR/terrain.glb, DIR/snapshot.png, DIR/report.json");
+    generate->add_option("scene", args->scenePath, "Scene file (TOML); without one, the embedded default scene")
+        ->check(CLI::ExistingFile);
+    generate->add_option("-o,--output", args->outputDir, "Output directory (created if missing)")->required();
+    generate->add_option("--seed", args->seed, "Override the scene's seed");
+    generate->add_option("--threads", args->threads, "Worker threads (0 = all cores); output is identical for any count")
+        ->check(CLI::Range(0, 1024));
+    generate->add_option("--size", args->size, "Snapshot size WIDTHxHEIGHT (default from the scene, 1280x720)");
+    generate->add_flag("--no-snapshot", args->noSnapshot, "Skip the snapshot (no OpenGL/EGL needed)");
+    generate->add_flag("--ply", args->writePly, "Also write DIR/terrain.ply (binary PLY)");
+    generate->add_flag("-q,--quiet", args->quiet, "Print nothing but errors");
+
+    return {generate, [args]() {
+                GenerateOptions options;
+                options.outputDir = args->outputDir;
+                options.seed = args->seed;
+                options.snapshot = !args->noSnapshot;
+                options.writePly = args->writePly;
+                options.quiet = args->quiet;
+                options.threads = args->threads;
+                if (!args->size.empty()) {
+                    const auto [width, height] = parseSize(args->size);
+                    options.width = width;
+                    options.height = height;
+                }
+                const Scene scene = args->scenePath.empty() ? parseScene(defaultSceneText(), "<default scene>")
+                                                            : loadScene(args->scenePath);
+
+                std::unique_ptr<tbb::global_control> threadLimit;
+                if (args->threads > 0) {
+                    threadLimit = std::make_unique<tbb::global_control>(
+                        tbb::global_control::max_allowed_parallelism, std::size_t(args->threads));
+                }
+                if (!args->quiet) {
+                    std::cout << "strata generate: " << scene.source << " → " << args->outputDir << "/" << std::endl;
+                }
+                strata::app::generate(scene, options, std::cout);
+                return 0;
+            }};
+}
+
+Command registerSceneCommand(CLI::App& app)
+{
+    CLI::App* scene = app.add_subcommand("scene", "Print the embedded default scene (a starting point for your own)");
+    return {scene, []() {
+                std::cout << defaultSceneText();
+                return 0;
+            }};
+}
+
+} // namespace strata::app
