@@ -12,6 +12,7 @@ PACKAGES=(
   libcli11-dev libtomlplusplus-dev nlohmann-json3-dev libfmt-dev
   libgtest-dev libbenchmark-dev
   xvfb xauth
+  nodejs npm  # the Khronos glTF validator test (npm installs gltf-validator into the build tree)
 )
 
 missing=()

@@ -6,3 +6,12 @@
 #define STRATA_INLINE
 #define INOUT(T) inout T
 #define saturate(x) clamp((x), 0.0f, 1.0f)
+// Feature-set functions: STRATA_FEATURES is #defined (e.g. 13u) before this
+// prelude; feature tests are constant conditions the compiler folds away.
+#define STRATA_FEATURE_FUNCTION
+#define STRATA_FEATURE_ARGS
+#define STRATA_MAPS_PARAM
+#define STRATA_MAPS_ARG
+#define STRATA_IF_FEATURE(f) if ((STRATA_FEATURES & (f)) != 0u)
+#define STRATA_FEATURE_BITS STRATA_FEATURES
+#define SAMPLE_MAP(map, uv, dUVdx, dUVdy) sampleMap(map, uv, dUVdx, dUVdy)

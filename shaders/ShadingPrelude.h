@@ -19,6 +19,19 @@
 #define STRATA_CPP 1
 #define STRATA_INLINE inline
 #define INOUT(T) T&
+// Feature-set functions (TriplanarMaterial.h): templates on the feature bits
+// and the map sampler, whose feature tests are `if constexpr`.
+#define STRATA_FEATURE_FUNCTION template <unsigned STRATA_FEATURES, class Maps> inline
+#define STRATA_FEATURE_ARGS <STRATA_FEATURES, Maps>
+#define STRATA_MAPS_PARAM const Maps &maps,
+#define STRATA_MAPS_ARG maps,
+// The compile-time set is ANDed with the sampler's run-time `features`: an
+// instantiation for one exact set folds every test to a constant, the
+// catch-all instantiation (all bits) tests at run time. Either way a
+// disabled feature is never evaluated.
+#define STRATA_IF_FEATURE(f) if (((STRATA_FEATURES) & (f)) != 0u && (maps.features & (f)) != 0u)
+#define STRATA_FEATURE_BITS (STRATA_FEATURES & maps.features)
+#define SAMPLE_MAP(map, uv, dUVdx, dUVdy) maps.sample(map, uv, dUVdx, dUVdy)
 
 namespace strata::shading {
 
@@ -27,6 +40,7 @@ using vec3 = glm::vec3;
 using vec4 = glm::vec4;
 using ivec2 = glm::ivec2;
 using ivec3 = glm::ivec3;
+using uint = unsigned;
 
 // GLSL's built-in functions: abs, min, max, clamp, mix, pow, dot, normalize...
 using namespace glm;
@@ -38,8 +52,16 @@ inline vec3 saturate(vec3 x) { return glm::clamp(x, vec3(0.0f), vec3(1.0f)); }
 inline vec4 saturate(vec4 x) { return glm::clamp(x, vec4(0.0f), vec4(1.0f)); }
 
 #include "TriplanarShading.h"
+#include "TriplanarMaterial.h"
 
 } // namespace strata::shading
 
 #undef STRATA_INLINE
 #undef INOUT
+#undef STRATA_FEATURE_FUNCTION
+#undef STRATA_FEATURE_ARGS
+#undef STRATA_MAPS_PARAM
+#undef STRATA_MAPS_ARG
+#undef STRATA_IF_FEATURE
+#undef STRATA_FEATURE_BITS
+#undef SAMPLE_MAP

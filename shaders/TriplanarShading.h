@@ -124,4 +124,269 @@ STRATA_INLINE vec3 toneMapAces(vec3 x)
     return saturate(num / den);
 }
 
+
+// ===========================================================================
+// The full material model (issue 5). Everything below is plain math on
+// values the caller samples; the material evaluation itself lives in
+// TriplanarMaterial.h, which is compiled once per feature set.
+// ===========================================================================
+
+/// UV derivatives of the three projections, for the texture-space position
+/// derivative `d` (dFdx or dFdy of p): the projections without the ½
+/// offsets, with the same mirroring signs as triplanarUV().
+STRATA_INLINE TriplanarUV triplanarUVDerivative(vec3 d, vec3 n)
+{
+    TriplanarUV uv;
+    uv.x = vec2(d.z, d.y);
+    uv.y = vec2(d.x, d.z);
+    uv.z = vec2(d.x, d.y);
+    if (n.x >= 0.0f) {
+        uv.x.x = -uv.x.x;
+    }
+    if (n.y >= 0.0f) {
+        uv.y.x = -uv.y.x;
+    }
+    if (n.z < 0.0f) {
+        uv.z.x = -uv.z.x;
+    }
+    return uv;
+}
+
+/// Blend weights without height: saturate(|n| − offset) per axis, before
+/// the exponent. A projection whose base weight is 0 keeps weight 0 after
+/// height blending, so its maps need not be sampled at all.
+STRATA_INLINE vec3 triplanarBaseWeights(vec3 n, float offset)
+{
+    return saturate(abs(n) - vec3(offset));
+}
+
+/// Height-blended weights (triplanar-mapping §4.3):
+/// w = saturate(|n| − offset) · mix(1, heights, heightStrength), raised to
+/// `exponent`, normalised. `heights` are the projections' MOHS.B values
+/// (0..1), `heightStrength` 0..0.99. Never NaN, never all zero: falls back to
+/// the dominant axis of |n| exactly as triplanarWeights() does. Exponents up
+/// to 64 stay finite (the largest weight is divided out before pow()).
+STRATA_INLINE vec3 triplanarWeightsHeight(vec3 n, float offset, float exponent, vec3 heights, float heightStrength)
+{
+    vec3 a = abs(n);
+    vec3 w = saturate(a - vec3(offset)) * mix(vec3(1.0f), saturate(heights), heightStrength);
+    float m = max(w.x, max(w.y, w.z));
+    if (m > 0.0f) {
+        w = pow(w / m, vec3(exponent));
+        float s = w.x + w.y + w.z;
+        if (s >= 1.0f && s <= 3.0f) {
+            return w / s;
+        }
+    }
+    return triplanarWeights(n, 2.0f, 1.0f); // offset 2 cuts everything: the dominant-axis fallback
+}
+
+/// Weighted sum of four-component samples.
+STRATA_INLINE vec4 triplanarBlend4(vec4 sampleX, vec4 sampleY, vec4 sampleZ, vec3 weights)
+{
+    return sampleX * weights.x + sampleY * weights.y + sampleZ * weights.z;
+}
+
+// ---------------------------------------------------------------------------
+// Normal maps without tangent space (triplanar-mapping §3.2–3.3).
+
+const int NORMAL_BLEND_WHITEOUT = 0;
+const int NORMAL_BLEND_UDN = 1;
+const int NORMAL_BLEND_RNM = 2;
+
+/// Decodes a normal-map texel (0..1 per channel, OpenGL +Y convention; DirectX
+/// maps are flipped when loaded) into a tangent-space normal, scaling XY by
+/// `strength` and rebuilding Z = sqrt(1 − x² − y²) (so strength 0 gives
+/// exactly (0, 0, 1) and a flat texel stays flat). Not normalised beyond that.
+STRATA_INLINE vec3 decodeNormal(vec4 texel, float strength)
+{
+    vec2 xy = (vec2(texel.x, texel.y) * 2.0f - vec2(1.0f)) * strength;
+    float z = sqrt(max(1.0f - dot(xy, xy), 0.0f));
+    if (dot(xy, xy) > 1.0f) {
+        xy = normalize(xy);
+    }
+    return vec3(xy.x, xy.y, z);
+}
+
+/// Reoriented normal mapping (Barré-Brisebois & Hill): `detail` rotated by
+/// the rotation that takes +Z to `base`. Both tangent space, base.z > −1.
+/// The result is unit length when both inputs are.
+STRATA_INLINE vec3 blendNormalRnm(vec3 base, vec3 detail)
+{
+    vec3 t = vec3(base.x, base.y, base.z + 1.0f);
+    vec3 u = vec3(-detail.x, -detail.y, detail.z);
+    return t * (dot(t, u) / t.z) - u;
+}
+
+/// Blends a mapped tangent-space normal `mapped` with the surface normal
+/// `surface` expressed in the same projection space (Z = the projection
+/// axis, which may point away: surface.z < 0 on the negative faces).
+/// Whiteout: (m.xy + s.xy, m.z·s.z); UDN: (m.xy + s.xy, s.z); RNM: `mapped`
+/// reoriented onto `surface`. The blend is done with |s.z| and the result's
+/// Z sign restored, which for whiteout is exactly the seed text's formula.
+/// Not normalised (the weighted sum is normalised once).
+STRATA_INLINE vec3 blendProjectedNormal(vec3 mapped, vec3 surface, int mode)
+{
+    float sz = surface.z < 0.0f ? -1.0f : 1.0f;
+    vec3 s = vec3(surface.x, surface.y, abs(surface.z));
+    vec3 r;
+    if (mode == NORMAL_BLEND_UDN) {
+        r = vec3(mapped.x + s.x, mapped.y + s.y, s.z);
+    } else if (mode == NORMAL_BLEND_RNM) {
+        r = blendNormalRnm(s, mapped);
+    } else {
+        r = vec3(mapped.x + s.x, mapped.y + s.y, mapped.z * s.z);
+    }
+    return vec3(r.x, r.y, r.z * sz);
+}
+
+/// The X projection's mapped normal in world space: un-mirror (negate the
+/// tangent X where triplanarUV negated U), move the surface normal into
+/// projection space (zyx), blend, and move back.
+STRATA_INLINE vec3 worldNormalX(vec3 mapped, vec3 n, int mode)
+{
+    if (n.x >= 0.0f) {
+        mapped.x = -mapped.x;
+    }
+    vec3 b = blendProjectedNormal(mapped, vec3(n.z, n.y, n.x), mode);
+    return vec3(b.z, b.y, b.x);
+}
+
+/// The Y projection's mapped normal in world space (projection space xzy).
+STRATA_INLINE vec3 worldNormalY(vec3 mapped, vec3 n, int mode)
+{
+    if (n.y >= 0.0f) {
+        mapped.x = -mapped.x;
+    }
+    vec3 b = blendProjectedNormal(mapped, vec3(n.x, n.z, n.y), mode);
+    return vec3(b.x, b.z, b.y);
+}
+
+/// The Z projection's mapped normal in world space (projection space xyz).
+STRATA_INLINE vec3 worldNormalZ(vec3 mapped, vec3 n, int mode)
+{
+    if (n.z < 0.0f) {
+        mapped.x = -mapped.x;
+    }
+    return blendProjectedNormal(mapped, n, mode);
+}
+
+/// Normalises `v`, or returns `fallback` when v is zero or not finite.
+STRATA_INLINE vec3 safeNormalize(vec3 v, vec3 fallback)
+{
+    float l2 = dot(v, v);
+    if (l2 > 1e-30f && l2 < 1e30f) {
+        return v / sqrt(l2);
+    }
+    return fallback;
+}
+
+// ---------------------------------------------------------------------------
+// Detail maps (complex-maps §3).
+
+/// Albedo detail: `detail` is the detail map's R (0..1, 0.5 neutral);
+/// interpolates sqrt(albedo) towards 0 or 1 by |2·detail − 1| · strength ·
+/// mask, then squares (a perceptual, roughly gamma-space modulation).
+STRATA_INLINE vec3 applyDetailAlbedo(vec3 albedo, float detail, float strength, float mask)
+{
+    float d = (detail * 2.0f - 1.0f) * strength;
+    vec3 g = mix(sqrt(max(albedo, vec3(0.0f))), vec3(d < 0.0f ? 0.0f : 1.0f), abs(d) * mask);
+    return g * g;
+}
+
+/// Smoothness detail: the detail map's B, interpolated in the same way
+/// but linearly.
+STRATA_INLINE float applyDetailSmoothness(float smoothness, float detail, float strength, float mask)
+{
+    float d = (detail * 2.0f - 1.0f) * strength;
+    return mix(smoothness, d < 0.0f ? 0.0f : 1.0f, abs(d) * mask);
+}
+
+// ---------------------------------------------------------------------------
+// Lighting: the minimalist Cook–Torrance BRDF of Unity's scriptable render
+// pipelines (Catlike Coding "Custom SRP"), with hemisphere ambient.
+
+const float MIN_REFLECTIVITY = 0.04f;
+
+struct Brdf
+{
+    vec3 diffuse;
+    vec3 specular;
+    float roughness;
+    float perceptualRoughness;
+    float fresnel;
+};
+
+/// Diffuse and specular colours from metallic (reflectivity at least 0.04),
+/// roughness = (1 − smoothness)², the Fresnel colour's strength.
+STRATA_INLINE Brdf makeBrdf(vec3 albedo, float metallic, float smoothness)
+{
+    Brdf b;
+    float oneMinusReflectivity = (1.0f - MIN_REFLECTIVITY) - metallic * (1.0f - MIN_REFLECTIVITY);
+    b.diffuse = albedo * oneMinusReflectivity;
+    b.specular = mix(vec3(MIN_REFLECTIVITY), albedo, metallic);
+    b.perceptualRoughness = 1.0f - smoothness;
+    b.roughness = b.perceptualRoughness * b.perceptualRoughness;
+    b.fresnel = saturate(smoothness + 1.0f - oneMinusReflectivity);
+    return b;
+}
+
+/// r² / (d² · max(0.1, (L·H)²) · (4r + 2)), d = (N·H)²(r² − 1) + 1.00001.
+STRATA_INLINE float specularStrength(vec3 n, vec3 viewDir, vec3 lightDir, float roughness)
+{
+    vec3 h = safeNormalize(lightDir + viewDir, n);
+    float nh2 = saturate(dot(n, h));
+    nh2 = nh2 * nh2;
+    float lh2 = saturate(dot(lightDir, h));
+    lh2 = lh2 * lh2;
+    float r2 = roughness * roughness;
+    float d = nh2 * (r2 - 1.0f) + 1.00001f;
+    return r2 / (d * d * max(0.1f, lh2) * (roughness * 4.0f + 2.0f));
+}
+
+/// Radiance reflected from one directional light (unit `lightDir`, towards
+/// the light).
+STRATA_INLINE vec3 directLight(Brdf b, vec3 n, vec3 viewDir, vec3 lightDir, vec3 lightColor)
+{
+    float nDotL = saturate(dot(n, lightDir));
+    return lightColor * nDotL * (b.specular * specularStrength(n, viewDir, lightDir, b.roughness) + b.diffuse);
+}
+
+/// Sky/ground hemisphere: `ground` at direction −Y, `sky` at +Y.
+STRATA_INLINE vec3 hemisphere(vec3 dir, vec3 sky, vec3 ground)
+{
+    return mix(ground, sky, saturate(dir.y * 0.5f + 0.5f));
+}
+
+/// Indirect light: diffuse hemisphere ambient plus a reflection of the
+/// hemisphere, with Fresnel strength `fresnelStrength`·(1 − N·V)⁴, divided
+/// by r² + 1, all times `occlusion` (occlusion affects indirect light only).
+STRATA_INLINE vec3 indirectLight(Brdf b, vec3 n, vec3 viewDir, vec3 sky, vec3 ground, float occlusion,
+                                 float fresnelStrength)
+{
+    vec3 diffuseLight = hemisphere(n, sky, ground);
+    vec3 r = reflect(-viewDir, n);
+    // Rough surfaces see a blurrier, more ambient-like environment.
+    vec3 specularLight = mix(hemisphere(r, sky, ground), diffuseLight, b.perceptualRoughness);
+    float f = 1.0f - saturate(dot(n, viewDir));
+    f = fresnelStrength * f * f * f * f;
+    vec3 reflection = specularLight * mix(b.specular, vec3(b.fresnel), f) / (b.roughness * b.roughness + 1.0f);
+    return (diffuseLight * b.diffuse + reflection) * occlusion;
+}
+
+/// Exposure, ACES tone map: linear radiance to linear display value 0..1.
+STRATA_INLINE vec3 toneMap(vec3 radiance, float exposure)
+{
+    return toneMapAces(max(radiance, vec3(0.0f)) * exposure);
+}
+
+/// The sRGB transfer function, for one display value 0..1.
+STRATA_INLINE float linearToSrgb(float c)
+{
+    if (c <= 0.0031308f) {
+        return 12.92f * max(c, 0.0f);
+    }
+    return 1.055f * pow(min(c, 1.0f), 1.0f / 2.4f) - 0.055f;
+}
+
 #endif // STRATA_TRIPLANAR_SHADING_H

@@ -11,10 +11,12 @@ uniform vec3 uTextureOffset;   // fract(origin · mapScale), computed in double
 
 out vec3 vTexturePosition; // texture space: (world position) · mapScale, mod 1
 out vec3 vNormal;
+out vec3 vPosition;        // metres, relative to the mesh origin
 
 void main()
 {
     vTexturePosition = aPosition * uMapScale + uTextureOffset;
     vNormal = aNormal;
+    vPosition = aPosition;
     gl_Position = uViewProjection * vec4(aPosition, 1.0f);
 }

@@ -26,5 +26,9 @@ inline constexpr int EXIT_BAD_INPUT = 2;
 
 Command registerGenerateCommand(CLI::App& app);
 Command registerSceneCommand(CLI::App& app);
+Command registerRenderCommand(CLI::App& app);    // RenderCommand.cpp
+Command registerMeshCommand(CLI::App& app);      // MeshCommand.cpp
+Command registerInfoCommand(CLI::App& app);      // InfoCommand.cpp
+Command registerBenchMeshCommand(CLI::App& app); // BenchMeshCommand.cpp
 
 } // namespace strata::app

@@ -9,6 +9,7 @@
 #include <strata/meshing/GridToMesh.h>
 #include <strata/meshing/MeshMetrics.h>
 #include <strata/meshing/PlyIO.h>
+#include <strata/render/CpuRenderer.h>
 #include <strata/render/EglContext.h>
 #include <strata/render/GlRenderer.h>
 #include <strata/render/ProceduralTextures.h>
@@ -85,6 +86,20 @@ void writeReport(const GenerateResult& result, const Scene& scene, const Generat
 
 } // namespace
 
+render::SnapshotOptions makeSnapshotOptions(const Scene& scene, const meshing::TriangleMesh& mesh,
+                                            std::optional<int> width, std::optional<int> height)
+{
+    render::SnapshotOptions snapshot;
+    snapshot.width = width.value_or(scene.snapshot.width);
+    snapshot.height = height.value_or(scene.snapshot.height);
+    snapshot.samples = scene.snapshot.samples;
+    snapshot.anisotropy = scene.snapshot.anisotropy;
+    snapshot.camera = makeCamera(scene, meshing::worldBounds(mesh), double(snapshot.width) / snapshot.height);
+    snapshot.lighting = scene.lighting;
+    snapshot.material = buildMaterial(scene.material);
+    return snapshot;
+}
+
 GenerateResult generate(const Scene& scene, const GenerateOptions& options, std::ostream& out)
 {
     StageLog log(out, stdoutIsTerminal(), options.quiet);
@@ -99,7 +114,10 @@ GenerateResult generate(const Scene& scene, const GenerateOptions& options, std:
     // The GL context first: on a machine without one, fail before the long stages.
     std::unique_ptr<render::EglContext> context;
     double contextSeconds = 0.0;
-    if (options.snapshot) {
+    if (options.backend != "gl" && options.backend != "cpu") {
+        throw Error("unknown render backend '" + options.backend + "' (use gl or cpu)");
+    }
+    if (options.snapshot && options.backend == "gl") {
         log.begin("context");
         context = render::EglContext::create();
         result.renderer = context->description();
@@ -107,23 +125,27 @@ GenerateResult generate(const Scene& scene, const GenerateOptions& options, std:
         contextSeconds = log.seconds().at("context");
     }
 
-    terrain::TerrainOptions terrainOptions = scene.terrain;
-    if (options.seed) terrainOptions.seed = *options.seed;
-    result.seed = terrainOptions.seed;
+    result.seed = options.seed.value_or(scene.terrain.seed);
     result.voxelSize = scene.voxelSize;
 
     log.begin("generate");
-    const terrain::TerrainField field(terrainOptions);
+    // The scene's root density field; another seed rebuilds the tree.
+    const std::shared_ptr<const terrain::DensityField> field =
+        options.seed && *options.seed != scene.terrain.seed && scene.buildField ? scene.buildField(*options.seed)
+                                                                                : scene.field;
+    if (!field) throw Error(scene.source + ": the scene has no terrain");
     terrain::SampleOptions sampling;
     sampling.voxelSize = scene.voxelSize;
     sampling.halfWidth = scene.halfWidth;
     sampling.region = scene.region;
+    sampling.maxMemoryBytes = options.maxMemoryBytes;
+    sampling.renormalize = scene.renormalize;
     sampling.progress = [&log](double fraction) {
         log.progress(fraction);
         return true;
     };
     terrain::SampleStats stats;
-    openvdb::FloatGrid::Ptr grid = terrain::sampleLevelSet(field, sampling, &stats);
+    openvdb::FloatGrid::Ptr grid = terrain::sampleLevelSet(*field, sampling, &stats);
     grid->setName("terrain");
     result.activeVoxels = grid->activeVoxelCount();
     result.evaluatedPoints = stats.evaluatedPoints;
@@ -150,18 +172,7 @@ GenerateResult generate(const Scene& scene, const GenerateOptions& options, std:
 
     if (options.snapshot) {
         log.begin("render");
-        render::SnapshotOptions snapshot;
-        snapshot.width = options.width.value_or(scene.snapshot.width);
-        snapshot.height = options.height.value_or(scene.snapshot.height);
-        snapshot.samples = scene.snapshot.samples;
-        snapshot.anisotropy = scene.snapshot.anisotropy;
-        snapshot.camera = makeCamera(scene, meshing::worldBounds(mesh), double(snapshot.width) / snapshot.height);
-        snapshot.lighting = scene.lighting;
-        snapshot.material.mapScale = scene.material.mapScale;
-        snapshot.material.blendOffset = scene.material.blendOffset;
-        snapshot.material.blendExponent = scene.material.blendExponent;
-        snapshot.material.sideAlbedo = render::makeRockAlbedo(scene.material.textureSize, scene.material.textureSeed);
-        snapshot.material.topAlbedo = render::makeGrassAlbedo(scene.material.textureSize, scene.material.textureSeed);
+        const render::SnapshotOptions snapshot = makeSnapshotOptions(scene, mesh, options.width, options.height);
 
         render::MeshView view;
         view.positions = mesh.positions.data();
@@ -170,13 +181,16 @@ GenerateResult generate(const Scene& scene, const GenerateOptions& options, std:
         view.indices = mesh.indices.data();
         view.indexCount = mesh.indices.size();
         view.origin = mesh.origin;
-        const render::Image image = render::renderSnapshot(*context, view, snapshot);
+        if (options.backend == "cpu") result.renderer = "strata CPU reference renderer";
+        const render::Image image = options.backend == "cpu" ? render::renderSnapshotCpu(view, snapshot)
+                                                             : render::renderSnapshot(*context, view, snapshot);
         render::writeImage(image, options.outputDir / "snapshot.png");
-        log.end(std::to_string(image.width) + "x" + std::to_string(image.height));
+        log.end(std::to_string(image.width) + "x" + std::to_string(image.height) + ", " + options.backend + ", " +
+                render::featureNames(render::materialFeatures(snapshot.material)));
     }
 
     result.timings = log.seconds();
-    if (options.snapshot) {
+    if (options.snapshot && context) {
         // Context creation is part of the render stage's cost.
         result.timings["render"] += contextSeconds;
         result.timings.erase("context");

@@ -4,6 +4,9 @@
 
 #include "Scene.h"
 
+#include <strata/meshing/TriangleMesh.h>
+#include <strata/render/SnapshotOptions.h>
+
 #include <cstdint>
 #include <filesystem>
 #include <iosfwd>
@@ -18,10 +21,14 @@ struct GenerateOptions
     std::filesystem::path outputDir;     ///< created if missing
     std::optional<std::uint64_t> seed;   ///< overrides the scene's seed
     std::optional<int> width, height;    ///< override the snapshot size
-    bool snapshot = true;                ///< render snapshot.png (needs EGL)
+    bool snapshot = true;                ///< render snapshot.png (GL backend: needs EGL)
+    std::string backend = "gl";          ///< snapshot renderer: "gl" (EGL/OpenGL) or "cpu" (reference renderer)
     bool writePly = false;               ///< also write terrain.ply
     bool quiet = false;                  ///< no terminal output
     int threads = 0;                     ///< 0 = all cores; recorded in the report
+    /// Refuse to sample a grid whose estimated memory exceeds this (bytes;
+    /// 0 = no limit): strata::Error with the estimate, before the long stages.
+    std::uint64_t maxMemoryBytes = 8ull << 30;
 };
 
 struct GenerateResult
@@ -36,6 +43,13 @@ struct GenerateResult
     std::string renderer;                  ///< GL renderer description, empty without snapshot
     std::map<std::string, double> timings; ///< seconds per stage, and "total"
 };
+
+/// The render stage's input: the scene's snapshot size (or `width` ×
+/// `height`), camera framing `mesh`, lighting and material (built-in sets
+/// generated, texture files loaded). Throws strata::Error for unreadable
+/// textures.
+render::SnapshotOptions makeSnapshotOptions(const Scene& scene, const meshing::TriangleMesh& mesh,
+                                            std::optional<int> width, std::optional<int> height);
 
 /// Runs the whole pipeline and writes DIR/terrain.vdb, DIR/terrain.glb,
 /// (DIR/terrain.ply), DIR/snapshot.png and DIR/report.json, each atomically.

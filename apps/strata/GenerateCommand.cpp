@@ -8,6 +8,7 @@
 
 #include <tbb/global_control.h>
 
+#include <cctype>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -32,14 +33,35 @@ std::pair<int, int> parseSize(const std::string& text)
     return {width, height};
 }
 
+// "8GiB", "512MiB", "2G", "1.5GB", "1000000" → bytes (binary units: K, M, G,
+// T with or without "iB"/"B"); throws strata::Error otherwise.
+std::uint64_t parseMemory(const std::string& text)
+{
+    static const std::regex pattern(R"(\s*([0-9]+(?:\.[0-9]+)?)\s*([kKmMgGtT]?)(?:i?[bB])?\s*)");
+    std::smatch match;
+    if (!std::regex_match(text, match, pattern)) {
+        throw Error("--max-memory '" + text + "' must be a size like 8GiB, 512MiB or a byte count");
+    }
+    const double number = std::stod(match[1]);
+    const std::string unit = match[2];
+    const int shift = unit.empty() ? 0 : 10 * int(std::string("kmgt").find(char(std::tolower(unit[0]))) + 1);
+    const double bytes = number * double(1ull << shift);
+    if (!(bytes >= 1.0 && bytes < 1.8e19)) {
+        throw Error("--max-memory '" + text + "' is out of range (1 byte to 16 EiB)");
+    }
+    return std::uint64_t(bytes);
+}
+
 struct GenerateArguments
 {
     std::string scenePath;
     std::string outputDir;
     std::optional<std::uint64_t> seed;
     int threads = 0;
+    std::string maxMemory = "8GiB";
     std::string size;
     bool noSnapshot = false;
+    std::string backend = "gl";
     bool writePly = false;
     bool quiet = false;
 };
@@ -55,9 +77,14 @@ Command registerGenerateCommand(CLI::App& app)
         ->check(CLI::ExistingFile);
     generate->add_option("-o,--output", args->outputDir, "Output directory (created if missing)")->required();
     generate->add_option("--seed", args->seed, "Override the scene's seed");
+    generate->add_option("--max-memory", args->maxMemory,
+                         "Refuse scenes whose grid would need more memory than this, e.g. 8GiB (default), 512MiB")
+        ->capture_default_str();
     generate->add_option("--threads", args->threads, "Worker threads (0 = all cores); output is identical for any count")
         ->check(CLI::Range(0, 1024));
     generate->add_option("--size", args->size, "Snapshot size WIDTHxHEIGHT (default from the scene, 1280x720)");
+    generate->add_option("--backend", args->backend, "Snapshot renderer: gl (OpenGL through EGL) or cpu (reference renderer, no GL needed)")
+        ->check(CLI::IsMember({"gl", "cpu"}));
     generate->add_flag("--no-snapshot", args->noSnapshot, "Skip the snapshot (no OpenGL/EGL needed)");
     generate->add_flag("--ply", args->writePly, "Also write DIR/terrain.ply (binary PLY)");
     generate->add_flag("-q,--quiet", args->quiet, "Print nothing but errors");
@@ -67,9 +94,11 @@ Command registerGenerateCommand(CLI::App& app)
                 options.outputDir = args->outputDir;
                 options.seed = args->seed;
                 options.snapshot = !args->noSnapshot;
+                options.backend = args->backend;
                 options.writePly = args->writePly;
                 options.quiet = args->quiet;
                 options.threads = args->threads;
+                options.maxMemoryBytes = parseMemory(args->maxMemory);
                 if (!args->size.empty()) {
                     const auto [width, height] = parseSize(args->size);
                     options.width = width;

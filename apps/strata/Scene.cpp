@@ -1,6 +1,9 @@
 #include "Scene.h"
 
 #include "DefaultScene.h"
+#include "SceneMaterial.h"
+#include "SceneTerrain.h"
+#include "TableReader.h"
 
 #include <strata/Error.h>
 
@@ -19,134 +22,33 @@ namespace strata::app {
 
 namespace {
 
-std::string formatNumber(double value)
-{
-    std::ostringstream out;
-    out << value;
-    return out.str();
-}
-
-/// Reads one TOML table, checking types and ranges, and remembers which keys
-/// it consumed so that `finish()` can reject unknown ones (typos).
-class TableReader
-{
-public:
-    TableReader(const toml::table* table, std::string prefix, const std::string& source)
-        : mTable(table), mPrefix(std::move(prefix)), mSource(source)
-    {
-    }
-
-    double number(const std::string& key, double fallback, double min, double max)
-    {
-        const toml::node* node = find(key);
-        if (!node) return fallback;
-        std::optional<double> value = node->value<double>(); // also accepts integers
-        if (!value || node->is_boolean()) fail(node, key, "must be a number");
-        checkRange(node, key, *value, min, max);
-        return *value;
-    }
-
-    std::int64_t integer(const std::string& key, std::int64_t fallback, std::int64_t min, std::int64_t max)
-    {
-        const toml::node* node = find(key);
-        if (!node) return fallback;
-        if (!node->is_integer()) fail(node, key, "must be an integer");
-        const std::int64_t value = *node->value<std::int64_t>();
-        if (value < min || value > max) {
-            fail(node, key, "= " + std::to_string(value) + " is out of range [" + std::to_string(min) + ", " +
-                                std::to_string(max) + "]");
-        }
-        return value;
-    }
-
-    bool boolean(const std::string& key, bool fallback)
-    {
-        const toml::node* node = find(key);
-        if (!node) return fallback;
-        if (!node->is_boolean()) fail(node, key, "must be true or false");
-        return *node->value<bool>();
-    }
-
-    std::optional<glm::dvec3> vec3(const std::string& key, double limit)
-    {
-        const toml::node* node = find(key);
-        if (!node) return std::nullopt;
-        const toml::array* array = node->as_array();
-        if (!array || array->size() != 3) fail(node, key, "must be an array of three numbers [x, y, z]");
-        glm::dvec3 v;
-        for (int i = 0; i < 3; ++i) {
-            const toml::node& element = *array->get(std::size_t(i));
-            std::optional<double> value = element.value<double>();
-            if (!value || element.is_boolean()) fail(node, key, "must be an array of three numbers [x, y, z]");
-            checkRange(&element, key + "[" + std::to_string(i) + "]", *value, -limit, limit);
-            v[i] = *value;
-        }
-        return v;
-    }
-
-    /// A sub-table; absent tables read as empty.
-    TableReader table(const std::string& key)
-    {
-        const toml::node* node = find(key);
-        if (node && !node->is_table()) fail(node, key, "must be a table");
-        return TableReader(node ? node->as_table() : nullptr, qualified(key), mSource);
-    }
-
-    /// Throws on the first key that no reader asked for.
-    void finish() const
-    {
-        if (!mTable) return;
-        for (const auto& [key, node] : *mTable) {
-            if (!mUsed.count(std::string(key.str()))) {
-                throw Error(location(&node) + "unknown key '" + qualified(std::string(key.str())) + "'");
-            }
-        }
-    }
-
-    /// Throws "SOURCE:LINE: KEY WHAT"; the line is the node's, or the key's
-    /// own when `node` is null.
-    [[noreturn]] void fail(const toml::node* node, const std::string& key, const std::string& what) const
-    {
-        if (!node && mTable) node = mTable->get(key);
-        throw Error(location(node) + qualified(key) + " " + what);
-    }
-
-private:
-    const toml::node* find(const std::string& key)
-    {
-        mUsed.insert(key);
-        return mTable ? mTable->get(key) : nullptr;
-    }
-
-    void checkRange(const toml::node* node, const std::string& key, double value, double min, double max) const
-    {
-        if (!std::isfinite(value)) fail(node, key, "= " + formatNumber(value) + " must be finite");
-        if (value < min || value > max) {
-            fail(node, key, "= " + formatNumber(value) + " is out of range [" + formatNumber(min) + ", " +
-                                formatNumber(max) + "]");
-        }
-    }
-
-    std::string qualified(const std::string& key) const { return mPrefix.empty() ? key : mPrefix + "." + key; }
-
-    std::string location(const toml::node* node) const
-    {
-        std::string where = mSource;
-        if (node && node->source().begin.line > 0) where += ":" + std::to_string(node->source().begin.line);
-        return where + ": ";
-    }
-
-    const toml::table* mTable;
-    std::string mPrefix;
-    const std::string& mSource;
-    std::set<std::string> mUsed;
-};
-
 constexpr double HUGE_LENGTH = 1e9; // metres: the largest coordinate a scene may use
 
 void readTerrain(TableReader& root, Scene& scene)
 {
+    const toml::node* terrainNode = root.node("terrain");
     TableReader terrainTable = root.table("terrain");
+    if (terrainTable.has("root") || terrainTable.has("nodes")) {
+        // The node form (SceneTerrain.h).
+        for (const char* shorthand : {"height", "caves"}) {
+            if (terrainTable.has(shorthand)) {
+                terrainTable.fail(nullptr, shorthand, "cannot be combined with terrain.root and [terrain.nodes]: "
+                                                      "describe the heightfield and caves as nodes");
+            }
+        }
+        scene.buildField = readTerrainNodes(terrainNode->as_table(), scene.source,
+                                            std::filesystem::path(scene.source).parent_path(), scene.terrain.seed);
+        scene.field = scene.buildField(scene.terrain.seed);
+        return;
+    }
+    if (!terrainTable.has("height") && !terrainTable.has("caves")) {
+        // No terrain given: the default scene's node tree.
+        terrainTable.finish();
+        const toml::table defaults = toml::parse(defaultSceneText(), std::string_view("<default scene>"));
+        scene.buildField = readTerrainNodes(defaults["terrain"].as_table(), "<default scene>", {}, scene.terrain.seed);
+        scene.field = scene.buildField(scene.terrain.seed);
+        return;
+    }
     TableReader height = terrainTable.table("height");
     terrain::HeightfieldOptions& h = scene.terrain.height;
     h.baseHeight = height.number("base", h.baseHeight, -HUGE_LENGTH, HUGE_LENGTH);
@@ -167,6 +69,18 @@ void readTerrain(TableReader& root, Scene& scene)
     c.maxHeight = caves.number("max_height", c.maxHeight, -HUGE_LENGTH, 1e30);
     caves.finish();
     terrainTable.finish();
+    // The shorthand: TerrainField, a heightfield minus spaghetti tunnels.
+    const terrain::TerrainOptions options = scene.terrain;
+    scene.buildField = [options](std::uint64_t seed) -> std::shared_ptr<const terrain::DensityField> {
+        terrain::TerrainOptions o = options;
+        o.seed = seed;
+        return std::make_shared<terrain::TerrainField>(o);
+    };
+    try {
+        scene.field = scene.buildField(scene.terrain.seed);
+    } catch (const Error& e) {
+        terrainTable.fail(nullptr, "height", std::string("or terrain.caves: ") + e.what());
+    }
 }
 
 glm::vec3 directionFromAngles(double azimuthDegrees, double elevationDegrees)
@@ -210,6 +124,7 @@ Scene parseScene(std::string_view text, const std::string& source)
     TableReader sampling = root.table("sampling");
     scene.voxelSize = sampling.number("voxel_size", scene.voxelSize, 1e-4, 1e4);
     scene.halfWidth = int(sampling.integer("half_width", scene.halfWidth, 3, 32));
+    scene.renormalize = sampling.boolean("renormalize", scene.renormalize);
     sampling.finish();
 
     readTerrain(root, scene);
@@ -218,17 +133,7 @@ Scene parseScene(std::string_view text, const std::string& source)
     scene.adaptivity = mesh.number("adaptivity", scene.adaptivity, 0.0, 1.0);
     mesh.finish();
 
-    TableReader material = root.table("material");
-    MaterialSettings& m = scene.material;
-    m.mapScale = float(material.number("map_scale", m.mapScale, 1e-6, 1e6));
-    m.blendOffset = float(material.number("blend_offset", m.blendOffset, 0.0, 0.5));
-    m.blendExponent = float(material.number("blend_exponent", m.blendExponent, 1.0, 8.0));
-    m.textureSize = int(material.integer("texture_size", m.textureSize, 16, 4096));
-    if ((m.textureSize & (m.textureSize - 1)) != 0) {
-        material.fail(nullptr, "texture_size", "= " + std::to_string(m.textureSize) + " must be a power of two");
-    }
-    m.textureSeed = std::uint32_t(material.integer("texture_seed", m.textureSeed, 0, 0xffffffffll));
-    material.finish();
+    readMaterial(root, scene.material, std::filesystem::path(source).parent_path());
 
     TableReader camera = root.table("camera");
     CameraSettings& c = scene.camera;

@@ -2,12 +2,16 @@
 /// \file
 /// The scene file: everything `strata generate` needs, read from TOML.
 
+#include "SceneMaterial.h"
+
 #include <strata/render/Material.h>
 #include <strata/terrain/SampleLevelSet.h>
 #include <strata/terrain/TerrainField.h>
 
 #include <cstdint>
 #include <filesystem>
+#include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -34,26 +38,26 @@ struct SnapshotSettings
     float anisotropy = 1.0f; ///< 1 = trilinear; up to 16
 };
 
-struct MaterialSettings
-{
-    float mapScale = 0.125f;
-    float blendOffset = 0.25f;
-    float blendExponent = 4.0f;
-    int textureSize = 512;
-    std::uint32_t textureSeed = 7;
-};
 
 struct Scene
 {
     std::string source; ///< file path, or "<default scene>"
+    /// The seed (terrain.seed) and, for the [terrain.height]/[terrain.caves]
+    /// shorthand, its options.
     terrain::TerrainOptions terrain;
+    /// The terrain's root density field, built with terrain.seed (see
+    /// SceneTerrain.h); never null after parseScene().
+    std::shared_ptr<const terrain::DensityField> field;
+    /// Rebuilds the root field for another seed (`--seed`).
+    std::function<std::shared_ptr<const terrain::DensityField>(std::uint64_t)> buildField;
     terrain::Region region;
     double voxelSize = 0.5;
     int halfWidth = 3;
+    bool renormalize = false; ///< [sampling] renormalize: reinitialise the band to a signed distance
     double adaptivity = 0.0;
     CameraSettings camera;
     SnapshotSettings snapshot;
-    MaterialSettings material;
+    MaterialSettings material; ///< see SceneMaterial.h
     render::Lighting lighting;
 };
 

@@ -18,6 +18,10 @@ int main(int argc, char** argv)
     const std::vector<Command> commands = {
         registerGenerateCommand(app),
         registerSceneCommand(app),
+        registerRenderCommand(app),
+        registerMeshCommand(app),
+        registerInfoCommand(app),
+        registerBenchMeshCommand(app),
     };
 
     try {

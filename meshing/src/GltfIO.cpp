@@ -88,6 +88,28 @@ void writeGlb(const TriangleMesh& mesh, const std::filesystem::path& path)
     model.asset.generator = "Strata";
     model.buffers.resize(1);
 
+    tinygltf::Node node;
+    node.name = "terrain";
+    if (mesh.origin != glm::dvec3(0.0)) {
+        node.translation = {mesh.origin.x, mesh.origin.y, mesh.origin.z};
+    }
+    tinygltf::Scene scene;
+    scene.nodes.push_back(0);
+    model.scenes.push_back(scene);
+    model.defaultScene = 0;
+    if (mesh.indices.empty() || mesh.positions.empty()) {
+        // glTF accessors cannot be empty: an empty mesh is a node without one.
+        model.buffers.clear();
+        model.nodes.push_back(node);
+        writeAtomically(path, [&](const std::filesystem::path& temporary) {
+            tinygltf::TinyGLTF writer;
+            if (!writer.WriteGltfSceneToFile(&model, temporary.string(), true, true, false, true)) {
+                throw Error("cannot write glTF file '" + path.string() + "'");
+            }
+        });
+        return;
+    }
+
     tinygltf::Primitive primitive;
     primitive.mode = TINYGLTF_MODE_TRIANGLES;
     primitive.attributes["POSITION"] = appendVec3Accessor(model, mesh.positions, true);
@@ -108,17 +130,8 @@ void writeGlb(const TriangleMesh& mesh, const std::filesystem::path& path)
     gltfMesh.primitives.push_back(primitive);
     model.meshes.push_back(gltfMesh);
 
-    tinygltf::Node node;
-    node.name = "terrain";
     node.mesh = 0;
-    if (mesh.origin != glm::dvec3(0.0)) {
-        node.translation = {mesh.origin.x, mesh.origin.y, mesh.origin.z};
-    }
     model.nodes.push_back(node);
-    tinygltf::Scene scene;
-    scene.nodes.push_back(0);
-    model.scenes.push_back(scene);
-    model.defaultScene = 0;
 
     writeAtomically(path, [&](const std::filesystem::path& temporary) {
         tinygltf::TinyGLTF writer;

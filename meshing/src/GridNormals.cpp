@@ -1,5 +1,7 @@
 #include <strata/meshing/GridNormals.h>
 
+#include <strata/Error.h>
+
 #include <openvdb/tools/Interpolation.h>
 
 #include <glm/geometric.hpp>
@@ -84,6 +86,43 @@ void computeGridNormals(const openvdb::FloatGrid& grid, TriangleMesh& mesh)
     for (unsigned char d : degenerate) anyDegenerate |= d != 0;
     if (!anyDegenerate) return;
 
+    const std::vector<glm::vec3> faceSums = areaWeightedNormals(mesh);
+    for (std::size_t i = 0; i < degenerate.size(); ++i) {
+        if (degenerate[i]) mesh.normals[i] = unitOr(faceSums[i], FALLBACK_NORMAL);
+    }
+}
+
+const char* toString(NormalMethod method)
+{
+    switch (method) {
+    case NormalMethod::Grid: return "grid";
+    case NormalMethod::Gradient: return "gradient";
+    case NormalMethod::Face: return "face";
+    case NormalMethod::None: return "none";
+    }
+    return "?";
+}
+
+void computeGradientNormals(const GradientFunction& gradient, TriangleMesh& mesh)
+{
+    if (!gradient) throw Error("meshing: gradient normals need a gradient function");
+    mesh.normals.assign(mesh.positions.size(), glm::vec3(0.0f));
+    std::vector<unsigned char> degenerate(mesh.positions.size(), 0);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, mesh.positions.size(), 4096),
+                      [&](const tbb::blocked_range<std::size_t>& range) {
+        for (std::size_t i = range.begin(); i != range.end(); ++i) {
+            const glm::vec3 g(gradient(mesh.origin + glm::dvec3(mesh.positions[i])));
+            const float len2 = glm::dot(g, g);
+            if (len2 > MIN_LENGTH2 && std::isfinite(len2)) {
+                mesh.normals[i] = g / std::sqrt(len2);
+            } else {
+                degenerate[i] = 1;
+            }
+        }
+    });
+    bool anyDegenerate = false;
+    for (unsigned char d : degenerate) anyDegenerate |= d != 0;
+    if (!anyDegenerate) return;
     const std::vector<glm::vec3> faceSums = areaWeightedNormals(mesh);
     for (std::size_t i = 0; i < degenerate.size(); ++i) {
         if (degenerate[i]) mesh.normals[i] = unitOr(faceSums[i], FALLBACK_NORMAL);

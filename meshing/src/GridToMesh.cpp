@@ -2,6 +2,7 @@
 
 #include <strata/Error.h>
 #include <strata/meshing/GridNormals.h>
+#include <strata/meshing/ProjectToSurface.h>
 
 #include <openvdb/tools/VolumeToMesh.h>
 
@@ -29,6 +30,9 @@ TriangleMesh gridToMesh(const openvdb::FloatGrid& grid, const GridToMeshOptions&
     }
     if (!std::isfinite(options.origin.x) || !std::isfinite(options.origin.y) || !std::isfinite(options.origin.z)) {
         throw Error("meshing: origin must be finite");
+    }
+    if (options.computeNormals && options.normals == NormalMethod::Gradient && !options.gradient) {
+        throw Error("meshing: normals = gradient needs a gradient function");
     }
 
     std::vector<openvdb::Vec3s> points;
@@ -62,8 +66,19 @@ TriangleMesh gridToMesh(const openvdb::FloatGrid& grid, const GridToMeshOptions&
         }
     }
 
+    if (options.projectionSteps > 0) {
+        ProjectOptions project;
+        project.steps = options.projectionSteps;
+        project.isovalue = options.isovalue;
+        projectToSurface(grid, mesh, project);
+    }
     if (options.computeNormals) {
-        computeGridNormals(grid, mesh);
+        switch (options.normals) {
+        case NormalMethod::Grid: computeGridNormals(grid, mesh); break;
+        case NormalMethod::Gradient: computeGradientNormals(options.gradient, mesh); break;
+        case NormalMethod::Face: computeFaceNormals(mesh); break;
+        case NormalMethod::None: break;
+        }
     }
     return mesh;
 }

@@ -5,8 +5,10 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <limits>
+#include <numbers>
 #include <vector>
 
 namespace strata::meshing {
@@ -58,7 +60,92 @@ MeshTopology analyzeTopology(const TriangleMesh& mesh)
         else if (forward != 1) ++topology.inconsistentEdges;
         i = j;
     }
+
+    // Vertex fans: join the triangles around each vertex through the edges
+    // they share; more than one group is a non-manifold vertex.
+    const std::size_t n = mesh.positions.size();
+    std::vector<std::uint32_t> start(n + 1, 0);
+    for (std::uint32_t v : mesh.indices) ++start[v + 1];
+    for (std::size_t v = 0; v < n; ++v) start[v + 1] += start[v];
+    std::vector<std::uint32_t> corners(mesh.indices.size()), fill(start.begin(), start.end() - 1);
+    for (std::uint32_t i = 0; i < mesh.indices.size(); ++i) corners[fill[mesh.indices[i]]++] = i;
+    std::vector<std::uint32_t> parent;
+    for (std::size_t v = 0; v < n; ++v) {
+        const std::uint32_t count = start[v + 1] - start[v];
+        if (count == 0) {
+            ++topology.nonManifoldVertices;
+            continue;
+        }
+        parent.resize(count);
+        for (std::uint32_t k = 0; k < count; ++k) parent[k] = k;
+        auto find = [&](std::uint32_t k) {
+            while (parent[k] != k) k = parent[k] = parent[parent[k]];
+            return k;
+        };
+        // Two triangles around v are joined when they share a second vertex.
+        for (std::uint32_t a = 0; a < count; ++a) {
+            const std::uint32_t ta = corners[start[v] + a] / 3 * 3;
+            for (std::uint32_t b = a + 1; b < count; ++b) {
+                const std::uint32_t tb = corners[start[v] + b] / 3 * 3;
+                bool shared = false;
+                for (int i = 0; i < 3 && !shared; ++i) {
+                    const std::uint32_t w = mesh.indices[ta + i];
+                    if (w == v) continue;
+                    for (int j = 0; j < 3; ++j) shared |= mesh.indices[tb + j] == w;
+                }
+                if (shared) parent[find(a)] = find(b);
+            }
+        }
+        std::uint32_t groups = 0;
+        for (std::uint32_t k = 0; k < count; ++k) groups += find(k) == k ? 1 : 0;
+        if (groups > 1) ++topology.nonManifoldVertices;
+    }
     return topology;
+}
+
+std::size_t removeDegenerateTriangles(TriangleMesh& mesh)
+{
+    std::size_t kept = 0;
+    for (std::size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
+        const std::uint32_t a = mesh.indices[t], b = mesh.indices[t + 1], c = mesh.indices[t + 2];
+        if (a == b || b == c || a == c) continue;
+        const glm::vec3 cross = glm::cross(mesh.positions[b] - mesh.positions[a], mesh.positions[c] - mesh.positions[a]);
+        if (glm::dot(cross, cross) == 0.0f) continue;
+        mesh.indices[kept++] = a;
+        mesh.indices[kept++] = b;
+        mesh.indices[kept++] = c;
+    }
+    const std::size_t removed = mesh.indices.size() / 3 - kept / 3;
+    mesh.indices.resize(kept);
+    return removed;
+}
+
+AngleStatistics angleStatistics(const TriangleMesh& mesh)
+{
+    AngleStatistics stats;
+    const std::size_t triangles = mesh.indices.size() / 3;
+    if (triangles == 0) return stats;
+    double sum = 0.0, smallest = 180.0;
+    std::size_t below = 0;
+    for (std::size_t t = 0; t < triangles; ++t) {
+        const glm::dvec3 p[3] = {glm::dvec3(mesh.positions[mesh.indices[3 * t]]),
+                                 glm::dvec3(mesh.positions[mesh.indices[3 * t + 1]]),
+                                 glm::dvec3(mesh.positions[mesh.indices[3 * t + 2]])};
+        double least = 180.0;
+        for (int k = 0; k < 3; ++k) {
+            const glm::dvec3 u = p[(k + 1) % 3] - p[k], v = p[(k + 2) % 3] - p[k];
+            const double len = glm::length(u) * glm::length(v);
+            const double angle = len > 0 ? std::acos(std::clamp(glm::dot(u, v) / len, -1.0, 1.0)) * 180.0 / std::numbers::pi : 0.0;
+            least = std::min(least, angle);
+        }
+        sum += least;
+        smallest = std::min(smallest, least);
+        below += least < 10.0 ? 1 : 0;
+    }
+    stats.minDegrees = smallest;
+    stats.meanMinDegrees = sum / double(triangles);
+    stats.below10Percent = 100.0 * double(below) / double(triangles);
+    return stats;
 }
 
 double signedVolume(const TriangleMesh& mesh)

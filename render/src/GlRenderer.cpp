@@ -2,6 +2,9 @@
 
 #include <strata/Error.h>
 #include <strata/render/EglContext.h>
+
+#include "MaterialMaps.h"
+#include "ShadingBridge.h"
 #include <strata/shaders/EmbeddedShaders.h>
 
 #include <epoxy/gl.h>
@@ -10,6 +13,7 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cassert>
 #include <cmath>
 #include <cstdio>
@@ -32,17 +36,9 @@ public:
     using Deleter = void (*)(GLuint);
 
     GlObject() = default;
-    GlObject(GLuint id, Deleter deleter)
-        : mId(id)
-        , mDeleter(deleter)
-    {
-    }
+    GlObject(GLuint id, Deleter deleter) : mId(id), mDeleter(deleter) {}
     ~GlObject() { reset(); }
-    GlObject(GlObject&& other) noexcept
-        : mId(std::exchange(other.mId, 0))
-        , mDeleter(other.mDeleter)
-    {
-    }
+    GlObject(GlObject&& other) noexcept : mId(std::exchange(other.mId, 0)), mDeleter(other.mDeleter) {}
     GlObject& operator=(GlObject&& other) noexcept
     {
         if (this != &other) {
@@ -111,14 +107,22 @@ GlObject createFramebuffer()
 std::string glErrorName(GLenum error)
 {
     switch (error) {
-    case GL_INVALID_ENUM: return "GL_INVALID_ENUM";
-    case GL_INVALID_VALUE: return "GL_INVALID_VALUE";
-    case GL_INVALID_OPERATION: return "GL_INVALID_OPERATION";
-    case GL_INVALID_FRAMEBUFFER_OPERATION: return "GL_INVALID_FRAMEBUFFER_OPERATION";
-    case GL_OUT_OF_MEMORY: return "GL_OUT_OF_MEMORY";
-    case GL_STACK_UNDERFLOW: return "GL_STACK_UNDERFLOW";
-    case GL_STACK_OVERFLOW: return "GL_STACK_OVERFLOW";
-    default: return "GL error " + std::to_string(error);
+    case GL_INVALID_ENUM:
+        return "GL_INVALID_ENUM";
+    case GL_INVALID_VALUE:
+        return "GL_INVALID_VALUE";
+    case GL_INVALID_OPERATION:
+        return "GL_INVALID_OPERATION";
+    case GL_INVALID_FRAMEBUFFER_OPERATION:
+        return "GL_INVALID_FRAMEBUFFER_OPERATION";
+    case GL_OUT_OF_MEMORY:
+        return "GL_OUT_OF_MEMORY";
+    case GL_STACK_UNDERFLOW:
+        return "GL_STACK_UNDERFLOW";
+    case GL_STACK_OVERFLOW:
+        return "GL_STACK_OVERFLOW";
+    default:
+        return "GL error " + std::to_string(error);
     }
 }
 
@@ -239,41 +243,15 @@ GlObject linkProgram(const GlObject& vertex, const GlObject& fragment)
 // ---------------------------------------------------------------------------
 // Inputs.
 
-void checkTexture(const Image& image, const char* name)
-{
-    if (image.width <= 0 || image.height <= 0 ||
-        image.pixels.size() != std::size_t(image.width) * std::size_t(image.height) * 4) {
-        throw Error(std::string("material ") + name + " is not a valid RGBA8 image (" + std::to_string(image.width) +
-                    "x" + std::to_string(image.height) + ", " + std::to_string(image.pixels.size()) + " bytes)");
-    }
-}
-
 void checkOptions(const MeshView& mesh, const SnapshotOptions& options)
 {
-    auto require = [](bool ok, const std::string& message) {
-        if (!ok) {
-            throw Error("snapshot: " + message);
-        }
-    };
-    require(options.width >= 1 && options.width <= 16384 && options.height >= 1 && options.height <= 16384,
-            "size " + std::to_string(options.width) + "x" + std::to_string(options.height) + " outside 1..16384");
-    require(options.samples >= 1, "samples " + std::to_string(options.samples) + " must be >= 1");
-    require(options.anisotropy >= 1.0f && options.anisotropy <= 16.0f,
-            "anisotropy " + std::to_string(options.anisotropy) + " outside 1..16");
-    const TriplanarMaterial& m = options.material;
-    require(std::isfinite(m.mapScale) && m.mapScale > 0.0f, "material mapScale must be > 0");
-    require(m.blendOffset >= 0.0f && m.blendOffset <= 0.5f, "material blendOffset outside 0..0.5");
-    require(m.blendExponent >= 1.0f && m.blendExponent <= 8.0f, "material blendExponent outside 1..8");
-    const Camera& c = options.camera;
-    require(c.nearPlane > 0.0 && c.farPlane > c.nearPlane, "camera needs 0 < near < far");
-    require(c.fovYDegrees > 0.0 && c.fovYDegrees < 180.0, "camera fovYDegrees outside (0, 180)");
-    require(glm::length(c.target - c.position) > 0.0, "camera position equals its target");
-
+    checkSnapshotOptions(options);
     assert(mesh.indexCount % 3 == 0);
     assert(mesh.vertexCount == 0 || (mesh.positions && mesh.normals));
     assert(mesh.indexCount == 0 || mesh.indices);
-    require(mesh.indexCount <= std::size_t(std::numeric_limits<GLsizei>::max()),
-            "mesh has too many indices for one draw (" + std::to_string(mesh.indexCount) + ")");
+    if (mesh.indexCount > std::size_t(std::numeric_limits<GLsizei>::max())) {
+        throw Error("snapshot: mesh has too many indices for one draw (" + std::to_string(mesh.indexCount) + ")");
+    }
     for (std::size_t i = 0; i < mesh.indexCount; ++i) {
         if (mesh.indices[i] >= mesh.vertexCount) {
             throw Error("snapshot: mesh index " + std::to_string(i) + " is " + std::to_string(mesh.indices[i]) +
@@ -282,27 +260,21 @@ void checkOptions(const MeshView& mesh, const SnapshotOptions& options)
     }
 }
 
-/// An sRGB, mipmapped, repeating, trilinear (anisotropic where available)
-/// texture. Image rows run top to bottom; GL's run bottom to top, so the
-/// rows are flipped: the image's top is at v = 1 (texture "up" is +V).
-GlObject uploadTexture(const Image& image, float anisotropy)
+/// Uploads a Texture's mip chain as built on the CPU (the same texels the
+/// CPU sampler filters): sRGB8_ALPHA8 or RGBA8 by kind, repeating,
+/// trilinear (anisotropic where asked). Rows are already bottom to top.
+GlObject uploadTexture(const Texture& texture, float anisotropy)
 {
-    GlObject texture = createTexture2D();
-    const GLuint id = texture.id();
-    int levels = 1;
-    while ((std::max(image.width, image.height) >> levels) > 0) {
-        ++levels;
-    }
-    glTextureStorage2D(id, levels, GL_SRGB8_ALPHA8, image.width, image.height);
-    const std::size_t rowBytes = std::size_t(image.width) * 4;
-    std::vector<std::uint8_t> flipped(image.pixels.size());
-    for (int y = 0; y < image.height; ++y) {
-        std::memcpy(flipped.data() + std::size_t(image.height - 1 - y) * rowBytes,
-                    image.pixels.data() + std::size_t(y) * rowBytes, rowBytes);
-    }
+    GlObject object = createTexture2D();
+    const GLuint id = object.id();
+    const auto levels = GLsizei(texture.levels.size());
+    glTextureStorage2D(id, levels, texture.srgb ? GL_SRGB8_ALPHA8 : GL_RGBA8, texture.width(), texture.height());
     glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-    glTextureSubImage2D(id, 0, 0, 0, image.width, image.height, GL_RGBA, GL_UNSIGNED_BYTE, flipped.data());
-    glGenerateTextureMipmap(id);
+    for (GLsizei level = 0; level < levels; ++level) {
+        const Texture::Level& l = texture.levels[std::size_t(level)];
+        glTextureSubImage2D(id, level, 0, 0, l.width, l.height, GL_RGBA, GL_UNSIGNED_BYTE, l.texels.data());
+    }
+    glTextureParameteri(id, GL_TEXTURE_MAX_LEVEL, levels - 1);
     glTextureParameteri(id, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
     glTextureParameteri(id, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
     glTextureParameteri(id, GL_TEXTURE_WRAP_S, GL_REPEAT);
@@ -311,7 +283,17 @@ GlObject uploadTexture(const Image& image, float anisotropy)
         glTextureParameterf(id, GL_TEXTURE_MAX_ANISOTROPY_EXT, anisotropy);
     }
     checkGl("uploading a texture");
-    return texture;
+    return object;
+}
+
+/// The fragment program for one feature set: STRATA_FEATURES defined right
+/// after the #version line.
+std::string fragmentSource(std::uint32_t features)
+{
+    std::string source = shaders::TERRAIN_FRAG;
+    const std::size_t lineEnd = source.find('\n');
+    source.insert(lineEnd + 1, "#define STRATA_FEATURES " + std::to_string(features) + "u\n");
+    return source;
 }
 
 float maxAnisotropy()
@@ -338,13 +320,12 @@ RenderTarget createRenderTarget(int width, int height, int samples, bool withDep
     RenderTarget target;
     target.framebuffer = createFramebuffer();
     target.color = createRenderbuffer();
-    glNamedRenderbufferStorageMultisample(target.color.id(), samples > 1 ? samples : 0, GL_SRGB8_ALPHA8, width,
-                                          height);
+    glNamedRenderbufferStorageMultisample(target.color.id(), samples > 1 ? samples : 0, GL_SRGB8_ALPHA8, width, height);
     glNamedFramebufferRenderbuffer(target.framebuffer.id(), GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, target.color.id());
     if (withDepth) {
         target.depth = createRenderbuffer();
-        glNamedRenderbufferStorageMultisample(target.depth.id(), samples > 1 ? samples : 0, GL_DEPTH_COMPONENT24,
-                                              width, height);
+        glNamedRenderbufferStorageMultisample(target.depth.id(), samples > 1 ? samples : 0, GL_DEPTH_COMPONENT24, width,
+                                              height);
         glNamedFramebufferRenderbuffer(target.framebuffer.id(), GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER,
                                        target.depth.id());
     }
@@ -352,11 +333,13 @@ RenderTarget createRenderTarget(int width, int height, int samples, bool withDep
     const GLenum status = glCheckNamedFramebufferStatus(target.framebuffer.id(), GL_FRAMEBUFFER);
     if (status != GL_FRAMEBUFFER_COMPLETE) {
         throw Error("OpenGL framebuffer " + std::to_string(width) + "x" + std::to_string(height) + " with " +
-                    std::to_string(samples) + " samples is incomplete (status 0x" + [status] {
+                    std::to_string(samples) + " samples is incomplete (status 0x" +
+                    [status] {
                         char buffer[16];
                         std::snprintf(buffer, sizeof(buffer), "%x", unsigned(status));
                         return std::string(buffer);
-                    }() + ")");
+                    }() +
+                    ")");
     }
     return target;
 }
@@ -370,8 +353,9 @@ struct StateGuard
         glBindFramebuffer(GL_FRAMEBUFFER, 0);
         glBindVertexArray(0);
         glUseProgram(0);
-        glBindTextureUnit(0, 0);
-        glBindTextureUnit(1, 0);
+        for (GLuint unit = 0; unit < 9; ++unit) {
+            glBindTextureUnit(unit, 0);
+        }
         glDisable(GL_FRAMEBUFFER_SRGB);
         glDisable(GL_DEPTH_TEST);
         glDisable(GL_CULL_FACE);
@@ -386,15 +370,9 @@ struct StateGuard
 Image renderSnapshot(EglContext& context, const MeshView& mesh, const SnapshotOptions& options)
 {
     checkOptions(mesh, options);
-    const TriplanarMaterial& material = options.material;
-    const bool hasSide = material.sideAlbedo.width > 0 || !material.sideAlbedo.pixels.empty();
-    const bool hasTop = material.topAlbedo.width > 0 || !material.topAlbedo.pixels.empty();
-    if (hasSide) {
-        checkTexture(material.sideAlbedo, "sideAlbedo");
-    }
-    if (hasTop) {
-        checkTexture(material.topAlbedo, "topAlbedo");
-    }
+    const Material& material = options.material;
+    const std::array<TexturePtr, 9> maps = detail::resolveMaps(material);
+    const std::uint32_t features = materialFeatures(material);
 
     context.makeCurrent();
     clearGlErrors();
@@ -412,32 +390,36 @@ Image renderSnapshot(EglContext& context, const MeshView& mesh, const SnapshotOp
         throw Error("snapshot: size " + std::to_string(width) + "x" + std::to_string(height) +
                     " exceeds this OpenGL's limit of " + std::to_string(maxRenderbufferSize));
     }
-    for (const Image* image : {&material.sideAlbedo, &material.topAlbedo}) {
-        if (image->width > maxTextureSize || image->height > maxTextureSize) {
-            throw Error("snapshot: texture " + std::to_string(image->width) + "x" + std::to_string(image->height) +
-                        " exceeds this OpenGL's limit of " + std::to_string(maxTextureSize));
+    for (const TexturePtr& texture : maps) {
+        if (texture->width() > maxTextureSize || texture->height() > maxTextureSize) {
+            throw Error("snapshot: texture " + std::to_string(texture->width()) + "x" +
+                        std::to_string(texture->height()) + " exceeds this OpenGL's limit of " +
+                        std::to_string(maxTextureSize));
         }
     }
     const int samples = std::clamp(options.samples, 1, std::max(maxSamples, 1));
 
     // Program.
     const GlObject vertexShader = compileShader(GL_VERTEX_SHADER, shaders::TERRAIN_VERT, "terrain vertex");
-    const GlObject fragmentShader = compileShader(GL_FRAGMENT_SHADER, shaders::TERRAIN_FRAG, "terrain fragment");
+    const std::string fragment = fragmentSource(features);
+    const GlObject fragmentShader = compileShader(GL_FRAGMENT_SHADER, fragment.c_str(), "terrain fragment");
     const GlObject program = linkProgram(vertexShader, fragmentShader);
     checkGl("building the terrain program");
 
-    // Textures. Without a side map the material is a plain light grey.
+    // Textures: the nine slots, each texture uploaded once.
     const float anisotropy = std::min(options.anisotropy, maxAnisotropy());
-    Image fallback;
-    if (!hasSide) {
-        fallback.width = 1;
-        fallback.height = 1;
-        fallback.pixels = {180, 180, 180, 255};
-    }
-    const GlObject sideTexture = uploadTexture(hasSide ? material.sideAlbedo : fallback, anisotropy);
-    GlObject topTexture;
-    if (hasTop) {
-        topTexture = uploadTexture(material.topAlbedo, anisotropy);
+    std::vector<GlObject> uploaded;
+    std::vector<const Texture*> uploadedFrom;
+    GLuint units[9] = {};
+    for (std::size_t slot = 0; slot < 9; ++slot) {
+        const auto found = std::find(uploadedFrom.begin(), uploadedFrom.end(), maps[slot].get());
+        if (found != uploadedFrom.end()) {
+            units[slot] = uploaded[std::size_t(found - uploadedFrom.begin())].id();
+            continue;
+        }
+        uploaded.push_back(uploadTexture(*maps[slot], anisotropy));
+        uploadedFrom.push_back(maps[slot].get());
+        units[slot] = uploaded.back().id();
     }
 
     // Mesh: positions then normals in one buffer, indices in another.
@@ -471,30 +453,52 @@ Image renderSnapshot(EglContext& context, const MeshView& mesh, const SnapshotOp
 
     // Uniforms.
     const double aspect = double(width) / double(height);
-    const glm::mat4 viewProjection =
-        projectionMatrix(options.camera, aspect) * viewMatrix(options.camera, mesh.origin);
+    const glm::mat4 viewProjection = projectionMatrix(options.camera, aspect) * viewMatrix(options.camera, mesh.origin);
     // Texture space is world · mapScale; the integer part of the origin's
     // share is dropped in double precision (textures repeat every unit).
     const glm::dvec3 originScaled = mesh.origin * double(material.mapScale);
     const glm::vec3 textureOffset = glm::vec3(originScaled - glm::floor(originScaled));
     const Lighting& lighting = options.lighting;
-    glm::vec3 sun = lighting.sunDirection;
-    sun = glm::length(sun) > 0.0f ? glm::normalize(sun) : glm::vec3(0.0f, 1.0f, 0.0f);
+    const shading::MaterialParams mp = detail::toShading(material);
+    const shading::LightingParams lp = detail::toShading(lighting);
+    const glm::vec3 cameraPosition = glm::vec3(options.camera.position - mesh.origin);
 
     const GLuint p = program.id();
-    auto location = [p](const char* name) { return glGetUniformLocation(p, name); };
+    auto location = [p](const std::string& name) { return glGetUniformLocation(p, name.c_str()); };
+    auto set1f = [&](const std::string& name, float v) { glProgramUniform1f(p, location(name), v); };
+    auto set3f = [&](const std::string& name, const glm::vec3& v) {
+        glProgramUniform3fv(p, location(name), 1, glm::value_ptr(v));
+    };
     glProgramUniformMatrix4fv(p, location("uViewProjection"), 1, GL_FALSE, glm::value_ptr(viewProjection));
     glProgramUniform1f(p, location("uMapScale"), material.mapScale);
     glProgramUniform3fv(p, location("uTextureOffset"), 1, glm::value_ptr(textureOffset));
-    glProgramUniform1i(p, location("uSideAlbedo"), 0);
-    glProgramUniform1i(p, location("uTopAlbedo"), 1);
-    glProgramUniform1i(p, location("uHasTopAlbedo"), hasTop ? 1 : 0);
-    glProgramUniform1f(p, location("uBlendOffset"), material.blendOffset);
-    glProgramUniform1f(p, location("uBlendExponent"), material.blendExponent);
-    glProgramUniform3fv(p, location("uSunDirection"), 1, glm::value_ptr(sun));
-    glProgramUniform3fv(p, location("uSunColor"), 1, glm::value_ptr(lighting.sunColor));
-    glProgramUniform3fv(p, location("uSkyAmbient"), 1, glm::value_ptr(lighting.skyAmbient));
-    glProgramUniform3fv(p, location("uGroundAmbient"), 1, glm::value_ptr(lighting.groundAmbient));
+    set3f("uCameraPosition", cameraPosition);
+    for (int slot = 0; slot < 9; ++slot) {
+        glProgramUniform1i(p, location("uMaps[" + std::to_string(slot) + "]"), slot);
+    }
+    set3f("uMaterial.albedoTint", mp.albedoTint);
+    set1f("uMaterial.blendOffset", mp.blendOffset);
+    set1f("uMaterial.blendExponent", mp.blendExponent);
+    set1f("uMaterial.heightStrength", mp.heightStrength);
+    set1f("uMaterial.metallic", mp.metallic);
+    set1f("uMaterial.smoothness", mp.smoothness);
+    set1f("uMaterial.occlusionStrength", mp.occlusionStrength);
+    set1f("uMaterial.normalStrength", mp.normalStrength);
+    set1f("uMaterial.detailScale", mp.detailScale);
+    set1f("uMaterial.detailAlbedo", mp.detailAlbedo);
+    set1f("uMaterial.detailSmoothness", mp.detailSmoothness);
+    set1f("uMaterial.detailNormalStrength", mp.detailNormalStrength);
+    set3f("uMaterial.emissionColor", mp.emissionColor);
+    set1f("uMaterial.fresnelStrength", mp.fresnelStrength);
+    for (int i = 0; i < STRATA_MAX_LIGHTS; ++i) {
+        const std::string prefix = "uLighting.lights[" + std::to_string(i) + "].";
+        set3f(prefix + "direction", lp.lights[i].direction);
+        set3f(prefix + "color", lp.lights[i].color);
+    }
+    glProgramUniform1i(p, location("uLighting.lightCount"), lp.lightCount);
+    set3f("uLighting.skyAmbient", lp.skyAmbient);
+    set3f("uLighting.groundAmbient", lp.groundAmbient);
+    set1f("uLighting.exposure", lp.exposure);
     checkGl("setting the uniforms");
 
     // Draw. The framebuffer is sRGB and GL_FRAMEBUFFER_SRGB is on: the
@@ -518,8 +522,9 @@ Image renderSnapshot(EglContext& context, const MeshView& mesh, const SnapshotOp
     if (mesh.vertexCount > 0 && mesh.indexCount > 0) {
         glUseProgram(p);
         glBindVertexArray(vertexArray.id());
-        glBindTextureUnit(0, sideTexture.id());
-        glBindTextureUnit(1, hasTop ? topTexture.id() : sideTexture.id());
+        for (GLuint slot = 0; slot < 9; ++slot) {
+            glBindTextureUnit(slot, units[slot]);
+        }
         glDrawElements(GL_TRIANGLES, GLsizei(mesh.indexCount), GL_UNSIGNED_INT, nullptr);
     }
     checkGl("drawing the mesh");

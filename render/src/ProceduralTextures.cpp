@@ -2,9 +2,12 @@
 
 #include <strata/Error.h>
 
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <vector>
 
 // Determinism: every value below comes from integer hashing and the float
 // operations + − × ÷, floor and sqrt, which IEEE 754 rounds exactly the same
@@ -28,9 +31,15 @@ Rgb mixRgb(const Rgb& a, const Rgb& b, float t)
     return {a.r + (b.r - a.r) * t, a.g + (b.g - a.g) * t, a.b + (b.b - a.b) * t};
 }
 
-Rgb scaleRgb(const Rgb& a, float s) { return {a.r * s, a.g * s, a.b * s}; }
+Rgb scaleRgb(const Rgb& a, float s)
+{
+    return {a.r * s, a.g * s, a.b * s};
+}
 
-float clamp01(float x) { return std::clamp(x, 0.0f, 1.0f); }
+float clamp01(float x)
+{
+    return std::clamp(x, 0.0f, 1.0f);
+}
 
 float smoothstep(float edge0, float edge1, float x)
 {
@@ -55,7 +64,10 @@ std::uint32_t hash(std::int32_t x, std::int32_t y, std::uint32_t seed)
 }
 
 /// Uniform in [0, 1), 24 bits.
-float unitFloat(std::uint32_t h) { return float(h >> 8) * (1.0f / 16777216.0f); }
+float unitFloat(std::uint32_t h)
+{
+    return float(h >> 8) * (1.0f / 16777216.0f);
+}
 
 int wrap(int i, int period)
 {
@@ -63,7 +75,10 @@ int wrap(int i, int period)
     return m < 0 ? m + period : m;
 }
 
-float fade(float t) { return t * t * t * (t * (t * 6.0f - 15.0f) + 10.0f); }
+float fade(float t)
+{
+    return t * t * t * (t * (t * 6.0f - 15.0f) + 10.0f);
+}
 
 constexpr float GRADIENTS[16][2] = {
     {1.000000000f, 0.000000000f},   {0.923879533f, 0.382683432f},   {0.707106781f, 0.707106781f},
@@ -117,8 +132,8 @@ float fbm(float u, float v, int periodX, int periodY, int octaves, float gain, s
 
 struct Cells
 {
-    float f1 = 0.0f; ///< distance to the nearest feature point, in cells
-    float f2 = 0.0f; ///< distance to the second nearest
+    float f1 = 0.0f;      ///< distance to the nearest feature point, in cells
+    float f2 = 0.0f;      ///< distance to the second nearest
     std::uint32_t id = 0; ///< hash of the nearest point's cell
 };
 
@@ -169,15 +184,16 @@ void checkSize(int size, const char* what)
     }
 }
 
-template <typename Shader>
-Image makeImage(int size, Shader&& shader)
+template <typename Shader> Image makeImage(int size, Shader&& shader)
 {
     Image image;
     image.width = size;
     image.height = size;
     image.pixels.resize(std::size_t(size) * std::size_t(size) * 4);
     const float inv = 1.0f / float(size);
-    for (int y = 0; y < size; ++y) {
+    // Rows in parallel: every pixel is a pure function of (u, v), so the
+    // bytes do not depend on the thread count.
+    tbb::parallel_for(0, size, [&](int y) {
         for (int x = 0; x < size; ++x) {
             // v grows upwards in the texture: row 0 (top of the image) is v ≈ 1.
             const float u = (float(x) + 0.5f) * inv;
@@ -189,7 +205,7 @@ Image makeImage(int size, Shader&& shader)
             p[2] = toByte(c.b);
             p[3] = 255;
         }
-    }
+    });
     return image;
 }
 
@@ -203,7 +219,7 @@ Image makeRockAlbedo(int size, std::uint32_t seed)
     // Sediment layers from dark to light grey-brown (sRGB).
     constexpr Rgb PALETTE[] = {
         {78.0f, 72.0f, 67.0f},    {108.0f, 98.0f, 86.0f},  {128.0f, 117.0f, 101.0f}, {94.0f, 87.0f, 81.0f},
-        {142.0f, 130.0f, 112.0f}, {113.0f, 101.0f, 88.0f}, {100.0f, 95.0f, 90.0f},  {134.0f, 121.0f, 104.0f},
+        {142.0f, 130.0f, 112.0f}, {113.0f, 101.0f, 88.0f}, {100.0f, 95.0f, 90.0f},   {134.0f, 121.0f, 104.0f},
     };
     constexpr int PALETTE_SIZE = int(sizeof(PALETTE) / sizeof(PALETTE[0]));
 
@@ -287,6 +303,304 @@ Image makeGrassAlbedo(int size, std::uint32_t seed)
 
         return scaleRgb(colour, shade);
     });
+}
+
+namespace {
+
+/// A float field over the texture, sampled at texel centres (rows top to bottom).
+template <typename Field> std::vector<float> makeField(int size, Field&& field)
+{
+    std::vector<float> values(std::size_t(size) * std::size_t(size));
+    const float inv = 1.0f / float(size);
+    tbb::parallel_for(0, size, [&](int y) {
+        for (int x = 0; x < size; ++x) {
+            values[std::size_t(y) * std::size_t(size) + std::size_t(x)] =
+                field((float(x) + 0.5f) * inv, 1.0f - (float(y) + 0.5f) * inv);
+        }
+    });
+    return values;
+}
+
+/// Rescales to 0..1.
+void normalise(std::vector<float>& values)
+{
+    float lo = values[0];
+    float hi = values[0];
+    for (float v : values) {
+        lo = std::min(lo, v);
+        hi = std::max(hi, v);
+    }
+    const float scale = hi > lo ? 1.0f / (hi - lo) : 0.0f;
+    for (float& v : values) {
+        v = (v - lo) * scale;
+    }
+}
+
+std::vector<float> luminanceOf(const Image& image)
+{
+    std::vector<float> values(std::size_t(image.width) * std::size_t(image.height));
+    for (std::size_t i = 0; i < values.size(); ++i) {
+        const std::uint8_t* p = image.pixels.data() + i * 4;
+        values[i] = 0.2126f * p[0] + 0.7152f * p[1] + 0.0722f * p[2];
+    }
+    normalise(values);
+    return values;
+}
+
+Image blankImage(int size)
+{
+    Image image;
+    image.width = size;
+    image.height = size;
+    image.pixels.assign(std::size_t(size) * std::size_t(size) * 4, 255);
+    return image;
+}
+
+/// Tangent-space normals (OpenGL +Y = texture up) of a periodic height field
+/// whose full range 0..1 spans `bump` texels of relief.
+Image normalsFromHeight(const std::vector<float>& h, int size, float bump)
+{
+    Image image = blankImage(size);
+    auto at = [&](int x, int y) {
+        return h[std::size_t(wrap(y, size)) * std::size_t(size) + std::size_t(wrap(x, size))];
+    };
+    for (int y = 0; y < size; ++y) {
+        for (int x = 0; x < size; ++x) {
+            const float dhdu = 0.5f * (at(x + 1, y) - at(x - 1, y)) * bump;
+            const float dhdv = 0.5f * (at(x, y - 1) - at(x, y + 1)) * bump; // row y − 1 is up (+V)
+            const float nx = -dhdu;
+            const float ny = -dhdv;
+            const float inv = 1.0f / std::sqrt(nx * nx + ny * ny + 1.0f);
+            std::uint8_t* p = image.at(x, y);
+            p[0] = toByte((nx * inv * 0.5f + 0.5f) * 255.0f);
+            p[1] = toByte((ny * inv * 0.5f + 0.5f) * 255.0f);
+            p[2] = toByte((inv * 0.5f + 0.5f) * 255.0f);
+            p[3] = 255;
+        }
+    }
+    return image;
+}
+
+Image detailMap(int size, std::uint32_t s)
+{
+    Image image = blankImage(size);
+    const float inv = 1.0f / float(size);
+    tbb::parallel_for(0, size, [&](int y) {
+        for (int x = 0; x < size; ++x) {
+            const float u = (float(x) + 0.5f) * inv;
+            const float v = 1.0f - (float(y) + 0.5f) * inv;
+            const float a = fbm(u, v, 16, 16, 3, 0.55f, s + 21U);
+            const float b = fbm(u, v, 24, 24, 2, 0.5f, s + 22U);
+            std::uint8_t* p = image.at(x, y);
+            p[0] = toByte((0.5f + 0.35f * a) * 255.0f);
+            p[1] = 128;
+            p[2] = toByte((0.5f + 0.3f * b) * 255.0f);
+            p[3] = 255;
+        }
+    });
+    return image;
+}
+
+/// MOHS from a height field: metallic, occlusion darkening the low parts,
+/// the height, smoothness = base + slope·height.
+Image mohsFromHeight(const std::vector<float>& h, int size, float metallic, float occlusionDepth, float smoothBase,
+                     float smoothSlope)
+{
+    Image image = blankImage(size);
+    for (std::size_t i = 0; i < h.size(); ++i) {
+        std::uint8_t* p = image.pixels.data() + i * 4;
+        p[0] = toByte(metallic * 255.0f);
+        p[1] = toByte((1.0f - occlusionDepth * (1.0f - h[i]) * (1.0f - h[i])) * 255.0f);
+        p[2] = toByte(h[i] * 255.0f);
+        p[3] = toByte(clamp01(smoothBase + smoothSlope * h[i]) * 255.0f);
+    }
+    return image;
+}
+
+Image makeSoilLike(int size, std::uint32_t s, Rgb dark, Rgb light, float pebbles)
+{
+    return makeImage(size, [&](float u, float v) {
+        const float broad = fbm(u, v, 4, 4, 4, 0.55f, s + 1U);
+        Rgb colour = mixRgb(dark, light, clamp01(0.5f + 0.8f * broad));
+        const float grain = gradientNoise(u, v, 128, 128, s + 2U) + 0.5f * gradientNoise(u, v, 256, 256, s + 3U);
+        const Cells stones = cellular(u, v, 20, 20, s + 4U);
+        const float stone = (1.0f - smoothstep(0.15f, 0.35f, stones.f1)) * pebbles *
+                            smoothstep(0.0f, 0.4f, fbm(u, v, 3, 3, 2, 0.5f, s + 5U) + 0.2f);
+        colour = mixRgb(colour, scaleRgb(light, 0.8f + 0.4f * unitFloat(stones.id)), 0.8f * stone);
+        return scaleRgb(colour, 1.0f + 0.15f * grain);
+    });
+}
+
+Image makeSnowAlbedo(int size, std::uint32_t s)
+{
+    return makeImage(size, [&](float u, float v) {
+        const float broad = fbm(u, v, 3, 3, 4, 0.5f, s + 1U);
+        const float sparkle = gradientNoise(u, v, 200, 200, s + 2U);
+        Rgb colour = mixRgb(Rgb{214.0f, 222.0f, 236.0f}, Rgb{246.0f, 248.0f, 252.0f}, clamp01(0.5f + 0.8f * broad));
+        return scaleRgb(colour, 1.0f + 0.03f * sparkle);
+    });
+}
+
+struct Circuit
+{
+    float height = 0.25f; // board
+    float metal = 0.0f;
+    float light = 0.0f;
+};
+
+/// Golden traces and pads on a green board, on a 16×16 grid of cells.
+Circuit circuitAt(float u, float v, std::uint32_t s)
+{
+    constexpr int CELLS = 16;
+    const float x = u * float(CELLS);
+    const float y = v * float(CELLS);
+    const int cx = int(std::floor(x));
+    const int cy = int(std::floor(y));
+    const float fx = x - float(cx);
+    const float fy = y - float(cy);
+    const std::uint32_t h = hash(wrap(cx, CELLS), wrap(cy, CELLS), s);
+    Circuit c;
+    const float halfWidth = 0.09f + 0.06f * float((h >> 4) & 1U);
+    const bool horizontal = (h & 3U) == 0U || (h & 3U) == 2U;
+    const bool vertical = (h & 3U) == 1U || (h & 3U) == 2U;
+    float trace = 0.0f;
+    if (horizontal)
+        trace = std::max(trace, 1.0f - smoothstep(halfWidth - 0.03f, halfWidth + 0.03f, std::abs(fy - 0.5f)));
+    if (vertical) trace = std::max(trace, 1.0f - smoothstep(halfWidth - 0.03f, halfWidth + 0.03f, std::abs(fx - 0.5f)));
+    const float dx = fx - 0.5f;
+    const float dy = fy - 0.5f;
+    const float r = std::sqrt(dx * dx + dy * dy);
+    const bool pad = ((h >> 8) & 7U) == 0U;
+    if (pad) {
+        const float p = 1.0f - smoothstep(0.22f, 0.27f, r);
+        trace = std::max(trace, p);
+        if (((h >> 12) & 1U) == 0U) c.light = 1.0f - smoothstep(0.1f, 0.18f, r);
+    }
+    c.metal = trace;
+    c.height = 0.25f + 0.65f * trace + 0.1f * (pad ? 1.0f - smoothstep(0.0f, 0.27f, r) : 0.0f);
+    return c;
+}
+
+} // namespace
+
+const char* builtinSetName(BuiltinSet set)
+{
+    switch (set) {
+    case BuiltinSet::Rock:
+        return "rock";
+    case BuiltinSet::Grass:
+        return "grass";
+    case BuiltinSet::Soil:
+        return "soil";
+    case BuiltinSet::Sand:
+        return "sand";
+    case BuiltinSet::Snow:
+        return "snow";
+    case BuiltinSet::Circuitry:
+        return "circuitry";
+    }
+    return "?";
+}
+
+std::optional<BuiltinSet> builtinSetFromName(const std::string& name)
+{
+    for (BuiltinSet set : {BuiltinSet::Rock, BuiltinSet::Grass, BuiltinSet::Soil, BuiltinSet::Sand, BuiltinSet::Snow,
+                           BuiltinSet::Circuitry}) {
+        if (name == builtinSetName(set)) return set;
+    }
+    return std::nullopt;
+}
+
+TextureSetImages makeBuiltinSet(BuiltinSet set, int size, std::uint32_t seed)
+{
+    checkSize(size, builtinSetName(set));
+    const std::uint32_t s = hash(seed ^ (0x5e7U + std::uint32_t(set) * 0x9e3779b9U));
+    TextureSetImages maps;
+    std::vector<float> height;
+    float bump = 4.0f;
+    switch (set) {
+    case BuiltinSet::Rock:
+        maps.albedo = makeRockAlbedo(size, seed);
+        height = luminanceOf(maps.albedo);
+        bump = 0.012f * float(size);
+        maps.mohs = mohsFromHeight(height, size, 0.0f, 0.6f, 0.2f, 0.25f);
+        break;
+    case BuiltinSet::Grass:
+        maps.albedo = makeGrassAlbedo(size, seed);
+        height = luminanceOf(maps.albedo);
+        bump = 0.006f * float(size);
+        maps.mohs = mohsFromHeight(height, size, 0.0f, 0.5f, 0.1f, 0.2f);
+        break;
+    case BuiltinSet::Soil:
+        maps.albedo = makeSoilLike(size, s, Rgb{62.0f, 48.0f, 36.0f}, Rgb{112.0f, 90.0f, 68.0f}, 1.0f);
+        height = luminanceOf(maps.albedo);
+        bump = 0.008f * float(size);
+        maps.mohs = mohsFromHeight(height, size, 0.0f, 0.5f, 0.08f, 0.15f);
+        break;
+    case BuiltinSet::Sand:
+        maps.albedo = makeSoilLike(size, s, Rgb{176.0f, 150.0f, 108.0f}, Rgb{214.0f, 192.0f, 146.0f}, 0.25f);
+        height = makeField(size, [&](float u, float v) {
+            // Ripples along U, wobbling.
+            const float w = u + 0.04f * fbm(u, v, 3, 3, 2, 0.5f, s + 7U);
+            const float r = 12.0f * (w + 0.15f * v);
+            return 0.5f + 0.5f * std::abs(r - std::floor(r) - 0.5f) * 2.0f - 0.25f +
+                   0.25f * fbm(u, v, 8, 8, 2, 0.5f, s + 8U);
+        });
+        normalise(height);
+        bump = 0.005f * float(size);
+        maps.mohs = mohsFromHeight(height, size, 0.0f, 0.3f, 0.15f, 0.1f);
+        break;
+    case BuiltinSet::Snow:
+        maps.albedo = makeSnowAlbedo(size, s);
+        height = makeField(size, [&](float u, float v) { return fbm(u, v, 4, 4, 4, 0.5f, s + 9U); });
+        normalise(height);
+        bump = 0.004f * float(size);
+        maps.mohs = mohsFromHeight(height, size, 0.0f, 0.2f, 0.45f, 0.2f);
+        break;
+    case BuiltinSet::Circuitry: {
+        maps.albedo = blankImage(size);
+        maps.mohs = blankImage(size);
+        maps.emission = blankImage(size);
+        height.resize(std::size_t(size) * std::size_t(size));
+        const float inv = 1.0f / float(size);
+        for (int y = 0; y < size; ++y) {
+            for (int x = 0; x < size; ++x) {
+                const float u = (float(x) + 0.5f) * inv;
+                const float v = 1.0f - (float(y) + 0.5f) * inv;
+                const Circuit c = circuitAt(u, v, s);
+                const float noise = fbm(u, v, 32, 32, 2, 0.5f, s + 11U);
+                const Rgb board = scaleRgb(Rgb{28.0f, 92.0f, 52.0f}, 1.0f + 0.1f * noise);
+                const Rgb gold{232.0f, 182.0f, 86.0f};
+                const Rgb colour = mixRgb(board, gold, c.metal);
+                std::uint8_t* p = maps.albedo.at(x, y);
+                p[0] = toByte(colour.r);
+                p[1] = toByte(colour.g);
+                p[2] = toByte(colour.b);
+                std::uint8_t* m = maps.mohs.at(x, y);
+                m[0] = toByte(c.metal * 255.0f);
+                m[1] = toByte((0.55f + 0.45f * c.height) * 255.0f);
+                m[2] = toByte(c.height * 255.0f);
+                m[3] = toByte((0.45f + 0.4f * c.metal) * 255.0f);
+                std::uint8_t* e = maps.emission.at(x, y);
+                e[0] = toByte(c.light * 40.0f);
+                e[1] = toByte(c.light * 220.0f);
+                e[2] = toByte(c.light * 255.0f);
+                height[std::size_t(y) * std::size_t(size) + std::size_t(x)] = c.height;
+            }
+        }
+        bump = 0.01f * float(size);
+        break;
+    }
+    }
+    maps.normal = normalsFromHeight(height, size, bump);
+    maps.detail = detailMap(size, s);
+    if (maps.emission.pixels.empty()) {
+        maps.emission = blankImage(size);
+        for (std::size_t i = 0; i < maps.emission.pixels.size(); i += 4) {
+            maps.emission.pixels[i] = maps.emission.pixels[i + 1] = maps.emission.pixels[i + 2] = 0;
+        }
+    }
+    return maps;
 }
 
 } // namespace strata::render

@@ -4,6 +4,11 @@
 
 namespace strata::terrain {
 
+double DensityField::distanceBound(const glm::dvec3& p) const
+{
+    return density(p) / lipschitz();
+}
+
 double SphereField::density(const glm::dvec3& p) const
 {
     return glm::length(p - mCenter) - mRadius;

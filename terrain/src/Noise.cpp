@@ -4,61 +4,13 @@
 #include <cassert>
 #include <cmath>
 
+#include "NoiseHash.h"
+
 namespace strata::terrain {
 
 namespace {
 
-/// splitmix64's finaliser: a bijective 64-bit mixer with full avalanche.
-inline std::uint64_t mix64(std::uint64_t h)
-{
-    h ^= h >> 30;
-    h *= 0xbf58476d1ce4e5b9ULL;
-    h ^= h >> 27;
-    h *= 0x94d049bb133111ebULL;
-    h ^= h >> 31;
-    return h;
-}
-
-/// Folds one lattice coordinate into a running hash. Mixing after every
-/// coordinate (rather than summing multiples of the coordinates) leaves no
-/// linear relation between distant cells, so the pattern does not repeat.
-inline std::uint64_t hashCombine(std::uint64_t h, std::int64_t v)
-{
-    return mix64(h ^ (std::uint64_t(v) + 0x9e3779b97f4a7c15ULL));
-}
-
-/// The seed's own hash, so that seeds 0, 1, 2... start far apart.
-inline std::uint64_t seedHash(std::uint64_t seed)
-{
-    return mix64(seed + 0x632be59bd9b4e019ULL);
-}
-
-/// floor(x) as a lattice index. Coordinates beyond ±2^62 saturate (the
-/// pattern is then constant there) instead of overflowing the conversion.
-inline std::int64_t latticeIndex(double floorX)
-{
-    constexpr double LIMIT = 4611686018427387904.0; // 2^62
-    if (std::abs(floorX) < LIMIT) return std::int64_t(floorX);
-    return floorX > 0.0 ? std::int64_t(LIMIT) : -std::int64_t(LIMIT); // also NaN: no UB
-}
-
-/// Perlin's quintic fade 6t^5 - 15t^4 + 10t^3: C2, zero slope at 0 and 1.
-inline double fade(double t)
-{
-    return t * t * t * (t * (t * 6.0 - 15.0) + 10.0);
-}
-
-inline double lerp(double a, double b, double t)
-{
-    return a + t * (b - a);
-}
-
-/// Uniform index in [0, n) from the top 32 bits of a hash (multiply-shift,
-/// no modulo bias worth speaking of and no division).
-inline unsigned pick(std::uint64_t h, unsigned n)
-{
-    return unsigned(((h >> 32) * std::uint64_t(n)) >> 32);
-}
+using namespace detail;
 
 /// The 12 cube-edge directions of improved Perlin noise (length sqrt 2).
 constexpr double GRAD3[12][3] = {
@@ -88,6 +40,10 @@ inline double grad2(std::uint64_t h, double x, double y)
     const double* g = GRAD2[pick(h, 8)];
     return g[0] * x + g[1] * y;
 }
+
+} // namespace
+
+namespace detail {
 
 /// 3D gradient noise from an already hashed seed.
 double noise3(std::uint64_t s, const glm::dvec3& p)
@@ -135,7 +91,7 @@ double noise2(std::uint64_t s, const glm::dvec2& p)
     return NOISE2_SCALE * lerp(lerp(n00, n01, v), lerp(n10, n11, v), u);
 }
 
-} // namespace
+} // namespace detail
 
 std::uint64_t deriveSeed(std::uint64_t seed, std::uint64_t stream)
 {

@@ -2,6 +2,7 @@
 
 #include <strata/Error.h>
 
+#include <openvdb/tools/LevelSetTracker.h>
 #include <openvdb/tools/Prune.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -10,8 +11,10 @@
 #include <glm/geometric.hpp>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <numeric>
 #include <sstream>
@@ -58,6 +61,10 @@ void validate(const SampleOptions& o)
     if (o.halfWidth < 3 || o.halfWidth > MAX_HALF_WIDTH) {
         throw Error("sampling: half_width = " + std::to_string(o.halfWidth) + " is out of range 3.." +
                     std::to_string(MAX_HALF_WIDTH));
+    }
+    if (o.renormalizeIterations < 1 || o.renormalizeIterations > 64) {
+        throw Error("sampling: renormalize_iterations = " + std::to_string(o.renormalizeIterations) +
+                    " is out of range 1..64");
     }
     const char* axes = "xyz";
     for (int a = 0; a < 3; ++a) {
@@ -107,6 +114,42 @@ CoordBBox indexBox(const Region& region, double voxelSize)
     return CoordBBox(lo, hi);
 }
 
+/// Bytes of one leaf node: the node (masks, origin, buffer header) and its
+/// separately allocated values; leaves are the bulk of a level set.
+constexpr std::uint64_t LEAF_BYTES = sizeof(Leaf) + Leaf::SIZE * sizeof(Leaf::ValueType);
+
+std::string showBytes(std::uint64_t bytes)
+{
+    std::ostringstream out;
+    out.precision(3);
+    if (bytes >= (1ull << 30)) out << double(bytes) / double(1ull << 30) << " GiB";
+    else out << double(bytes) / double(1ull << 20) << " MiB";
+    return out.str();
+}
+
+/// Upper estimate of the grid's memory: every candidate tile a leaf, plus
+/// the internal nodes above them (counted per distinct 128³ and 4096³ node).
+std::uint64_t estimateBytes(const std::vector<Coord>& tiles)
+{
+    using Internal1 = Tree::RootNodeType::ChildNodeType::ChildNodeType;
+    using Internal2 = Tree::RootNodeType::ChildNodeType;
+    std::uint64_t n1 = 0, n2 = 0;
+    Coord last1(std::numeric_limits<int>::min()), last2(std::numeric_limits<int>::min());
+    std::vector<Coord> keys1, keys2;
+    keys1.reserve(tiles.size());
+    for (const Coord& t : tiles) {
+        keys1.push_back(Coord(t.x() & ~(int(Internal1::DIM) - 1), t.y() & ~(int(Internal1::DIM) - 1),
+                              t.z() & ~(int(Internal1::DIM) - 1)));
+        keys2.push_back(Coord(t.x() & ~(int(Internal2::DIM) - 1), t.y() & ~(int(Internal2::DIM) - 1),
+                              t.z() & ~(int(Internal2::DIM) - 1)));
+    }
+    std::sort(keys1.begin(), keys1.end());
+    std::sort(keys2.begin(), keys2.end());
+    for (const Coord& k : keys1) n1 += (k != last1), last1 = k;
+    for (const Coord& k : keys2) n2 += (k != last2), last2 = k;
+    return std::uint64_t(tiles.size()) * LEAF_BYTES + n1 * sizeof(Internal1) + n2 * sizeof(Internal2);
+}
+
 /// Rounds down to a multiple of `dim` (a power of two), also for negatives.
 Coord alignDown(const Coord& c, int dim)
 {
@@ -140,14 +183,25 @@ public:
     double operator()(const glm::dvec3& p) const
     {
         const double d = mField.density(p);
-        if (!mClosed) return d;
-        // Exact signed distance to the box: positive outside.
-        const glm::dvec3 q = glm::abs(p - mBoxCentre) - mBoxHalf;
-        const double box = glm::length(glm::max(q, 0.0)) + std::min(std::max(q.x, std::max(q.y, q.z)), 0.0);
-        return std::max(d, box);
+        return mClosed ? std::max(d, box(p)) : d;
+    }
+
+    /// A signed lower bound of the distance to the surface (see
+    /// DensityField::distanceBound).
+    double bound(const glm::dvec3& p) const
+    {
+        const double b = mField.distanceBound(p);
+        return mClosed ? std::max(b, box(p)) : b;
     }
 
 private:
+    /// Exact signed distance to the region box: positive outside.
+    double box(const glm::dvec3& p) const
+    {
+        const glm::dvec3 q = glm::abs(p - mBoxCentre) - mBoxHalf;
+        return glm::length(glm::max(q, 0.0)) + std::min(std::max(q.x, std::max(q.y, q.z)), 0.0);
+    }
+
     const DensityField& mField;
     double mVoxelSize;
     bool mClosed;
@@ -188,35 +242,59 @@ public:
     {
     }
 
-    /// True when no voxel centre of `clip` can have |density| < background:
-    /// |d(c)| > L·r + background, with r the distance from the centre c of
-    /// the voxel centres to the farthest of them. `d` receives d(c).
-    bool prunable(const CoordBBox& clip, double& d) const
+    /// True when no voxel centre of the aligned cube `cube` lies within
+    /// `background` of the surface: |b(c)| > r + background, with b the
+    /// field's distance bound at the cube's centre c and r the distance from
+    /// c to the farthest voxel centre. The whole cube (not its part inside
+    /// the region) is probed, so the decision depends only on the cube: two
+    /// regions that share voxels prune them alike. `d` receives b(c).
+    ///
+    /// When the bound does not decide, the density itself is tried with the
+    /// field's gradient bound L: |d(c)| > L·r + background means every voxel
+    /// of the cube would be stored as an inactive ±background anyway, so
+    /// skipping them changes nothing. (For fields whose density is a close
+    /// distance estimate with L > 1, this test is the sharper one near the
+    /// surface, the bound the sharper one far away.) `evaluations` counts
+    /// the calls.
+    bool prunable(const CoordBBox& cube, double& d, std::uint64_t& evaluations) const
     {
-        const glm::dvec3 lo = mField.world(clip.min()), hi = mField.world(clip.max());
-        d = mField(0.5 * (lo + hi));
+        const glm::dvec3 lo = mField.world(cube.min()), hi = mField.world(cube.max());
+        const glm::dvec3 centre = 0.5 * (lo + hi);
         const double radius = 0.5 * glm::length(hi - lo);
+        ++evaluations;
+        d = mField.bound(centre);
+        if (std::abs(d) > (radius + mBackground) * (1.0 + PRUNE_SLACK)) return true;
+        // With L <= 1 the bound test is the stronger one for every field
+        // whose bound is at least |density| / L (the default): skip this.
+        if (mField.lipschitz() <= 1.0) return false;
+        ++evaluations;
+        d = mField(centre);
         return std::abs(d) > (mField.lipschitz() * radius + mBackground) * (1.0 + PRUNE_SLACK);
     }
 
     /// Coarse pass: subdivides an aligned cube down to 8³ tiles, dropping
     /// every cube that the probe at its centre proves far from the surface.
-    void visit(const Coord& origin, int dim, BlockResult& out) const
+    /// Stops adding tiles once `tileCount` passes `tileLimit`.
+    void visit(const Coord& origin, int dim, BlockResult& out, std::atomic<std::uint64_t>& tileCount,
+               std::uint64_t tileLimit) const
     {
-        CoordBBox clip(origin, origin.offsetBy(dim - 1));
+        const CoordBBox cube(origin, origin.offsetBy(dim - 1));
+        CoordBBox clip = cube;
         clip.intersect(mBox);
         if (clip.empty()) return;
+        if (tileCount.load(std::memory_order_relaxed) > tileLimit) return;
         double d = 0.0;
-        ++out.evaluated;
-        if (prunable(clip, d)) {
+        if (prunable(cube, d, out.evaluated)) {
             out.uniforms.push_back({origin, dim, d < 0.0});
         } else if (dim == LEAF_DIM) {
             out.tiles.push_back(origin);
+            tileCount.fetch_add(1, std::memory_order_relaxed);
         } else {
             const int half = dim / 2;
             for (int x = 0; x < 2; ++x)
                 for (int y = 0; y < 2; ++y)
-                    for (int z = 0; z < 2; ++z) visit(origin.offsetBy(x * half, y * half, z * half), half, out);
+                    for (int z = 0; z < 2; ++z)
+                        visit(origin.offsetBy(x * half, y * half, z * half), half, out, tileCount, tileLimit);
         }
     }
 
@@ -238,12 +316,12 @@ public:
             for (int sy = 0; sy < LEAF_DIM; sy += SUB_DIM)
                 for (int sz = 0; sz < LEAF_DIM; sz += SUB_DIM) {
                     const Coord subOrigin = origin.offsetBy(sx, sy, sz);
-                    CoordBBox sub(subOrigin, subOrigin.offsetBy(SUB_DIM - 1));
+                    const CoordBBox subCube(subOrigin, subOrigin.offsetBy(SUB_DIM - 1));
+                    CoordBBox sub = subCube;
                     sub.intersect(clip);
                     if (sub.empty()) continue;
                     double probe = 0.0;
-                    ++result.evaluated;
-                    const bool pruned = prunable(sub, probe);
+                    const bool pruned = prunable(subCube, probe, result.evaluated);
                     for (int x = sub.min().x(); x <= sub.max().x(); ++x)
                         for (int y = sub.min().y(); y <= sub.max().y(); ++y)
                             for (int z = sub.min().z(); z <= sub.max().z(); ++z) {
@@ -325,8 +403,16 @@ openvdb::FloatGrid::Ptr sampleLevelSet(const DensityField& field, const SampleOp
         for (int y = blockMin.y(); y <= blockMax.y(); y += BLOCK_DIM)
             for (int z = blockMin.z(); z <= blockMax.z(); z += BLOCK_DIM) blocks.emplace_back(x, y, z);
     std::vector<BlockResult> blockResults(blocks.size());
+    // With a memory budget, stop collecting tiles well past it (the tile list
+    // of a huge region could itself exhaust memory).
+    std::atomic<std::uint64_t> tileCount{0};
+    const std::uint64_t tileLimit = options.maxMemoryBytes > 0
+                                        ? 4 * (options.maxMemoryBytes / LEAF_BYTES + 1)
+                                        : std::numeric_limits<std::uint64_t>::max();
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, blocks.size()), [&](const tbb::blocked_range<std::size_t>& r) {
-        for (std::size_t i = r.begin(); i != r.end(); ++i) levelSet.visit(blocks[i], BLOCK_DIM, blockResults[i]);
+        for (std::size_t i = r.begin(); i != r.end(); ++i) {
+            levelSet.visit(blocks[i], BLOCK_DIM, blockResults[i], tileCount, tileLimit);
+        }
     });
 
     std::vector<Coord> tiles;
@@ -338,6 +424,14 @@ openvdb::FloatGrid::Ptr sampleLevelSet(const DensityField& field, const SampleOp
         evaluated += b.evaluated;
     }
     blockResults.clear();
+    const std::uint64_t estimate = estimateBytes(tiles);
+    if (stats) stats->estimatedBytes = estimate;
+    if (options.maxMemoryBytes > 0 && (estimate > options.maxMemoryBytes || tileCount.load() > tileLimit)) {
+        throw Error("sampling: the grid would need " + std::string(tileCount.load() > tileLimit ? "more than " : "about ") +
+                    showBytes(estimate) + ", more than the memory budget of " + showBytes(options.maxMemoryBytes) +
+                    ": use a coarser voxel_size (doubling it needs about 4x less) or a smaller region, or raise "
+                    "--max-memory");
+    }
     constexpr double COARSE_SHARE = 0.05; // of the progress bar
     reportProgress(options, COARSE_SHARE);
 
@@ -400,6 +494,22 @@ openvdb::FloatGrid::Ptr sampleLevelSet(const DensityField& field, const SampleOp
     grid->setTransform(openvdb::math::Transform::createLinearTransform(options.voxelSize));
     grid->setGridClass(openvdb::GRID_LEVEL_SET);
     grid->setName("surface");
+    if (stats) stats->activeVoxelsBeforeRenormalize = grid->activeVoxelCount();
+
+    if (options.renormalize) {
+        // Reinitialise the band to a signed distance: upwind first-order
+        // Eikonal iterations (OpenVDB's LevelSetTracker), then drop voxels
+        // that end up beyond the half width. Each iteration reads only the
+        // previous one's buffer, so the result is the same on any thread count.
+        openvdb::tools::LevelSetTracker<openvdb::FloatGrid> tracker(*grid);
+        tracker.setSpatialScheme(openvdb::math::FIRST_BIAS);
+        tracker.setTemporalScheme(openvdb::math::TVD_RK1);
+        tracker.setNormCount(options.renormalizeIterations);
+        tracker.normalize();
+        tracker.prune();
+        // Values clamped to ±background outside the band keep their sign.
+        openvdb::tools::prune(grid->tree());
+    }
 
     if (stats) {
         const Coord tileMin = alignDown(box.min(), LEAF_DIM), tileMax = alignDown(box.max(), LEAF_DIM);

@@ -91,3 +91,160 @@ TEST(Scene, MissingFileIsAnError)
 {
     EXPECT_THROW(strata::app::loadScene("/nonexistent/scene.toml"), strata::Error);
 }
+
+// --- Materials (SceneMaterial.cpp) ---------------------------------------------
+
+#include "SceneMaterial.h"
+#include "TestDir.h"
+
+#include <strata/render/Image.h>
+#include <strata/render/Material.h>
+
+#include <fstream>
+
+TEST(SceneMaterial, DefaultSceneIsRockWithGrassTopsAndHeightBlending)
+{
+    const Scene scene = parseScene(strata::app::defaultSceneText(), "<default scene>");
+    EXPECT_EQ(scene.material.side, "rock");
+    EXPECT_EQ(scene.material.top, "grass");
+    const strata::render::Material m = strata::app::buildMaterial(scene.material);
+    namespace f = strata::render::feature;
+    EXPECT_EQ(strata::render::materialFeatures(m), f::MASK_MAP | f::HEIGHT_BLEND | f::NORMAL_MAP | f::TOP_MAPS);
+}
+
+TEST(SceneMaterial, EveryParameterIsRead)
+{
+    const Scene scene = parseScene(R"(
+[material]
+side = "circuitry"
+top = "none"
+detail = "sand"
+emission = "circuitry"
+detail_normals = true
+height_strength = 0.99
+normal_blend = "rnm"
+normal_strength = 0.5
+occlusion_strength = 0.25
+metallic = 0.5
+smoothness = 0.75
+mask_layout = "mods"
+detail_scale = 8.0
+detail_albedo = 0.3
+detail_smoothness = 0.4
+detail_normal_strength = 0.6
+detail_fade_start = 2
+detail_fade_end = 4
+emission_color = [4.0, 2.0, 1.0]
+albedo_tint = [1.0, 0.9, 0.8]
+fresnel_strength = 0.5
+texture_size = 64
+)",
+                                   "m.toml");
+    const strata::app::MaterialSettings& s = scene.material;
+    const strata::render::Material& p = s.parameters;
+    EXPECT_EQ(s.side, "circuitry");
+    EXPECT_EQ(s.top, "none");
+    EXPECT_FLOAT_EQ(p.heightStrength, 0.99f);
+    EXPECT_EQ(p.normalBlend, strata::render::NormalBlend::Rnm);
+    EXPECT_EQ(p.maskLayout, strata::render::MaskLayout::Mods);
+    EXPECT_FLOAT_EQ(p.detailScale, 8.0f);
+    EXPECT_FLOAT_EQ(p.emissionColor.x, 4.0f);
+    EXPECT_FLOAT_EQ(p.albedoTint.z, 0.8f);
+    EXPECT_FLOAT_EQ(s.detailFadeEnd, 4.0f);
+    const strata::render::Material m = strata::app::buildMaterial(s);
+    namespace f = strata::render::feature;
+    EXPECT_EQ(strata::render::materialFeatures(m), f::MASK_MAP | f::MODS | f::NORMAL_MAP | f::DETAIL |
+                                                       f::DETAIL_NORMAL | f::EMISSION | f::NORMAL_RNM);
+}
+
+TEST(SceneMaterial, NamedMaterialsAreSelectedWithUse)
+{
+    const Scene scene = parseScene(R"(
+[materials.desert]
+side = "sand"
+top = "none"
+blend_exponent = 8.0
+
+[material]
+use = "desert"
+map_scale = 0.5
+)",
+                                   "m.toml");
+    EXPECT_EQ(scene.material.name, "desert");
+    EXPECT_EQ(scene.material.side, "sand");
+    EXPECT_FLOAT_EQ(scene.material.parameters.blendExponent, 8.0f);
+    EXPECT_FLOAT_EQ(scene.material.parameters.mapScale, 0.5f);
+    EXPECT_EQ(parseError("[material]\nuse = \"nope\"\n"), "test.toml:2: material.use = 'nope': no [materials.nope] table");
+}
+
+TEST(SceneMaterial, ErrorsNameFileLineKeyMaterialAndMap)
+{
+    EXPECT_EQ(parseError("[material]\nheight_strength = 1.0\n"),
+              "test.toml:2: material.height_strength = 1 is out of range [0, 0.99]");
+    EXPECT_EQ(parseError("[material]\nside = \"marble\"\n"),
+              "test.toml:2: material.side = 'marble' is not a built-in texture set (rock, grass, soil, sand, snow, "
+              "circuitry or none)");
+    EXPECT_EQ(parseError("[material]\nnormal_blend = \"best\"\n"),
+              "test.toml:2: material.normal_blend = 'best' must be \"whiteout\", \"udn\" or \"rnm\"");
+    EXPECT_EQ(parseError("[materials.a]\nblend_offset = 0.7\n"),
+              "test.toml:2: materials.a.blend_offset = 0.7 is out of range [0, 0.5]");
+    EXPECT_EQ(parseError("[material.maps.normal]\nfile = \"/nonexistent/n.png\"\n"),
+              "test.toml:2: material.maps.normal.file = '/nonexistent/n.png': no such file (material 'material', map "
+              "normal)");
+    EXPECT_EQ(parseError("[material.maps.albedo]\nfile = \"a.png\"\ncolour = 1\n"),
+              "test.toml:3: unknown key 'material.maps.albedo.colour'");
+    EXPECT_EQ(parseError("[material.maps.mask]\nfile = \"a.png\"\nchannels = [\"r\", \"q\", \"b\", \"a\"]\n"),
+              "test.toml:3: material.maps.mask.channels = 'q' must be r, g, b, a, 0, 1 or 1-r, 1-g, 1-b, 1-a");
+    EXPECT_EQ(parseError("[material.maps.bump]\nfile = \"a.png\"\n"), "test.toml:1: unknown key 'material.maps.bump'");
+}
+
+TEST(SceneMaterial, MapFilesAreLoadedRemappedAndChecked)
+{
+    const auto dir = strata::test::freshTestDir();
+    strata::render::Image rgb;
+    rgb.width = 4;
+    rgb.height = 4;
+    rgb.pixels.assign(4 * 4 * 4, 200);
+    strata::render::writeImage(rgb, dir / "rgba.png");
+    strata::render::writeImage(rgb, dir / "rgb.jpg"); // three channels
+    {
+        std::ofstream(dir / "broken.png") << "not an image";
+    }
+    auto scene = [&](const std::string& maps) {
+        std::ofstream(dir / "scene.toml") << "[material]\n" << maps;
+        return strata::app::loadScene(dir / "scene.toml");
+    };
+    // A gloss map's R as smoothness, height from a normal map's alpha.
+    const Scene ok = scene("[material.maps.mask]\nmetallic = \"rgba.png\"\nheight = \"rgba.png\"\nheight_channel = \"a\"\n"
+                           "smoothness = \"rgba.png\"\nsmoothness_channel = \"1-r\"\n"
+                           "[material.maps.normal]\nfile = \"rgba.png\"\nconvention = \"directx\"\n");
+    const strata::render::Material m = strata::app::buildMaterial(ok.material);
+    ASSERT_TRUE(m.mask);
+    const std::uint8_t* mohs = m.mask->levels[0].texels.data();
+    EXPECT_EQ(mohs[0], 200);     // metallic
+    EXPECT_EQ(mohs[1], 255);     // occlusion default
+    EXPECT_EQ(mohs[2], 200);     // height from alpha
+    EXPECT_EQ(mohs[3], 55);      // 1 − roughness
+    EXPECT_EQ(m.normal->levels[0].texels[1], 55); // DirectX green flipped
+
+    const Scene alpha = scene("[material.maps.mask]\nfile = \"rgb.jpg\"\n");
+    try {
+        strata::app::buildMaterial(alpha.material);
+        ADD_FAILURE() << "no error";
+    } catch (const strata::Error& e) {
+        const std::string what = e.what();
+        EXPECT_NE(what.find("material.maps.mask"), std::string::npos) << what;
+        EXPECT_NE(what.find("material 'material'"), std::string::npos) << what;
+        EXPECT_NE(what.find("rgb.jpg"), std::string::npos) << what;
+        EXPECT_NE(what.find("3 channel(s)"), std::string::npos) << what;
+    }
+    const Scene broken = scene("[material.maps.albedo]\nfile = \"broken.png\"\n");
+    try {
+        strata::app::buildMaterial(broken.material);
+        ADD_FAILURE() << "no error";
+    } catch (const strata::Error& e) {
+        const std::string what = e.what();
+        EXPECT_NE(what.find("material.maps.albedo"), std::string::npos) << what;
+        EXPECT_NE(what.find("broken.png"), std::string::npos) << what;
+    }
+}

@@ -1,4 +1,5 @@
 #include <strata/Error.h>
+#include <strata/meshing/AnalyticShapes.h>
 #include <strata/meshing/GridToMesh.h>
 #include <strata/meshing/MeshMetrics.h>
 
@@ -114,4 +115,15 @@ TEST(GridToMesh, EmptyGridGivesEmptyMesh)
     const TriangleMesh mesh = gridToMesh(*grid);
     EXPECT_EQ(mesh.triangleCount(), 0u);
     EXPECT_EQ(mesh.vertexCount(), 0u);
+}
+
+TEST(GridToMesh, TorusAndBoxAreWatertightWithTheRightVolume)
+{
+    // 64 voxels across, like the chunk meshers' tests.
+    for (const AnalyticShape& shape : {analyticTorus({0.1, 0.2, -0.3}, 5.5, 2.5),
+                                       analyticBox({-7.93, -5.1, -6.37}, {8.04, 5.77, 6.11})}) {
+        const TriangleMesh mesh = gridToMesh(*levelSetFromShape(shape, 0.25));
+        EXPECT_TRUE(analyzeTopology(mesh).watertight()) << shape.name;
+        EXPECT_NEAR(signedVolume(mesh) / shape.volume, 1.0, 0.01) << shape.name;
+    }
 }

@@ -84,3 +84,33 @@ TEST(MeshMetrics, WorldBoundsAddTheOrigin)
     EXPECT_DOUBLE_EQ(b.max.x, 1e6 + 1.0);
     EXPECT_DOUBLE_EQ(b.min.y, -2.0);
 }
+
+TEST(MeshMetrics, NonManifoldVerticesAngleStatisticsAndDegenerateRemoval)
+{
+    // Two cubes touching at one corner (vertex 7 of the first is shared).
+    TriangleMesh m = unitCube();
+    const std::uint32_t offset = 7;
+    for (int i = 0; i < 8; ++i) {
+        if (i == 0) continue;
+        m.positions.emplace_back(1 + (i & 1), 1 + ((i >> 1) & 1), 1 + ((i >> 2) & 1));
+    }
+    const TriangleMesh cube = unitCube();
+    for (std::uint32_t i : cube.indices) m.indices.push_back(i == 0 ? 7 : offset + i);
+    const MeshTopology t = analyzeTopology(m);
+    EXPECT_EQ(t.nonManifoldVertices, 1u);
+    EXPECT_EQ(t.nonManifoldEdges, 0u);
+    EXPECT_TRUE(t.watertight()); // edge-manifold, but not vertex-manifold
+
+    const AngleStatistics angles = angleStatistics(unitCube());
+    EXPECT_NEAR(angles.minDegrees, 45.0, 1e-9);
+    EXPECT_NEAR(angles.meanMinDegrees, 45.0, 1e-9);
+    EXPECT_EQ(angles.below10Percent, 0.0);
+
+    TriangleMesh d = unitCube();
+    d.positions.emplace_back(0.5f, 0.0f, 0.0f); // on edge 0-1: zero area
+    d.indices.insert(d.indices.end(), {0, 1, 8, 2, 2, 3});
+    EXPECT_EQ(analyzeTopology(d).degenerateTriangles, 2u);
+    EXPECT_EQ(removeDegenerateTriangles(d), 2u);
+    EXPECT_EQ(d.triangleCount(), 12u);
+    EXPECT_EQ(analyzeTopology(d).degenerateTriangles, 0u);
+}

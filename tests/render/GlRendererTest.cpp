@@ -2,6 +2,7 @@
 // llvmpipe): a machine where no context can be created fails them.
 
 #include <strata/Error.h>
+#include <strata/render/CpuRenderer.h>
 #include <strata/render/EglContext.h>
 #include <strata/render/GlRenderer.h>
 #include <strata/render/ProceduralTextures.h>
@@ -93,8 +94,8 @@ TEST(GlRenderer, RendersATexturedSphereOverTheSky)
     options.height = 256;
     options.camera = orbitCamera(glm::dvec3(-4.0), glm::dvec3(4.0), 30.0, 25.0);
     options.material.mapScale = 0.25f;
-    options.material.sideAlbedo = makeRockAlbedo(256, 1);
-    options.material.topAlbedo = makeGrassAlbedo(256, 1);
+    options.material.albedo = makeTexture(makeRockAlbedo(256, 1), MapKind::Albedo);
+    options.material.topAlbedo = makeTexture(makeGrassAlbedo(256, 1), MapKind::Albedo);
 
     const Image image = renderSnapshot(*context, sphere.view(), options);
     ASSERT_EQ(image.width, 256);
@@ -137,8 +138,8 @@ TEST(GlRenderer, TopMapOnlyOnUpwardFaces)
     SnapshotOptions options;
     options.width = 128;
     options.height = 128;
-    options.material.sideAlbedo = solid(200, 30, 30);
-    options.material.topAlbedo = solid(30, 200, 30);
+    options.material.albedo = makeTexture(solid(200, 30, 30), MapKind::Albedo);
+    options.material.topAlbedo = makeTexture(solid(30, 200, 30), MapKind::Albedo);
     options.material.blendOffset = 0.0f;
     options.material.blendExponent = 1.0f;
 
@@ -188,8 +189,11 @@ TEST(GlRenderer, SideTexturesAreNotMirroredSeenFromOutside)
     options.height = 96;
     options.samples = 1;
     options.material.mapScale = 1.0f;
-    options.material.sideAlbedo = ramp;
-    // Head-on sun, no ambient: the face shows the albedo, barely tone-mapped.
+    options.material.albedo = makeTexture(ramp, MapKind::Albedo);
+    // Head-on sun, no ambient, a rough surface: the face shows the albedo,
+    // barely tone-mapped.
+    options.material.smoothness = 0.0f;
+    options.material.fresnelStrength = 0.0f;
     options.lighting.sunColor = glm::vec3(1.0f);
     options.lighting.skyAmbient = glm::vec3(0.0f);
     options.lighting.groundAmbient = glm::vec3(0.0f);
@@ -213,7 +217,7 @@ TEST(GlRenderer, ShadingMatchesTheSharedHeaderOnTheCpu)
     SnapshotOptions options;
     options.width = 64;
     options.height = 64;
-    options.material.sideAlbedo = solid(150, 120, 90);
+    options.material.albedo = makeTexture(solid(150, 120, 90), MapKind::Albedo);
     options.lighting.sunDirection = glm::vec3(0.3f, 0.5f, 0.8f);
     options.camera = orbitCamera(glm::dvec3(-1.0), glm::dvec3(1.0), 0.0, 0.0);
     const Image image = renderSnapshot(*context, box.view(), options);
@@ -223,10 +227,23 @@ TEST(GlRenderer, ShadingMatchesTheSharedHeaderOnTheCpu)
         return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
     };
     const Lighting& l = options.lighting;
-    const glm::vec3 albedo{toLinear(150), toLinear(120), toLinear(90)};
-    const glm::vec3 radiance = strata::shading::shadeLambertHemisphere(
-        albedo, glm::vec3(0.0f, 0.0f, 1.0f), glm::normalize(l.sunDirection), l.sunColor, l.skyAmbient, l.groundAmbient);
-    const glm::vec3 expected = strata::shading::toneMapAces(radiance);
+    strata::shading::SurfaceOutput o{};
+    o.albedo = glm::vec3{toLinear(150), toLinear(120), toLinear(90)};
+    o.normal = glm::vec3(0.0f, 0.0f, 1.0f);
+    o.metallic = options.material.metallic;
+    o.smoothness = options.material.smoothness;
+    o.occlusion = 1.0f;
+    o.emission = glm::vec3(0.0f);
+    strata::shading::LightingParams lp{};
+    lp.lights[0].direction = glm::normalize(l.sunDirection);
+    lp.lights[0].color = l.sunColor;
+    lp.lightCount = 1;
+    lp.skyAmbient = l.skyAmbient;
+    lp.groundAmbient = l.groundAmbient;
+    lp.exposure = l.exposure;
+    const glm::vec3 expected = strata::shading::toneMap(
+        strata::shading::lightSurface(o, glm::vec3(0.0f, 0.0f, 1.0f), lp, options.material.fresnelStrength),
+        l.exposure);
     const std::uint8_t* centre = image.at(32, 32);
     for (int c = 0; c < 3; ++c) {
         EXPECT_NEAR(int(centre[c]), srgbByte(expected[c]), 1) << "channel " << c;
@@ -242,7 +259,7 @@ TEST(GlRenderer, SameInputsGiveTheSameBytes)
     options.width = 64;
     options.height = 48;
     options.camera = orbitCamera(glm::dvec3(-1.0, 0.0, 1.0), glm::dvec3(3.0, 4.0, 5.0), 200.0, 10.0);
-    options.material.sideAlbedo = makeRockAlbedo(64, 3);
+    options.material.albedo = makeTexture(makeRockAlbedo(64, 3), MapKind::Albedo);
     const Image a = renderSnapshot(*context, sphere.view(), options);
     const Image b = renderSnapshot(*context, sphere.view(), options);
     EXPECT_EQ(a.pixels, b.pixels);
@@ -259,7 +276,7 @@ TEST(GlRenderer, MeshOriginIsHonoured)
     options.width = 64;
     options.height = 64;
     options.samples = 1;
-    options.material.sideAlbedo = makeRockAlbedo(64, 3);
+    options.material.albedo = makeTexture(makeRockAlbedo(64, 3), MapKind::Albedo);
     options.material.mapScale = 0.5f;
     options.camera = orbitCamera(glm::dvec3(-1.0), glm::dvec3(1.0), 40.0, 30.0);
     const Image atZero = renderSnapshot(*context, box.view(), options);
@@ -297,7 +314,7 @@ TEST(GlRenderer, EmptyMeshGivesSkyAndBadInputsThrow)
     bad.material.mapScale = 0.0f;
     EXPECT_THROW(renderSnapshot(*context, box.view(), bad), strata::Error);
     bad = options;
-    bad.material.sideAlbedo.width = 3; // no pixels
+    bad.material.albedo = std::make_shared<Texture>(); // no levels
     EXPECT_THROW(renderSnapshot(*context, box.view(), bad), strata::Error);
 
     TestMesh broken = box;

@@ -143,3 +143,55 @@ TEST(ProceduralTextures, WritesPngsToLookAt)
 }
 
 } // namespace
+
+// --- Built-in texture sets ------------------------------------------------------
+
+namespace {
+
+using strata::render::BuiltinSet;
+using strata::render::TextureSetImages;
+
+double channelMean(const Image& image, int channel)
+{
+    double sum = 0.0;
+    for (std::size_t i = std::size_t(channel); i < image.pixels.size(); i += 4) sum += image.pixels[i];
+    return sum / double(image.width * image.height) / 255.0;
+}
+
+} // namespace
+
+TEST(BuiltinSets, EverySetHasEveryMapDeterministically)
+{
+    for (BuiltinSet set : {BuiltinSet::Rock, BuiltinSet::Grass, BuiltinSet::Soil, BuiltinSet::Sand, BuiltinSet::Snow,
+                           BuiltinSet::Circuitry}) {
+        SCOPED_TRACE(strata::render::builtinSetName(set));
+        EXPECT_EQ(strata::render::builtinSetFromName(strata::render::builtinSetName(set)), set);
+        const TextureSetImages a = strata::render::makeBuiltinSet(set, 128, 5);
+        const TextureSetImages b = strata::render::makeBuiltinSet(set, 128, 5);
+        for (const Image* map : {&a.albedo, &a.mohs, &a.normal, &a.detail, &a.emission}) {
+            EXPECT_EQ(map->width, 128);
+            EXPECT_EQ(map->height, 128);
+            EXPECT_EQ(map->pixels.size(), 128u * 128u * 4u);
+        }
+        EXPECT_EQ(a.albedo.pixels, b.albedo.pixels);
+        EXPECT_EQ(a.mohs.pixels, b.mohs.pixels);
+        EXPECT_EQ(a.normal.pixels, b.normal.pixels);
+        // Normals are unit length and point out of the surface (+Z).
+        for (std::size_t i = 0; i < a.normal.pixels.size(); i += 4) {
+            const double x = a.normal.pixels[i] / 127.5 - 1.0, y = a.normal.pixels[i + 1] / 127.5 - 1.0,
+                         z = a.normal.pixels[i + 2] / 127.5 - 1.0;
+            ASSERT_NEAR(std::sqrt(x * x + y * y + z * z), 1.0, 0.02);
+            ASSERT_GT(z, 0.3);
+        }
+        // Detail maps are centred on neutral grey; heights span the range.
+        EXPECT_NEAR(channelMean(a.detail, 0), 0.5, 0.1);
+        EXPECT_NEAR(channelMean(a.detail, 2), 0.5, 0.1);
+        EXPECT_GT(channelMean(a.mohs, 2), 0.1);
+        EXPECT_LT(channelMean(a.mohs, 2), 0.9);
+        // Only the circuitry glows; only its traces are metal.
+        EXPECT_EQ(channelMean(a.emission, 2) > 0.0, set == BuiltinSet::Circuitry);
+        EXPECT_EQ(channelMean(a.mohs, 0) > 0.0, set == BuiltinSet::Circuitry);
+    }
+    EXPECT_FALSE(strata::render::builtinSetFromName("marble"));
+    EXPECT_THROW(strata::render::makeBuiltinSet(BuiltinSet::Snow, 100, 1), strata::Error);
+}

@@ -86,12 +86,14 @@ int main(int argc, char** argv)
 
         t0 = Clock::now();
         SnapshotOptions options;
-        options.material.sideAlbedo = makeRockAlbedo(1024, 1);
-        options.material.topAlbedo = makeGrassAlbedo(1024, 1);
+        const Image rock = makeRockAlbedo(1024, 1);
+        const Image grass = makeGrassAlbedo(1024, 1);
+        options.material.albedo = makeTexture(rock, MapKind::Albedo);
+        options.material.topAlbedo = makeTexture(grass, MapKind::Albedo);
         t1 = Clock::now();
         std::printf("textures: 2 x 1024^2 in %.0f ms\n", std::chrono::duration<double, std::milli>(t1 - t0).count());
-        writeImage(options.material.sideAlbedo, out / "rock.png");
-        writeImage(options.material.topAlbedo, out / "grass.png");
+        writeImage(rock, out / "rock.png");
+        writeImage(grass, out / "grass.png");
 
         options.camera = orbitCamera(glm::dvec3(-24.0, 0.0, -24.0), glm::dvec3(24.0, 12.0, 24.0), 35.0, 28.0);
         for (int run = 0; run < 3; ++run) {

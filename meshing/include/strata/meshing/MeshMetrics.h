@@ -15,14 +15,31 @@ struct MeshTopology
     std::size_t nonManifoldEdges = 0;  ///< used by more than two triangles
     std::size_t inconsistentEdges = 0; ///< two triangles traverse it the same way (flipped orientation)
     std::size_t degenerateTriangles = 0; ///< repeated vertex index or zero area
+    /// Vertices whose triangles form more than one fan (two surface sheets
+    /// touching at a point), or that no triangle uses.
+    std::size_t nonManifoldVertices = 0;
 
     /// Closed and consistently oriented: every edge has exactly two
     /// triangles that traverse it in opposite directions.
     bool watertight() const { return boundaryEdges == 0 && nonManifoldEdges == 0 && inconsistentEdges == 0; }
 };
 
-/// Edge-based topology check, O(E log E), deterministic.
+/// Edge- and vertex-based topology check, O(E log E), deterministic.
 MeshTopology analyzeTopology(const TriangleMesh& mesh);
+
+/// Removes triangles with a repeated vertex index or zero area (in float);
+/// returns how many. Vertices are kept (indices stay valid).
+std::size_t removeDegenerateTriangles(TriangleMesh& mesh);
+
+struct AngleStatistics
+{
+    double minDegrees = 0.0;     ///< smallest angle of any triangle
+    double meanMinDegrees = 0.0; ///< mean over triangles of their smallest angle
+    double below10Percent = 0.0; ///< % of triangles whose smallest angle is under 10°
+};
+
+/// Triangle shape quality; degenerate triangles count as 0°.
+AngleStatistics angleStatistics(const TriangleMesh& mesh);
 
 /// Signed volume enclosed by the mesh (divergence theorem, accumulated in
 /// double relative to the mesh origin), cubic metres. Positive for a closed

@@ -14,7 +14,7 @@ struct Camera
     glm::dvec3 target{0.0};
     glm::dvec3 up{0.0, 1.0, 0.0};
     double fovYDegrees = 50.0;
-    double nearPlane = 0.1;  ///< metres, > 0
+    double nearPlane = 0.1;   ///< metres, > 0
     double farPlane = 2000.0; ///< metres, > nearPlane
 };
 

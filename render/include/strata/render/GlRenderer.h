@@ -6,25 +6,11 @@
 #include <strata/render/Image.h>
 #include <strata/render/Material.h>
 #include <strata/render/MeshView.h>
+#include <strata/render/SnapshotOptions.h>
 
 namespace strata::render {
 
 class EglContext;
-
-struct SnapshotOptions
-{
-    int width = 1280;   ///< pixels, 1..16384
-    int height = 720;   ///< pixels, 1..16384
-    int samples = 4;    ///< MSAA samples (1 = off)
-    /// Maximum anisotropic filtering (1 = plain trilinear, up to 16; clamped
-    /// to what the driver offers). Trilinear is what the CPU reference
-    /// sampler does; anisotropy sharpens grazing views but costs about 6×
-    /// the render time on Mesa llvmpipe (measured: 0.64 s → 4.4 s at 1280×720).
-    float anisotropy = 1.0f;
-    Camera camera;
-    Lighting lighting;
-    TriplanarMaterial material;
-};
 
 /// Draws `mesh` into an off-screen framebuffer of the context (which must be
 /// current) and reads it back: RGBA8, sRGB-encoded, rows top to bottom.
@@ -36,8 +22,12 @@ struct SnapshotOptions
 ///  - `samples` is clamped to GL_MAX_SAMPLES; the multisampled image is
 ///    resolved with glBlitFramebuffer;
 ///  - back faces are culled (front faces are counter-clockwise);
-///  - an empty material.sideAlbedo renders as plain light grey; texture
-///    images are uploaded with their top row at v = 1 (texture "up" is +V,
+///  - the fragment program is the shared material (shaders/TriplanarMaterial.h)
+///    compiled for the material's feature set (materialFeatures()); absent
+///    maps are neutral (no albedo: plain light grey); each Texture's own mip
+///    chain is uploaded (the texels the CPU sampler filters), sampled with
+///    textureGrad and explicit UV derivatives; texture images have their
+///    top row at v = 1 (texture "up" is +V,
 ///    which the triplanar side projections map to world +Y);
 ///  - the background is lighting.skyColor; alpha is 255 everywhere;
 ///  - also throws strata::Error for invalid options (size, samples, material

@@ -5,6 +5,8 @@
 
 #include <glm/vec3.hpp>
 
+#include <cmath>
+
 namespace strata::terrain {
 
 class DensityField
@@ -21,6 +23,22 @@ public:
     /// signed distance has 1. Sampling relies on it to skip whole tiles:
     /// |density(p)| > L·r means no surface within r of p.
     virtual double lipschitz() const = 0;
+
+    /// A lower bound of the distance (metres) from `p` to the surface (the
+    /// zero set of density()), signed like density(p): no surface point lies
+    /// within |distanceBound(p)| of p. Sampling prunes with it, while the
+    /// values it stores come from density(), so a field may return a close
+    /// estimate of the true distance from density() (with a Lipschitz bound
+    /// above 1) and still prune with a conservative bound here. The default,
+    /// density(p) / lipschitz(), is right for every field.
+    virtual double distanceBound(const glm::dvec3& p) const;
+
+    /// Lower bounds of density() and of distanceBound() over all space
+    /// (−infinity when unknown). A cave that is never deeper than its radius
+    /// says so, and CSG then skips evaluating it where the rock around is
+    /// already decided (e.g. in the air above the ground).
+    virtual double minDensity() const { return -HUGE_VAL; }
+    virtual double minDistanceBound() const { return -HUGE_VAL; }
 };
 
 /// An exact sphere signed distance: |p − center| − radius.
@@ -33,6 +51,7 @@ public:
     }
     double density(const glm::dvec3& p) const override;
     double lipschitz() const override { return 1.0; }
+    double distanceBound(const glm::dvec3& p) const override { return density(p); }
 
 private:
     glm::dvec3 mCenter;

@@ -33,6 +33,18 @@ struct SampleOptions
     /// (0..1); return false to stop, which makes sampleLevelSet throw
     /// strata::Error("sampling interrupted"). May be empty.
     std::function<bool(double)> progress;
+    /// Memory budget in bytes (0 = none). After the cheap coarse pass the
+    /// grid's memory is estimated (an upper bound: every tile that may hold
+    /// the surface counted as a leaf, plus internal nodes); above the budget
+    /// sampleLevelSet throws strata::Error with the estimate and a suggestion,
+    /// before the expensive fine pass allocates anything.
+    std::uint64_t maxMemoryBytes = 0;
+    /// Reinitialise the band to a true signed distance after sampling
+    /// (OpenVDB LevelSetTracker::normalize, first-order upwind, then voxels
+    /// beyond the half width are made inactive). Costs about one sampling
+    /// pass of time; the result is still the same on any thread count.
+    bool renormalize = false;
+    int renormalizeIterations = 8; ///< Eikonal iterations, 1..64
 };
 
 struct SampleStats
@@ -41,6 +53,8 @@ struct SampleStats
     std::uint64_t activeVoxels = 0;
     std::uint64_t tilesVisited = 0;    ///< 8³ leaf tiles overlapping the region
     std::uint64_t tilesSkipped = 0;    ///< of those, tiles pruned whole by the gradient bound
+    std::uint64_t estimatedBytes = 0;  ///< the memory estimate checked against maxMemoryBytes
+    std::uint64_t activeVoxelsBeforeRenormalize = 0; ///< = activeVoxels without renormalize
 };
 
 /// Samples `field` into a FloatGrid of class GRID_LEVEL_SET named "surface",
@@ -49,7 +63,10 @@ struct SampleStats
 ///
 /// Pruning: 128³ blocks are probed at their centre and subdivided down to 8³
 /// tiles and then 2³ sub-blocks; a part is skipped when
-/// |d(centre)| > L·radius + background, L = field.lipschitz(). Only the
+/// |b(centre)| > radius + background, b = field.distanceBound(), or (for
+/// fields with L = field.lipschitz() > 1) when |d(centre)| > L·radius +
+/// background, d = field.density(), which proves every voxel of the part
+/// would be stored inactive anyway. Only the
 /// remaining voxels are evaluated; those with |density| < background are
 /// stored active, the others as inactive ±background. Every skipped part's
 /// sign is known from its probe, so the interior is signed exactly (inside
@@ -58,11 +75,13 @@ struct SampleStats
 /// region the grid holds the background (air).
 ///
 /// Multithreaded (TBB); the result is bitwise identical whatever the thread
-/// count. Memory and time grow with the surface area inside the region.
+/// count. With `closed` false, two regions that share voxels give them the
+/// same values (pruning decisions depend only on aligned cubes), so a world
+/// can be sampled box by box. Memory and time grow with the surface area inside the region.
 /// Throws strata::Error on an invalid voxel size, half width or region (not
 /// finite, empty, more than 2^30 voxels from the origin or more than 2^40
-/// voxels in all), on interruption, and passes on whatever field.density()
-/// throws.
+/// voxels in all), on a memory estimate above maxMemoryBytes, on
+/// interruption, and passes on whatever field.density() throws.
 openvdb::FloatGrid::Ptr sampleLevelSet(const DensityField& field, const SampleOptions& options,
                                        SampleStats* stats = nullptr);
 

@@ -1,0 +1,182 @@
+// `strata render`: one image of a scene's terrain, or of a mesh file, with
+// the scene's material, camera and lighting, through the CPU reference
+// renderer (default) or OpenGL.
+
+#include "Commands.h"
+#include "Generate.h"
+#include "Scene.h"
+
+#include <strata/Error.h>
+#include <strata/meshing/GltfIO.h>
+#include <strata/meshing/PlyIO.h>
+#include <strata/render/CpuRenderer.h>
+#include <strata/render/EglContext.h>
+#include <strata/render/GlRenderer.h>
+
+#include <tbb/global_control.h>
+
+#include <glm/geometric.hpp>
+
+#include <chrono>
+#include <iomanip>
+#include <iostream>
+#include <memory>
+#include <optional>
+#include <regex>
+#include <sstream>
+
+namespace strata::app {
+
+namespace {
+
+struct RenderArguments
+{
+    std::string scenePath;
+    std::string meshPath;
+    std::string output;
+    std::string backend = "cpu";
+    std::string size;
+    std::optional<std::uint64_t> seed;
+    int threads = 0;
+    bool quiet = false;
+};
+
+/// Area-weighted vertex normals, for mesh files without normals.
+void computeVertexNormals(meshing::TriangleMesh& mesh)
+{
+    mesh.normals.assign(mesh.positions.size(), glm::vec3(0.0f));
+    for (std::size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
+        const std::uint32_t a = mesh.indices[t], b = mesh.indices[t + 1], c = mesh.indices[t + 2];
+        if (a >= mesh.positions.size() || b >= mesh.positions.size() || c >= mesh.positions.size()) continue;
+        const glm::vec3 n = glm::cross(mesh.positions[b] - mesh.positions[a], mesh.positions[c] - mesh.positions[a]);
+        mesh.normals[a] += n;
+        mesh.normals[b] += n;
+        mesh.normals[c] += n;
+    }
+    for (glm::vec3& n : mesh.normals) {
+        const float len = glm::length(n);
+        n = len > 0.0f ? n / len : glm::vec3(0.0f, 1.0f, 0.0f);
+    }
+}
+
+/// The scene's terrain mesh, through the generate pipeline (no snapshot)
+/// into a scratch folder beside the output, read back and removed.
+meshing::TriangleMesh terrainMesh(const Scene& scene, std::optional<std::uint64_t> seed,
+                                  const std::filesystem::path& output)
+{
+    const std::filesystem::path scratch =
+        std::filesystem::absolute(output).parent_path() / (".strata-render-" + output.filename().string());
+    GenerateOptions options;
+    options.outputDir = scratch;
+    options.seed = seed;
+    options.snapshot = false;
+    options.quiet = true;
+    std::ostringstream log;
+    struct Cleanup
+    {
+        std::filesystem::path dir;
+        ~Cleanup()
+        {
+            std::error_code ec;
+            std::filesystem::remove_all(dir, ec);
+        }
+    } cleanup{scratch};
+    generate(scene, options, log);
+    return meshing::readGltf(scratch / "terrain.glb");
+}
+
+meshing::TriangleMesh readMesh(const std::filesystem::path& path)
+{
+    std::string ext = path.extension().string();
+    for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+    meshing::TriangleMesh mesh =
+        (ext == ".glb" || ext == ".gltf") ? meshing::readGltf(path) : meshing::readMeshFile(path);
+    if (mesh.triangleCount() == 0) throw Error("mesh file '" + path.string() + "' has no triangles");
+    if (mesh.normals.size() != mesh.positions.size()) computeVertexNormals(mesh);
+    return mesh;
+}
+
+} // namespace
+
+Command registerRenderCommand(CLI::App& app)
+{
+    auto args = std::make_shared<RenderArguments>();
+    CLI::App* render = app.add_subcommand(
+        "render",
+        "Render one image of a scene's terrain (or of --mesh FILE) with the scene's material, camera and light");
+    render->add_option("scene", args->scenePath, "Scene file (TOML); without one, the embedded default scene")
+        ->check(CLI::ExistingFile);
+    render
+        ->add_option("--mesh", args->meshPath,
+                     "Render this mesh (.glb, .gltf, .ply, .obj, .stl) instead of the scene's terrain")
+        ->check(CLI::ExistingFile);
+    render->add_option("-o,--output", args->output, "Output image (.png, .exr, .tif, .jpg, by extension)")->required();
+    render
+        ->add_option("--backend", args->backend,
+                     "Renderer: cpu (reference renderer, default; no GL needed) or gl (OpenGL through EGL)")
+        ->check(CLI::IsMember({"gl", "cpu"}));
+    render->add_option("--size", args->size, "Image size WIDTHxHEIGHT (default from the scene, 1280x720)");
+    render->add_option("--seed", args->seed, "Override the scene's seed");
+    render
+        ->add_option("--threads", args->threads, "Worker threads (0 = all cores); the image is identical for any count")
+        ->check(CLI::Range(0, 1024));
+    render->add_flag("-q,--quiet", args->quiet, "Print nothing but errors");
+
+    return {render, [args]() {
+                using Clock = std::chrono::steady_clock;
+                const Scene scene = args->scenePath.empty() ? parseScene(defaultSceneText(), "<default scene>")
+                                                            : loadScene(args->scenePath);
+                std::optional<int> width, height;
+                if (!args->size.empty()) {
+                    static const std::regex pattern(R"((\d{1,5})[xX](\d{1,5}))");
+                    std::smatch match;
+                    if (!std::regex_match(args->size, match, pattern)) {
+                        throw Error("--size '" + args->size + "' must look like WIDTHxHEIGHT, e.g. 1280x720");
+                    }
+                    width = std::stoi(match[1]);
+                    height = std::stoi(match[2]);
+                    if (*width < 1 || *height < 1 || *width > 16384 || *height > 16384) {
+                        throw Error("--size '" + args->size + "': width and height must be in [1, 16384]");
+                    }
+                }
+                std::unique_ptr<tbb::global_control> threadLimit;
+                if (args->threads > 0) {
+                    threadLimit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
+                                                                        std::size_t(args->threads));
+                }
+                // GL first: without a context, fail before the long stages.
+                std::unique_ptr<render::EglContext> context;
+                if (args->backend == "gl") context = render::EglContext::create();
+
+                auto t0 = Clock::now();
+                const meshing::TriangleMesh mesh =
+                    args->meshPath.empty() ? terrainMesh(scene, args->seed, args->output) : readMesh(args->meshPath);
+                auto t1 = Clock::now();
+                const render::SnapshotOptions snapshot = makeSnapshotOptions(scene, mesh, width, height);
+                auto t2 = Clock::now();
+                render::MeshView view;
+                view.positions = mesh.positions.data();
+                view.normals = mesh.normals.data();
+                view.vertexCount = mesh.positions.size();
+                view.indices = mesh.indices.data();
+                view.indexCount = mesh.indices.size();
+                view.origin = mesh.origin;
+                const render::Image image = context ? render::renderSnapshot(*context, view, snapshot)
+                                                    : render::renderSnapshotCpu(view, snapshot);
+                auto t3 = Clock::now();
+                render::writeImage(image, args->output);
+                if (!args->quiet) {
+                    auto seconds = [](auto a, auto b) { return std::chrono::duration<double>(b - a).count(); };
+                    std::cout << std::fixed << std::setprecision(3)
+                              << "strata render: " << (args->meshPath.empty() ? scene.source : args->meshPath) << " → "
+                              << args->output << "\n  mesh      " << std::setw(8) << seconds(t0, t1) << " s   "
+                              << mesh.triangleCount() << " triangles\n  material  " << std::setw(8) << seconds(t1, t2)
+                              << " s   " << render::featureNames(render::materialFeatures(snapshot.material))
+                              << "\n  render    " << std::setw(8) << seconds(t2, t3) << " s   " << image.width << "x"
+                              << image.height << ", " << args->backend << std::endl;
+                }
+                return 0;
+            }};
+}
+
+} // namespace strata::app

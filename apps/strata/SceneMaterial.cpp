@@ -1,0 +1,320 @@
+#include "SceneMaterial.h"
+
+#include "TableReader.h"
+
+#include <strata/Error.h>
+#include <strata/render/ProceduralTextures.h>
+
+#include <map>
+
+namespace strata::app {
+
+namespace {
+
+constexpr render::MapKind SLOT_KINDS[9] = {
+    render::MapKind::Albedo, render::MapKind::Mask,         render::MapKind::Normal,
+    render::MapKind::Albedo, render::MapKind::Mask,         render::MapKind::Normal,
+    render::MapKind::Detail, render::MapKind::DetailNormal, render::MapKind::Emission,
+};
+
+/// Output channels each kind of map uses (albedo RGB, mask RGBA, normal RG, detail RB, emission RGB).
+bool channelUsed(render::MapKind kind, int c)
+{
+    switch (kind) {
+    case render::MapKind::Albedo:
+    case render::MapKind::Emission:
+        return c < 3;
+    case render::MapKind::Mask:
+        return true;
+    case render::MapKind::Normal:
+    case render::MapKind::DetailNormal:
+        return c < 2;
+    case render::MapKind::Detail:
+        return c == 0 || c == 2;
+    }
+    return true;
+}
+
+std::string setName(TableReader& t, const std::string& key, const std::string& fallback)
+{
+    const std::string name = t.string(key, fallback);
+    if (name != "none" && !render::builtinSetFromName(name)) {
+        t.fail(nullptr, key,
+               "= '" + name +
+                   "' is not a built-in texture set (rock, grass, soil, sand, snow, "
+                   "circuitry or none)");
+    }
+    return name;
+}
+
+std::filesystem::path resolve(const std::filesystem::path& baseDir, const std::string& file)
+{
+    const std::filesystem::path p(file);
+    return p.is_absolute() || baseDir.empty() ? p : baseDir / p;
+}
+
+void readMapFile(TableReader& maps, int slot, MaterialSettings& settings, const std::filesystem::path& baseDir)
+{
+    const std::string key = MATERIAL_MAP_KEYS[slot];
+    if (!maps.has(key)) {
+        maps.table(key); // marks it used
+        return;
+    }
+    TableReader t = maps.table(key);
+    MapFileSettings f;
+    f.where = maps.where(key);
+    const render::MapKind kind = SLOT_KINDS[slot];
+    const std::string file = t.string("file", "");
+    bool packed = false;
+    if (kind == render::MapKind::Mask) {
+        static const char* PACK[4] = {"metallic", "occlusion", "height", "smoothness"};
+        for (int c = 0; c < 4; ++c) {
+            const std::string packFile = t.string(PACK[c], "");
+            const std::string channel = t.string(std::string(PACK[c]) + "_channel", "r");
+            f.packChannels[std::size_t(c)] =
+                render::parseChannelSource(channel, t.where(std::string(PACK[c]) + "_channel"));
+            if (!packFile.empty()) {
+                f.packFiles[std::size_t(c)] = resolve(baseDir, packFile);
+                packed = true;
+            }
+        }
+    }
+    if (file.empty() && !packed) {
+        t.fail(nullptr, "file", "is required (the image file of the map)");
+    }
+    if (!file.empty() && packed) {
+        t.fail(nullptr, "file", "cannot be combined with separate metallic/occlusion/height/smoothness images");
+    }
+    f.file = file.empty() ? std::filesystem::path() : resolve(baseDir, file);
+    if (const toml::node* node = t.node("channels")) {
+        const toml::array* array = node->as_array();
+        if (!array || array->size() != 4) {
+            t.fail(node, "channels", "must be an array of four channel names, e.g. [\"r\", \"g\", \"b\", \"1-a\"]");
+        }
+        for (std::size_t c = 0; c < 4; ++c) {
+            const auto value = array->get(c)->value<std::string>();
+            if (!value) t.fail(node, "channels", "must be an array of four strings");
+            f.channels.channels[c] = render::parseChannelSource(*value, t.where("channels"));
+        }
+    }
+    const std::string convention = t.string("convention", "opengl");
+    if (convention != "opengl" && convention != "directx") {
+        t.fail(nullptr, "convention", "= '" + convention + "' must be \"opengl\" (+Y) or \"directx\" (-Y)");
+    }
+    f.directX = convention == "directx";
+    const bool identity = [&] {
+        for (int c = 0; c < 4; ++c) {
+            if (f.channels.channels[c].channel != c || f.channels.channels[c].invert) return false;
+        }
+        return true;
+    }();
+    f.minChannels = 1;
+    if (!(identity && (kind == render::MapKind::Albedo || kind == render::MapKind::Emission))) {
+        for (int c = 0; c < 4; ++c) {
+            const int source = f.channels.channels[c].channel;
+            if (channelUsed(kind, c) && source < 4) f.minChannels = std::max(f.minChannels, source + 1);
+        }
+    }
+    t.finish(); // unknown keys first, then the files
+    if (!f.file.empty()) {
+        std::error_code ec;
+        if (!std::filesystem::is_regular_file(f.file, ec)) {
+            t.fail(nullptr, "file",
+                   "= '" + f.file.string() + "': no such file (material '" + settings.name + "', map " + key + ")");
+        }
+    }
+    for (int c = 0; c < 4; ++c) {
+        std::error_code ec;
+        if (!f.packFiles[std::size_t(c)].empty() &&
+            !std::filesystem::is_regular_file(f.packFiles[std::size_t(c)], ec)) {
+            static const char* PACK[4] = {"metallic", "occlusion", "height", "smoothness"};
+            t.fail(nullptr, PACK[c],
+                   "= '" + f.packFiles[std::size_t(c)].string() + "': no such file (material '" + settings.name +
+                       "', map " + key + ")");
+        }
+    }
+    settings.files[std::size_t(slot)] = f;
+}
+
+void readMaterialTable(TableReader& m, MaterialSettings& s, const std::filesystem::path& baseDir)
+{
+    render::Material& p = s.parameters;
+    p.mapScale = float(m.number("map_scale", p.mapScale, 1e-6, 1e6));
+    p.blendOffset = float(m.number("blend_offset", p.blendOffset, 0.0, 0.5));
+    p.blendExponent = float(m.number("blend_exponent", p.blendExponent, 1.0, 8.0));
+    p.heightStrength = float(m.number("height_strength", p.heightStrength, 0.0, 0.99));
+    s.textureSize = int(m.integer("texture_size", s.textureSize, 16, 4096));
+    if ((s.textureSize & (s.textureSize - 1)) != 0) {
+        m.fail(nullptr, "texture_size", "= " + std::to_string(s.textureSize) + " must be a power of two");
+    }
+    s.textureSeed = std::uint32_t(m.integer("texture_seed", s.textureSeed, 0, 0xffffffffll));
+    s.side = setName(m, "side", s.side);
+    s.top = setName(m, "top", s.top);
+    s.detail = setName(m, "detail", s.detail);
+    s.emission = setName(m, "emission", s.emission);
+    s.maskMaps = m.boolean("mask_maps", s.maskMaps);
+    s.normalMaps = m.boolean("normal_maps", s.normalMaps);
+    s.detailNormals = m.boolean("detail_normals", s.detailNormals);
+    const std::string blend = m.string("normal_blend", p.normalBlend == render::NormalBlend::Udn   ? "udn"
+                                                       : p.normalBlend == render::NormalBlend::Rnm ? "rnm"
+                                                                                                   : "whiteout");
+    if (blend == "whiteout")
+        p.normalBlend = render::NormalBlend::Whiteout;
+    else if (blend == "udn")
+        p.normalBlend = render::NormalBlend::Udn;
+    else if (blend == "rnm")
+        p.normalBlend = render::NormalBlend::Rnm;
+    else
+        m.fail(nullptr, "normal_blend", "= '" + blend + "' must be \"whiteout\", \"udn\" or \"rnm\"");
+    const std::string layout = m.string("mask_layout", p.maskLayout == render::MaskLayout::Mods ? "mods" : "mohs");
+    if (layout == "mohs")
+        p.maskLayout = render::MaskLayout::Mohs;
+    else if (layout == "mods")
+        p.maskLayout = render::MaskLayout::Mods;
+    else
+        m.fail(nullptr, "mask_layout", "= '" + layout + "' must be \"mohs\" or \"mods\"");
+    p.normalStrength = float(m.number("normal_strength", p.normalStrength, 0.0, 4.0));
+    p.occlusionStrength = float(m.number("occlusion_strength", p.occlusionStrength, 0.0, 1.0));
+    p.metallic = float(m.number("metallic", p.metallic, 0.0, 1.0));
+    p.smoothness = float(m.number("smoothness", p.smoothness, 0.0, 1.0));
+    p.fresnelStrength = float(m.number("fresnel_strength", p.fresnelStrength, 0.0, 1.0));
+    p.detailScale = float(m.number("detail_scale", p.detailScale, 1e-3, 1e3));
+    p.detailAlbedo = float(m.number("detail_albedo", p.detailAlbedo, 0.0, 1.0));
+    p.detailSmoothness = float(m.number("detail_smoothness", p.detailSmoothness, 0.0, 1.0));
+    p.detailNormalStrength = float(m.number("detail_normal_strength", p.detailNormalStrength, 0.0, 1.0));
+    s.detailFadeStart = float(m.number("detail_fade_start", s.detailFadeStart, 0.0, 16.0));
+    s.detailFadeEnd = float(m.number("detail_fade_end", s.detailFadeEnd, 0.0, 16.0));
+    if (s.detailFadeEnd < s.detailFadeStart) {
+        m.fail(nullptr, "detail_fade_end", "must be >= detail_fade_start");
+    }
+    auto colour = [&](const std::string& key, glm::vec3& value, double limit) {
+        if (const std::optional<glm::dvec3> v = m.vec3(key, limit)) {
+            for (int c = 0; c < 3; ++c) {
+                if ((*v)[c] < 0.0) m.fail(nullptr, key, "components must be >= 0");
+            }
+            value = glm::vec3(*v);
+        }
+    };
+    colour("albedo_tint", p.albedoTint, 16.0);
+    colour("emission_color", p.emissionColor, 1e4);
+
+    TableReader maps = m.table("maps");
+    for (int slot = 0; slot < 9; ++slot) {
+        readMapFile(maps, slot, s, baseDir);
+    }
+    maps.finish();
+}
+
+render::TexturePtr loadSlot(const MapFileSettings& f, render::MapKind kind, const MaterialSettings& settings,
+                            const render::MipOptions& mips)
+{
+    const std::string what = f.where + " (material '" + settings.name + "')";
+    render::Image image;
+    if (!f.file.empty()) {
+        image = render::loadMapImage(f.file, kind, f.minChannels, what);
+        image = render::remapChannels(image, f.channels);
+    } else {
+        render::Image parts[4];
+        const render::Image* pointers[4] = {nullptr, nullptr, nullptr, nullptr};
+        for (int c = 0; c < 4; ++c) {
+            if (f.packFiles[std::size_t(c)].empty()) continue;
+            const render::ChannelSource source = f.packChannels[std::size_t(c)];
+            render::Image loaded = render::loadMapImage(f.packFiles[std::size_t(c)], kind,
+                                                        source.channel < 4 ? source.channel + 1 : 1, what);
+            render::ChannelMapping mapping;
+            mapping.channels[0] = source;
+            parts[c] = render::remapChannels(loaded, mapping);
+            pointers[c] = &parts[c];
+        }
+        try {
+            image = render::packMohs(pointers[0], pointers[1], pointers[2], pointers[3]);
+        } catch (const Error& e) {
+            throw Error(what + ": " + e.what());
+        }
+    }
+    if (f.directX) render::flipGreen(image);
+    return render::makeTexture(image, kind, mips);
+}
+
+} // namespace
+
+void readMaterial(TableReader& root, MaterialSettings& settings, const std::filesystem::path& baseDir)
+{
+    // Named materials first: every one is checked, the one `use`d applies.
+    TableReader materials = root.table("materials");
+    std::map<std::string, MaterialSettings> named;
+    for (const std::string& name : materials.keys()) {
+        TableReader t = materials.table(name);
+        MaterialSettings s = settings;
+        s.name = name;
+        readMaterialTable(t, s, baseDir);
+        t.finish();
+        named.emplace(name, std::move(s));
+    }
+    materials.finish();
+
+    TableReader m = root.table("material");
+    const std::string use = m.string("use", "");
+    if (!use.empty()) {
+        auto found = named.find(use);
+        if (found == named.end()) {
+            m.fail(nullptr, "use", "= '" + use + "': no [materials." + use + "] table");
+        }
+        settings = found->second;
+    } else {
+        settings.name = "material";
+    }
+    readMaterialTable(m, settings, baseDir);
+    m.finish();
+}
+
+render::Material buildMaterial(const MaterialSettings& settings)
+{
+    render::Material material = settings.parameters;
+    render::MipOptions mips;
+    mips.detailFadeStart = settings.detailFadeStart;
+    mips.detailFadeEnd = settings.detailFadeEnd;
+    std::map<std::string, render::TextureSetImages> sets;
+    auto set = [&](const std::string& name) -> const render::TextureSetImages& {
+        auto found = sets.find(name);
+        if (found == sets.end()) {
+            found = sets.emplace(name, render::makeBuiltinSet(*render::builtinSetFromName(name), settings.textureSize,
+                                                              settings.textureSeed))
+                        .first;
+        }
+        return found->second;
+    };
+    render::TexturePtr* slots[9] = {&material.albedo,    &material.mask,         &material.normal,
+                                    &material.topAlbedo, &material.topMask,      &material.topNormal,
+                                    &material.detail,    &material.detailNormal, &material.emission};
+    if (settings.side != "none") {
+        const auto& s = set(settings.side);
+        material.albedo = render::makeTexture(s.albedo, render::MapKind::Albedo, mips);
+        if (settings.maskMaps) material.mask = render::makeTexture(s.mohs, render::MapKind::Mask, mips);
+        if (settings.normalMaps) material.normal = render::makeTexture(s.normal, render::MapKind::Normal, mips);
+    }
+    if (settings.top != "none") {
+        const auto& s = set(settings.top);
+        material.topAlbedo = render::makeTexture(s.albedo, render::MapKind::Albedo, mips);
+        if (settings.maskMaps) material.topMask = render::makeTexture(s.mohs, render::MapKind::Mask, mips);
+        if (settings.normalMaps) material.topNormal = render::makeTexture(s.normal, render::MapKind::Normal, mips);
+    }
+    if (settings.detail != "none") {
+        const auto& s = set(settings.detail);
+        material.detail = render::makeTexture(s.detail, render::MapKind::Detail, mips);
+        if (settings.detailNormals) {
+            material.detailNormal = render::makeTexture(s.normal, render::MapKind::DetailNormal, mips);
+        }
+    }
+    if (settings.emission != "none") {
+        material.emission = render::makeTexture(set(settings.emission).emission, render::MapKind::Emission, mips);
+    }
+    for (int slot = 0; slot < 9; ++slot) {
+        if (settings.files[std::size_t(slot)]) {
+            *slots[slot] = loadSlot(*settings.files[std::size_t(slot)], SLOT_KINDS[slot], settings, mips);
+        }
+    }
+    return material;
+}
+
+} // namespace strata::app

@@ -1,0 +1,35 @@
+#pragma once
+/// \file
+/// The CPU reference renderer: rasterizes a mesh as OpenGL does and shades
+/// it with the same shared shading header (shaders/TriplanarMaterial.h) and
+/// a sampler conformant with GL's (Texture.h).
+
+#include <strata/render/Image.h>
+#include <strata/render/MeshView.h>
+#include <strata/render/SnapshotOptions.h>
+
+namespace strata::render {
+
+/// Renders `mesh` on the CPU: RGBA8, sRGB-encoded, rows top to bottom, the
+/// background lighting.skyColor, alpha 255 — the same image as
+/// renderSnapshot() up to rasterization and filtering precision.
+///
+/// Details:
+///  - clipping against the near and far planes (and a guard band);
+///    perspective-correct interpolation; a float depth buffer with GL_LESS;
+///    GL's top-left fill rule on vertices snapped to 1/256 pixel;
+///    back faces (clockwise on screen) culled;
+///  - one sample per pixel (options.samples and anisotropy are ignored);
+///  - fragments are shaded in 2×2 quads: UV derivatives are the differences
+///    to the quad neighbour in x and in y of the same triangle's attributes
+///    (helper pixels extrapolate, as on a GPU), so the mip level is GL's;
+///  - visibility is resolved first (one triangle per pixel), then each
+///    visible pixel is shaded once;
+///  - the image is split into 32×32 tiles processed in parallel with TBB;
+///    each tile depends on nothing but the input, so the bytes are identical
+///    for any thread count;
+///  - throws strata::Error for invalid options or mesh indices out of range.
+/// Complexity O(triangles + pixels · maps).
+Image renderSnapshotCpu(const MeshView& mesh, const SnapshotOptions& options);
+
+} // namespace strata::render

@@ -1,0 +1,409 @@
+#include <strata/render/CpuRenderer.h>
+
+#include "MaterialMaps.h"
+#include "ShadingBridge.h"
+
+#include <strata/Error.h>
+
+#include <tbb/parallel_for.h>
+
+#include <glm/geometric.hpp>
+#include <glm/mat4x4.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+namespace strata::render {
+
+namespace {
+
+constexpr int TILE = 32;         // pixels, even (quads never straddle tiles)
+constexpr int SUBPIXEL_BITS = 8; // vertices snap to 1/256 pixel
+constexpr float SUBPIXEL = float(1 << SUBPIXEL_BITS);
+constexpr float GUARD = 4.0f; // guard band, in multiples of the viewport half-size
+
+/// The CPU side of SAMPLE_MAP: trilinear sampling of the nine slots.
+struct CpuMaps
+{
+    std::array<const Texture*, 9> maps{};
+    std::uint32_t features = 0;
+
+    glm::vec4 sample(int map, glm::vec2 uv, glm::vec2 dUVdx, glm::vec2 dUVdy) const
+    {
+        return sampleTrilinear(*maps[std::size_t(map)], uv, dUVdx, dUVdy);
+    }
+};
+
+struct ClipVertex
+{
+    glm::vec4 clip;
+    glm::vec3 position; // relative to the mesh origin
+    glm::vec3 normal;
+};
+
+/// A screen-space triangle ready for rasterization (image space, y down).
+struct Triangle
+{
+    std::int64_t x[3], y[3]; // fixed point, SUBPIXEL_BITS
+    float sx[3], sy[3];      // the same, as float pixels
+    float invW[3];
+    float z[3]; // NDC depth
+    glm::vec3 position[3];
+    glm::vec3 normal[3];
+    float area2;                // twice the signed area in float pixels, > 0
+    int minX, minY, maxX, maxY; // pixel bounds (inclusive), clamped to the image
+};
+
+ClipVertex lerpVertex(const ClipVertex& a, const ClipVertex& b, float t)
+{
+    return {a.clip + (b.clip - a.clip) * t, a.position + (b.position - a.position) * t,
+            a.normal + (b.normal - a.normal) * t};
+}
+
+/// Sutherland–Hodgman against one homogeneous plane dot(plane, clip) >= 0.
+int clipPolygon(const ClipVertex* in, int count, ClipVertex* out, const glm::vec4& plane)
+{
+    int n = 0;
+    for (int i = 0; i < count; ++i) {
+        const ClipVertex& a = in[i];
+        const ClipVertex& b = in[(i + 1) % count];
+        const float da = glm::dot(plane, a.clip);
+        const float db = glm::dot(plane, b.clip);
+        if (da >= 0.0f) out[n++] = a;
+        if ((da >= 0.0f) != (db >= 0.0f)) out[n++] = lerpVertex(a, b, da / (da - db));
+    }
+    return n;
+}
+
+/// Edge function of a→b at p, in fixed point (exact in 64 bits).
+inline std::int64_t edge(std::int64_t ax, std::int64_t ay, std::int64_t bx, std::int64_t by, std::int64_t px,
+                         std::int64_t py)
+{
+    return (bx - ax) * (py - ay) - (by - ay) * (px - ax);
+}
+
+/// Top-left rule in image space (y down), for an edge whose interior is on
+/// the side where edge() > 0: the inward normal is (−dy, dx); a left edge
+/// has it pointing to +x, a top edge (horizontal) to +y.
+inline bool isTopLeft(std::int64_t ax, std::int64_t ay, std::int64_t bx, std::int64_t by)
+{
+    const std::int64_t nx = -(by - ay);
+    const std::int64_t ny = bx - ax;
+    return nx > 0 || (nx == 0 && ny > 0);
+}
+
+struct Interpolated
+{
+    glm::vec3 position;
+    glm::vec3 normal;
+    bool valid;
+};
+
+/// Perspective-correct attributes of triangle `t` at pixel centre (px, py)
+/// (float pixels, image space); also outside the triangle (helper pixels).
+Interpolated interpolate(const Triangle& t, float px, float py)
+{
+    const float l0 = ((t.sx[2] - t.sx[1]) * (py - t.sy[1]) - (t.sy[2] - t.sy[1]) * (px - t.sx[1])) / t.area2;
+    const float l1 = ((t.sx[0] - t.sx[2]) * (py - t.sy[2]) - (t.sy[0] - t.sy[2]) * (px - t.sx[2])) / t.area2;
+    const float l2 = 1.0f - l0 - l1;
+    const float q0 = l0 * t.invW[0];
+    const float q1 = l1 * t.invW[1];
+    const float q2 = l2 * t.invW[2];
+    const float sum = q0 + q1 + q2;
+    if (!(sum > 1e-20f)) {
+        return {{}, {}, false};
+    }
+    const float inv = 1.0f / sum;
+    return {(t.position[0] * q0 + t.position[1] * q1 + t.position[2] * q2) * inv,
+            (t.normal[0] * q0 + t.normal[1] * q1 + t.normal[2] * q2) * inv, true};
+}
+
+struct Frame
+{
+    int width, height;
+    float mapScale;
+    glm::vec3 textureOffset;
+    glm::vec3 cameraPosition; // relative to the mesh origin
+    shading::MaterialParams material;
+    shading::LightingParams lighting;
+    CpuMaps maps;
+};
+
+using ShadeFunction = glm::vec3 (*)(const Frame&, const shading::SurfaceInput&);
+
+template <unsigned FEATURES> glm::vec3 shadeWith(const Frame& frame, const shading::SurfaceInput& s)
+{
+    return shading::shadeFragment<FEATURES, CpuMaps>(frame.maps, s, frame.material, frame.lighting);
+}
+
+/// Exact instantiations for common feature sets (every test folds to a
+/// constant); anything else runs the all-features instantiation, which
+/// tests the material's bits at run time.
+ShadeFunction shadeFunctionFor(std::uint32_t features)
+{
+    switch (features) {
+    case 0:
+        return &shadeWith<0u>;
+    case feature::MASK_MAP | feature::HEIGHT_BLEND:
+        return &shadeWith<feature::MASK_MAP | feature::HEIGHT_BLEND>;
+    case feature::MASK_MAP | feature::HEIGHT_BLEND | feature::NORMAL_MAP:
+        return &shadeWith<feature::MASK_MAP | feature::HEIGHT_BLEND | feature::NORMAL_MAP>;
+    case feature::MASK_MAP | feature::HEIGHT_BLEND | feature::NORMAL_MAP | feature::TOP_MAPS:
+        return &shadeWith<feature::MASK_MAP | feature::HEIGHT_BLEND | feature::NORMAL_MAP | feature::TOP_MAPS>;
+    case feature::MASK_MAP | feature::HEIGHT_BLEND | feature::NORMAL_MAP | feature::TOP_MAPS | feature::DETAIL:
+        return &shadeWith<feature::MASK_MAP | feature::HEIGHT_BLEND | feature::NORMAL_MAP | feature::TOP_MAPS |
+                          feature::DETAIL>;
+    default:
+        return &shadeWith<feature::ALL>;
+    }
+}
+
+std::uint8_t encode(float linearDisplay)
+{
+    const float c = shading::linearToSrgb(std::clamp(linearDisplay, 0.0f, 1.0f));
+    return std::uint8_t(std::lround(c * 255.0f));
+}
+
+} // namespace
+
+Image renderSnapshotCpu(const MeshView& mesh, const SnapshotOptions& options)
+{
+    checkSnapshotOptions(options);
+    for (std::size_t i = 0; i < mesh.indexCount; ++i) {
+        if (mesh.indices[i] >= mesh.vertexCount) {
+            throw Error("snapshot: mesh index " + std::to_string(i) + " is " + std::to_string(mesh.indices[i]) +
+                        ", beyond the " + std::to_string(mesh.vertexCount) + " vertices");
+        }
+    }
+    const int width = options.width;
+    const int height = options.height;
+    const Material& material = options.material;
+    const std::array<TexturePtr, 9> textures = detail::resolveMaps(material);
+
+    Frame frame;
+    frame.width = width;
+    frame.height = height;
+    frame.mapScale = material.mapScale;
+    const glm::dvec3 originScaled = mesh.origin * double(material.mapScale);
+    frame.textureOffset = glm::vec3(originScaled - glm::floor(originScaled));
+    frame.cameraPosition = glm::vec3(options.camera.position - mesh.origin);
+    frame.material = detail::toShading(material);
+    frame.lighting = detail::toShading(options.lighting);
+    for (std::size_t i = 0; i < 9; ++i) frame.maps.maps[i] = textures[i].get();
+    frame.maps.features = materialFeatures(material);
+    const ShadeFunction shade = shadeFunctionFor(frame.maps.features);
+
+    const glm::mat4 viewProjection =
+        projectionMatrix(options.camera, double(width) / double(height)) * viewMatrix(options.camera, mesh.origin);
+
+    // Vertices to clip space.
+    std::vector<glm::vec4> clip(mesh.vertexCount);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, mesh.vertexCount), [&](const auto& r) {
+        for (std::size_t i = r.begin(); i != r.end(); ++i) {
+            clip[i] = viewProjection * glm::vec4(mesh.positions[i], 1.0f);
+        }
+    });
+
+    // Triangles: clip, project, snap, cull. Each input triangle gives at most
+    // 7 (clipping by 6 planes); collected per chunk in input order.
+    const std::size_t triangleCount = mesh.indexCount / 3;
+    const glm::vec4 planes[6] = {{0, 0, 1, 1},     {0, 0, -1, 1},     {-1, 0, 0, GUARD},
+                                 {1, 0, 0, GUARD}, {0, -1, 0, GUARD}, {0, 1, 0, GUARD}};
+    constexpr std::size_t CHUNK = 4096;
+    const std::size_t chunkCount = (triangleCount + CHUNK - 1) / CHUNK;
+    std::vector<std::vector<Triangle>> chunks(chunkCount);
+    tbb::parallel_for(std::size_t(0), chunkCount, [&](std::size_t c) {
+        std::vector<Triangle>& out = chunks[c];
+        const std::size_t end = std::min(triangleCount, (c + 1) * CHUNK);
+        for (std::size_t t = c * CHUNK; t < end; ++t) {
+            ClipVertex polygon[2][9];
+            int count = 3;
+            bool inside = true;
+            for (int k = 0; k < 3; ++k) {
+                const std::uint32_t index = mesh.indices[t * 3 + std::size_t(k)];
+                polygon[0][k] = {clip[index], mesh.positions[index], mesh.normals[index]};
+                for (const glm::vec4& plane : planes) {
+                    inside = inside && glm::dot(plane, clip[index]) >= 0.0f;
+                }
+            }
+            int current = 0;
+            if (!inside) {
+                for (const glm::vec4& plane : planes) {
+                    count = clipPolygon(polygon[current], count, polygon[1 - current], plane);
+                    current = 1 - current;
+                    if (count < 3) break;
+                }
+            }
+            if (count < 3) continue;
+            // Project and snap.
+            std::int64_t fx[9], fy[9];
+            float invW[9], z[9];
+            for (int k = 0; k < count; ++k) {
+                const glm::vec4& v = polygon[current][k].clip;
+                const float iw = 1.0f / v.w;
+                const float ndcX = v.x * iw;
+                const float ndcY = v.y * iw;
+                // GL window coordinates (y up), then image space (y down).
+                const float wx = (ndcX * 0.5f + 0.5f) * float(width);
+                const float wy = (ndcY * 0.5f + 0.5f) * float(height);
+                fx[k] = std::llround(double(wx) * SUBPIXEL);
+                fy[k] = std::llround(double(float(height) - wy) * SUBPIXEL);
+                invW[k] = iw;
+                z[k] = v.z * iw;
+            }
+            for (int k = 1; k + 1 < count; ++k) {
+                const int ids[3] = {0, k, k + 1};
+                // In image space (y down) a GL front face (CCW, y up) is clockwise: edge(0,1,2) < 0.
+                const std::int64_t area = edge(fx[ids[0]], fy[ids[0]], fx[ids[1]], fy[ids[1]], fx[ids[2]], fy[ids[2]]);
+                if (area >= 0) continue; // back-facing or degenerate
+                Triangle tri;
+                // Reorder to a positive area: 0, 2, 1.
+                const int order[3] = {ids[0], ids[2], ids[1]};
+                for (int m = 0; m < 3; ++m) {
+                    const int o = order[m];
+                    tri.x[m] = fx[o];
+                    tri.y[m] = fy[o];
+                    tri.sx[m] = float(fx[o]) / SUBPIXEL;
+                    tri.sy[m] = float(fy[o]) / SUBPIXEL;
+                    tri.invW[m] = invW[o];
+                    tri.z[m] = z[o];
+                    tri.position[m] = polygon[current][o].position;
+                    tri.normal[m] = polygon[current][o].normal;
+                }
+                tri.area2 = float(-area) / (SUBPIXEL * SUBPIXEL);
+                const std::int64_t half = 1 << (SUBPIXEL_BITS - 1);
+                auto lo = [&](const std::int64_t* v) { return std::min({v[0], v[1], v[2]}); };
+                auto hi = [&](const std::int64_t* v) { return std::max({v[0], v[1], v[2]}); };
+                // Pixel centres (i·256 + 128) inside [lo, hi].
+                tri.minX =
+                    int(std::max<std::int64_t>(0, (lo(tri.x) - half + (1 << SUBPIXEL_BITS) - 1) >> SUBPIXEL_BITS));
+                tri.minY =
+                    int(std::max<std::int64_t>(0, (lo(tri.y) - half + (1 << SUBPIXEL_BITS) - 1) >> SUBPIXEL_BITS));
+                tri.maxX = int(std::min<std::int64_t>(width - 1, (hi(tri.x) - half) >> SUBPIXEL_BITS));
+                tri.maxY = int(std::min<std::int64_t>(height - 1, (hi(tri.y) - half) >> SUBPIXEL_BITS));
+                if (tri.minX > tri.maxX || tri.minY > tri.maxY) continue;
+                out.push_back(tri);
+            }
+        }
+    });
+    std::vector<Triangle> triangles;
+    for (auto& chunk : chunks) {
+        triangles.insert(triangles.end(), chunk.begin(), chunk.end());
+        std::vector<Triangle>().swap(chunk);
+    }
+
+    // Bin into tiles, in triangle order (serial: deterministic).
+    const int tilesX = (width + TILE - 1) / TILE;
+    const int tilesY = (height + TILE - 1) / TILE;
+    std::vector<std::vector<std::uint32_t>> bins(std::size_t(tilesX) * std::size_t(tilesY));
+    for (std::size_t i = 0; i < triangles.size(); ++i) {
+        const Triangle& t = triangles[i];
+        for (int ty = t.minY / TILE; ty <= t.maxY / TILE; ++ty) {
+            for (int tx = t.minX / TILE; tx <= t.maxX / TILE; ++tx) {
+                bins[std::size_t(ty) * std::size_t(tilesX) + std::size_t(tx)].push_back(std::uint32_t(i));
+            }
+        }
+    }
+
+    Image image;
+    image.width = width;
+    image.height = height;
+    image.pixels.resize(std::size_t(width) * std::size_t(height) * 4);
+    const glm::vec3 sky = options.lighting.skyColor;
+    const std::uint8_t skyBytes[4] = {encode(sky.r), encode(sky.g), encode(sky.b), 255};
+    constexpr std::uint32_t NONE = std::numeric_limits<std::uint32_t>::max();
+
+    tbb::parallel_for(0, tilesX * tilesY, [&](int tileIndex) {
+        const int x0 = (tileIndex % tilesX) * TILE;
+        const int y0 = (tileIndex / tilesX) * TILE;
+        const int x1 = std::min(width, x0 + TILE);
+        const int y1 = std::min(height, y0 + TILE);
+        float depth[TILE * TILE];
+        std::uint32_t id[TILE * TILE];
+        std::fill(std::begin(depth), std::end(depth), std::numeric_limits<float>::infinity());
+        std::fill(std::begin(id), std::end(id), NONE);
+
+        // Visibility.
+        for (std::uint32_t index : bins[std::size_t(tileIndex)]) {
+            const Triangle& t = triangles[index];
+            const bool tl0 = isTopLeft(t.x[1], t.y[1], t.x[2], t.y[2]);
+            const bool tl1 = isTopLeft(t.x[2], t.y[2], t.x[0], t.y[0]);
+            const bool tl2 = isTopLeft(t.x[0], t.y[0], t.x[1], t.y[1]);
+            const int bx0 = std::max(x0, t.minX), bx1 = std::min(x1 - 1, t.maxX);
+            const int by0 = std::max(y0, t.minY), by1 = std::min(y1 - 1, t.maxY);
+            for (int py = by0; py <= by1; ++py) {
+                const std::int64_t cy = (std::int64_t(py) << SUBPIXEL_BITS) + (1 << (SUBPIXEL_BITS - 1));
+                for (int px = bx0; px <= bx1; ++px) {
+                    const std::int64_t cx = (std::int64_t(px) << SUBPIXEL_BITS) + (1 << (SUBPIXEL_BITS - 1));
+                    const std::int64_t e0 = edge(t.x[1], t.y[1], t.x[2], t.y[2], cx, cy);
+                    const std::int64_t e1 = edge(t.x[2], t.y[2], t.x[0], t.y[0], cx, cy);
+                    const std::int64_t e2 = edge(t.x[0], t.y[0], t.x[1], t.y[1], cx, cy);
+                    if (!((e0 > 0 || (e0 == 0 && tl0)) && (e1 > 0 || (e1 == 0 && tl1)) &&
+                          (e2 > 0 || (e2 == 0 && tl2)))) {
+                        continue;
+                    }
+                    const float fxp = float(px) + 0.5f;
+                    const float fyp = float(py) + 0.5f;
+                    const float l0 =
+                        ((t.sx[2] - t.sx[1]) * (fyp - t.sy[1]) - (t.sy[2] - t.sy[1]) * (fxp - t.sx[1])) / t.area2;
+                    const float l1 =
+                        ((t.sx[0] - t.sx[2]) * (fyp - t.sy[2]) - (t.sy[0] - t.sy[2]) * (fxp - t.sx[2])) / t.area2;
+                    const float zNdc = l0 * t.z[0] + l1 * t.z[1] + (1.0f - l0 - l1) * t.z[2];
+                    if (zNdc < -1.0f || zNdc > 1.0f) continue;
+                    const int k = (py - y0) * TILE + (px - x0);
+                    if (zNdc < depth[k]) {
+                        depth[k] = zNdc;
+                        id[k] = index;
+                    }
+                }
+            }
+        }
+
+        // Shading, in 2×2 quads (tile origins are even).
+        for (int py = y0; py < y1; ++py) {
+            for (int px = x0; px < x1; ++px) {
+                const int k = (py - y0) * TILE + (px - x0);
+                std::uint8_t* out = image.at(px, py);
+                if (id[k] == NONE) {
+                    std::copy_n(skyBytes, 4, out);
+                    continue;
+                }
+                const Triangle& t = triangles[id[k]];
+                const int qx = px & ~1;
+                const int qy = py & ~1;
+                const float cx = float(px) + 0.5f;
+                const float cy = float(py) + 0.5f;
+                const Interpolated self = interpolate(t, cx, cy);
+                // Fine derivatives: the neighbour in this pixel's quad row / column.
+                const float nxCentre = float(px == qx ? px + 1 : px - 1) + 0.5f;
+                const float nyCentre = float(py == qy ? py + 1 : py - 1) + 0.5f;
+                const Interpolated nx = interpolate(t, nxCentre, cy);
+                const Interpolated ny = interpolate(t, cx, nyCentre);
+                if (!self.valid) {
+                    std::copy_n(skyBytes, 4, out);
+                    continue;
+                }
+                shading::SurfaceInput s;
+                s.p = self.position * frame.mapScale + frame.textureOffset;
+                const glm::vec3 dx = nx.valid ? (nx.position - self.position) * frame.mapScale : glm::vec3(0.0f);
+                const glm::vec3 dy = ny.valid ? (ny.position - self.position) * frame.mapScale : glm::vec3(0.0f);
+                s.dpdx = px == qx ? dx : -dx;
+                s.dpdy = py == qy ? dy : -dy;
+                s.n = shading::safeNormalize(self.normal, glm::vec3(0.0f, 1.0f, 0.0f));
+                s.viewDir = shading::safeNormalize(frame.cameraPosition - self.position, s.n);
+                const glm::vec3 c = shade(frame, s);
+                out[0] = encode(c.r);
+                out[1] = encode(c.g);
+                out[2] = encode(c.b);
+                out[3] = 255;
+            }
+        }
+    });
+    return image;
+}
+
+} // namespace strata::render

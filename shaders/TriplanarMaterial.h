@@ -1,0 +1,307 @@
+/// \file
+/// The triplanar material, evaluated per fragment, in the common subset of
+/// GLSL 4.50 and C++20 (see TriplanarShading.h for the editing rules). It is
+/// compiled once per *feature set*: STRATA_FEATURES, a bit set of the
+/// FEATURE_* constants below, is a template parameter in C++ (every feature
+/// test is an `if constexpr`) and a #define in GLSL (every feature test is a
+/// constant the compiler folds), so a material without, say, a normal map
+/// computes no normal blend at all.
+///
+/// Texture fetches stay outside: the material calls SAMPLE_MAP(map, uv,
+/// dUVdx, dUVdy) with explicit UV derivatives; GLSL supplies sampleMap()
+/// with textureGrad(), C++ a `maps.sample()` of the CPU sampler. Every map
+/// returns values as GL would: sRGB maps already decoded to linear.
+
+#ifndef STRATA_TRIPLANAR_MATERIAL_H
+#define STRATA_TRIPLANAR_MATERIAL_H
+
+// Feature bits. Keep in step with strata::render::MaterialFeature.
+const uint FEATURE_MASK_MAP = 1u;      ///< a mask map (MOHS, or MODS with FEATURE_MODS)
+const uint FEATURE_MODS = 2u;          ///< mask layout Metallic Occlusion Detail-mask Smoothness
+const uint FEATURE_HEIGHT_BLEND = 4u;  ///< weights × mix(1, MOHS.B, heightStrength)
+const uint FEATURE_NORMAL_MAP = 8u;    ///< per-projection normal maps
+const uint FEATURE_TOP_MAPS = 16u;     ///< separate albedo/mask/normal for the Y projection where n.y > 0
+const uint FEATURE_DETAIL = 32u;       ///< detail map: albedo (R) and smoothness (B) modulation
+const uint FEATURE_DETAIL_NORMAL = 64u; ///< detail normal map, combined with RNM
+const uint FEATURE_EMISSION = 128u;    ///< emission map × HDR colour
+const uint FEATURE_NORMAL_UDN = 256u;  ///< UDN instead of whiteout
+const uint FEATURE_NORMAL_RNM = 512u;  ///< RNM instead of whiteout
+
+// Map slots.
+const int MAP_ALBEDO = 0;
+const int MAP_MASK = 1;
+const int MAP_NORMAL = 2;
+const int MAP_TOP_ALBEDO = 3;
+const int MAP_TOP_MASK = 4;
+const int MAP_TOP_NORMAL = 5;
+const int MAP_DETAIL = 6;
+const int MAP_DETAIL_NORMAL = 7;
+const int MAP_EMISSION = 8;
+#define STRATA_MAP_COUNT 9
+
+#define STRATA_MAX_LIGHTS 4
+
+#ifdef STRATA_GLSL
+vec4 sampleMap(int map, vec2 uv, vec2 dUVdx, vec2 dUVdy);
+#endif
+
+/// Material parameters (all ranges checked by the caller).
+struct MaterialParams
+{
+    vec3 albedoTint;            ///< multiplies albedo (linear)
+    float blendOffset;          ///< 0..0.5
+    float blendExponent;        ///< 1..64
+    float heightStrength;       ///< 0..0.99
+    float metallic;             ///< multiplies mask R (or is the value without a mask map)
+    float smoothness;           ///< multiplies mask A (or is the value)
+    float occlusionStrength;    ///< 0..1: occlusion = mix(1, mask G, strength)
+    float normalStrength;       ///< scales normal-map XY
+    float detailScale;          ///< detail repeats per base repeat
+    float detailAlbedo;         ///< 0..1
+    float detailSmoothness;     ///< 0..1
+    float detailNormalStrength; ///< 0..1 (× detail mask)
+    vec3 emissionColor;         ///< HDR, linear, multiplies the emission map
+    float fresnelStrength;      ///< 0..1
+};
+
+struct DirectionalLight
+{
+    vec3 direction; ///< unit, towards the light
+    vec3 color;     ///< linear radiance
+};
+
+struct LightingParams
+{
+    DirectionalLight lights[STRATA_MAX_LIGHTS];
+    int lightCount;     ///< 0..STRATA_MAX_LIGHTS
+    vec3 skyAmbient;    ///< hemisphere colour at +Y
+    vec3 groundAmbient; ///< hemisphere colour at −Y
+    float exposure;     ///< multiplies radiance before tone mapping
+};
+
+/// What the rasterizer supplies for one fragment.
+struct SurfaceInput
+{
+    vec3 p;       ///< texture-space position (world × mapScale + offset)
+    vec3 dpdx;    ///< its screen-space derivatives
+    vec3 dpdy;
+    vec3 n;       ///< unit interpolated surface normal
+    vec3 viewDir; ///< unit, from the surface towards the camera
+};
+
+/// Everything the material computes before lighting (for tests and debug).
+struct SurfaceOutput
+{
+    vec3 albedo;
+    vec3 normal;
+    vec3 weights;
+    vec3 emission;
+    float metallic;
+    float occlusion;
+    float smoothness;
+};
+
+STRATA_INLINE int normalBlendMode(uint features)
+{
+    if ((features & FEATURE_NORMAL_RNM) != 0u) {
+        return NORMAL_BLEND_RNM;
+    }
+    if ((features & FEATURE_NORMAL_UDN) != 0u) {
+        return NORMAL_BLEND_UDN;
+    }
+    return NORMAL_BLEND_WHITEOUT;
+}
+
+/// Samples and combines every enabled map of the material at one fragment.
+STRATA_FEATURE_FUNCTION SurfaceOutput evaluateSurface(STRATA_MAPS_PARAM SurfaceInput s, MaterialParams m)
+{
+    vec3 n = s.n;
+    TriplanarUV uv = triplanarUV(s.p, n);
+    TriplanarUV ddx = triplanarUVDerivative(s.dpdx, n);
+    TriplanarUV ddy = triplanarUVDerivative(s.dpdy, n);
+    // Projections with weight 0 here keep weight 0 with any heights: skip them.
+    vec3 need = triplanarWeights(n, m.blendOffset, m.blendExponent);
+    bool useTop = false;
+    STRATA_IF_FEATURE(FEATURE_TOP_MAPS)
+    {
+        useTop = n.y > 0.0f;
+    }
+    int albedoMapY = useTop ? MAP_TOP_ALBEDO : MAP_ALBEDO;
+    int maskMapY = useTop ? MAP_TOP_MASK : MAP_MASK;
+    int normalMapY = useTop ? MAP_TOP_NORMAL : MAP_NORMAL;
+
+    vec4 one = vec4(1.0f);
+    vec4 albedoX = one;
+    vec4 albedoY = one;
+    vec4 albedoZ = one;
+    if (need.x > 0.0f) {
+        albedoX = SAMPLE_MAP(MAP_ALBEDO, uv.x, ddx.x, ddy.x);
+    }
+    if (need.y > 0.0f) {
+        albedoY = SAMPLE_MAP(albedoMapY, uv.y, ddx.y, ddy.y);
+    }
+    if (need.z > 0.0f) {
+        albedoZ = SAMPLE_MAP(MAP_ALBEDO, uv.z, ddx.z, ddy.z);
+    }
+
+    vec4 maskX = one;
+    vec4 maskY = one;
+    vec4 maskZ = one;
+    STRATA_IF_FEATURE(FEATURE_MASK_MAP)
+    {
+        if (need.x > 0.0f) {
+            maskX = SAMPLE_MAP(MAP_MASK, uv.x, ddx.x, ddy.x);
+        }
+        if (need.y > 0.0f) {
+            maskY = SAMPLE_MAP(maskMapY, uv.y, ddx.y, ddy.y);
+        }
+        if (need.z > 0.0f) {
+            maskZ = SAMPLE_MAP(MAP_MASK, uv.z, ddx.z, ddy.z);
+        }
+    }
+
+    vec3 w = need;
+    STRATA_IF_FEATURE(FEATURE_HEIGHT_BLEND)
+    {
+        w = triplanarWeightsHeight(n, m.blendOffset, m.blendExponent, vec3(maskX.z, maskY.z, maskZ.z),
+                                   m.heightStrength);
+    }
+
+    SurfaceOutput o;
+    o.weights = w;
+    vec4 albedo = triplanarBlend4(albedoX, albedoY, albedoZ, w);
+    o.albedo = vec3(albedo.x, albedo.y, albedo.z) * m.albedoTint;
+    vec4 mask = triplanarBlend4(maskX, maskY, maskZ, w);
+    o.metallic = saturate(mask.x * m.metallic);
+    o.occlusion = mix(1.0f, mask.y, m.occlusionStrength);
+    o.smoothness = saturate(mask.w * m.smoothness);
+    float detailMask = 1.0f;
+    STRATA_IF_FEATURE(FEATURE_MODS)
+    {
+        detailMask = mask.z;
+    }
+
+    TriplanarUV detailUV = uv;
+    TriplanarUV detailDdx = ddx;
+    TriplanarUV detailDdy = ddy;
+    STRATA_IF_FEATURE(FEATURE_DETAIL | FEATURE_DETAIL_NORMAL)
+    {
+        detailUV = triplanarUV(s.p * m.detailScale, n);
+        detailDdx = triplanarUVDerivative(s.dpdx * m.detailScale, n);
+        detailDdy = triplanarUVDerivative(s.dpdy * m.detailScale, n);
+    }
+
+    STRATA_IF_FEATURE(FEATURE_DETAIL)
+    {
+        vec4 grey = vec4(0.5f);
+        vec4 detailX = grey;
+        vec4 detailY = grey;
+        vec4 detailZ = grey;
+        if (w.x > 0.0f) {
+            detailX = SAMPLE_MAP(MAP_DETAIL, detailUV.x, detailDdx.x, detailDdy.x);
+        }
+        if (w.y > 0.0f) {
+            detailY = SAMPLE_MAP(MAP_DETAIL, detailUV.y, detailDdx.y, detailDdy.y);
+        }
+        if (w.z > 0.0f) {
+            detailZ = SAMPLE_MAP(MAP_DETAIL, detailUV.z, detailDdx.z, detailDdy.z);
+        }
+        vec4 detail = triplanarBlend4(detailX, detailY, detailZ, w);
+        o.albedo = applyDetailAlbedo(o.albedo, detail.x, m.detailAlbedo, detailMask);
+        o.smoothness = applyDetailSmoothness(o.smoothness, detail.z, m.detailSmoothness, detailMask);
+    }
+
+    o.normal = n;
+    STRATA_IF_FEATURE(FEATURE_NORMAL_MAP | FEATURE_DETAIL_NORMAL)
+    {
+        int mode = normalBlendMode(STRATA_FEATURE_BITS);
+        vec3 flatNormal = vec3(0.0f, 0.0f, 1.0f);
+        vec3 tangentX = flatNormal;
+        vec3 tangentY = flatNormal;
+        vec3 tangentZ = flatNormal;
+        STRATA_IF_FEATURE(FEATURE_NORMAL_MAP)
+        {
+            if (w.x > 0.0f) {
+                tangentX = decodeNormal(SAMPLE_MAP(MAP_NORMAL, uv.x, ddx.x, ddy.x), m.normalStrength);
+            }
+            if (w.y > 0.0f) {
+                tangentY = decodeNormal(SAMPLE_MAP(normalMapY, uv.y, ddx.y, ddy.y), m.normalStrength);
+            }
+            if (w.z > 0.0f) {
+                tangentZ = decodeNormal(SAMPLE_MAP(MAP_NORMAL, uv.z, ddx.z, ddy.z), m.normalStrength);
+            }
+        }
+        STRATA_IF_FEATURE(FEATURE_DETAIL_NORMAL)
+        {
+            float maskX1 = 1.0f;
+            float maskY1 = 1.0f;
+            float maskZ1 = 1.0f;
+            STRATA_IF_FEATURE(FEATURE_MODS)
+            {
+                maskX1 = maskX.z;
+                maskY1 = maskY.z;
+                maskZ1 = maskZ.z;
+            }
+            if (w.x > 0.0f) {
+                vec4 t = SAMPLE_MAP(MAP_DETAIL_NORMAL, detailUV.x, detailDdx.x, detailDdy.x);
+                tangentX = blendNormalRnm(tangentX, decodeNormal(t, m.detailNormalStrength * maskX1));
+            }
+            if (w.y > 0.0f) {
+                vec4 t = SAMPLE_MAP(MAP_DETAIL_NORMAL, detailUV.y, detailDdx.y, detailDdy.y);
+                tangentY = blendNormalRnm(tangentY, decodeNormal(t, m.detailNormalStrength * maskY1));
+            }
+            if (w.z > 0.0f) {
+                vec4 t = SAMPLE_MAP(MAP_DETAIL_NORMAL, detailUV.z, detailDdx.z, detailDdy.z);
+                tangentZ = blendNormalRnm(tangentZ, decodeNormal(t, m.detailNormalStrength * maskZ1));
+            }
+        }
+        vec3 sum = worldNormalX(tangentX, n, mode) * w.x + worldNormalY(tangentY, n, mode) * w.y +
+                   worldNormalZ(tangentZ, n, mode) * w.z;
+        o.normal = safeNormalize(sum, n);
+    }
+
+    o.emission = vec3(0.0f);
+    STRATA_IF_FEATURE(FEATURE_EMISSION)
+    {
+        vec4 eX = vec4(0.0f);
+        vec4 eY = vec4(0.0f);
+        vec4 eZ = vec4(0.0f);
+        if (w.x > 0.0f) {
+            eX = SAMPLE_MAP(MAP_EMISSION, uv.x, ddx.x, ddy.x);
+        }
+        if (w.y > 0.0f) {
+            eY = SAMPLE_MAP(MAP_EMISSION, uv.y, ddx.y, ddy.y);
+        }
+        if (w.z > 0.0f) {
+            eZ = SAMPLE_MAP(MAP_EMISSION, uv.z, ddx.z, ddy.z);
+        }
+        vec4 e = triplanarBlend4(eX, eY, eZ, w);
+        o.emission = vec3(e.x, e.y, e.z) * m.emissionColor;
+    }
+    return o;
+}
+
+/// Lights a surface: the BRDF for every directional light, indirect
+/// hemisphere light × occlusion, plus emission. Linear radiance.
+STRATA_INLINE vec3 lightSurface(SurfaceOutput o, vec3 viewDir, LightingParams l, float fresnelStrength)
+{
+    Brdf b = makeBrdf(o.albedo, o.metallic, o.smoothness);
+    vec3 radiance = indirectLight(b, o.normal, viewDir, l.skyAmbient, l.groundAmbient, o.occlusion, fresnelStrength);
+    for (int i = 0; i < STRATA_MAX_LIGHTS; ++i) {
+        if (i < l.lightCount) {
+            radiance += directLight(b, o.normal, viewDir, l.lights[i].direction, l.lights[i].color);
+        }
+    }
+    return radiance + o.emission;
+}
+
+/// The whole fragment: material, lighting, exposure and tone map. Returns the
+/// linear display value 0..1 (the sRGB encoding is the framebuffer's job on
+/// the GPU, linearToSrgb()'s on the CPU).
+STRATA_FEATURE_FUNCTION vec3 shadeFragment(STRATA_MAPS_PARAM SurfaceInput s, MaterialParams m, LightingParams l)
+{
+    SurfaceOutput o = evaluateSurface STRATA_FEATURE_ARGS(STRATA_MAPS_ARG s, m);
+    return toneMap(lightSurface(o, s.viewDir, l, m.fresnelStrength), l.exposure);
+}
+
+#endif // STRATA_TRIPLANAR_MATERIAL_H

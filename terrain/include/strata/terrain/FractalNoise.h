@@ -1,0 +1,146 @@
+#pragma once
+/// \file
+/// The noise family: gradient, simplex-style, value and cellular (Worley)
+/// noise, their fractal sums (fBm, ridged, billow) and domain warping.
+///
+/// Like gradientNoise() (Noise.h), every source hashes 64-bit integer lattice
+/// coordinates with the seed (no tables, no std:: distributions), so values
+/// are the same bits on every thread count and do not repeat within int64;
+/// the position inside a cell is taken from the unrounded floor in double
+/// precision, so detail survives at coordinates of 1e9. All coordinates are
+/// in noise units (world metres divided by a wavelength).
+
+#include <strata/terrain/Noise.h>
+
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+#include <cstdint>
+#include <string>
+
+namespace strata::terrain {
+
+/// Value noise: random lattice values in [−1, 1], quintic interpolation.
+/// C2, range [−1, 1], |∇| <= VALUE_NOISE_LIPSCHITZ (3D) / _2D.
+float valueNoise(std::uint64_t seed, const glm::dvec3& p);
+float valueNoise(std::uint64_t seed, const glm::dvec2& p);
+/// Per axis at most 15/8 · 2 (fade slope times the largest lattice step), so
+/// 3.75·√3 in 3D and 3.75·√2 in 2D.
+inline constexpr double VALUE_NOISE_LIPSCHITZ = 6.4952;
+inline constexpr double VALUE_NOISE_LIPSCHITZ_2D = 5.3034;
+
+/// Simplex-style noise: Perlin's simplex lattice (skewed cubes split into
+/// tetrahedra / triangles), radial kernels (0.5 − r²)⁴ with hashed gradients,
+/// so the kernels vanish before the next simplex and the noise is C1.
+/// Range about [−1, 1]; gradient bound simplexNoiseLipschitz().
+float simplexNoise(std::uint64_t seed, const glm::dvec3& p);
+float simplexNoise(std::uint64_t seed, const glm::dvec2& p);
+/// Upper bound of |∇ simplexNoise|, noise units: corners × the largest
+/// kernel gradient (computed once, analytically per corner; NoiseTest checks
+/// it numerically). Rigorous but about 5× the largest gradient measured.
+double simplexNoiseLipschitz(int dimensions);
+
+/// Cellular (Worley) noise: one feature point per lattice cell, placed by
+/// hashing within the middle [0.3, 0.7] of the cell. That jitter makes the
+/// 27-cell (9 in 2D) search exact for both distances, so F1 and F2 are
+/// continuous and 1-Lipschitz (a proof is in FractalNoise.cpp).
+struct CellularDistances
+{
+    double f1 = 0.0; ///< distance to the nearest feature point, noise units
+    double f2 = 0.0; ///< distance to the second nearest
+};
+CellularDistances cellularNoise(std::uint64_t seed, const glm::dvec3& p);
+CellularDistances cellularNoise(std::uint64_t seed, const glm::dvec2& p);
+
+/// The basis of a fractal sum.
+enum class NoiseType
+{
+    GRADIENT,    ///< gradientNoise()
+    SIMPLEX,     ///< simplexNoise()
+    VALUE,       ///< valueNoise()
+    CELLULAR_F1, ///< 2·F1 − 1 (range [−1, 0.92]): round cells, high at their borders; |∇| <= 2
+    CELLULAR_F2, ///< 2·F2 − 1.4 (range [−0.74, 0.88]): cells with creases; |∇| <= 2
+};
+
+/// How octaves combine.
+enum class FractalType
+{
+    FBM,    ///< Σ a_i·n_i
+    RIDGED, ///< Σ a_i·(1 − 2|n_i|): sharp crests
+    BILLOW, ///< Σ a_i·(2|n_i| − 1): round puffs, sharp valleys
+};
+
+/// Parses "gradient", "simplex", "value", "cellular_f1", "cellular_f2";
+/// returns false for anything else.
+bool parseNoiseType(const std::string& name, NoiseType& type);
+/// Parses "fbm", "ridged", "billow".
+bool parseFractalType(const std::string& name, FractalType& type);
+
+/// Upper bound of |∇| of one basis, noise units.
+double noiseLipschitz(NoiseType type, int dimensions);
+
+struct FractalOptions
+{
+    NoiseType noise = NoiseType::GRADIENT;
+    FractalType fractal = FractalType::FBM;
+    int octaves = 5;         ///< 1..24
+    double lacunarity = 2.0; ///< frequency ratio between octaves, > 0
+    double gain = 0.5;       ///< amplitude ratio between octaves, >= 0
+};
+
+/// A fractal sum of one basis, normalised by the sum of octave amplitudes so
+/// its range stays about [−1, 1]. Octaves use derived seeds and hashed input
+/// offsets, as in Fbm. Immutable and thread-safe.
+class FractalNoise
+{
+public:
+    static constexpr int MAX_OCTAVES = 24;
+
+    /// Throws strata::Error naming "octaves", "lacunarity" or "gain" when out
+    /// of range (octaves 1..24, lacunarity finite > 0, gain finite >= 0).
+    FractalNoise(std::uint64_t seed, const FractalOptions& options);
+
+    double operator()(const glm::dvec3& p) const;
+    double operator()(const glm::dvec2& p) const;
+
+    /// Upper bound of |∇| in noise units for the 3D (or 2D) evaluation.
+    double lipschitz(int dimensions = 3) const;
+
+    const FractalOptions& options() const { return mOptions; }
+
+private:
+    double basis(std::uint64_t hashedSeed, const glm::dvec3& p) const;
+    double basis(std::uint64_t hashedSeed, const glm::dvec2& p) const;
+    double shape(double n) const;
+
+    struct Octave
+    {
+        std::uint64_t seed; ///< derived per octave (not yet hashed)
+        double frequency;
+        double weight; ///< amplitude / sum of amplitudes
+        double offset[3];
+    };
+    FractalOptions mOptions;
+    int mCount = 0;
+    Octave mOctaves[MAX_OCTAVES];
+};
+
+/// Domain warp: w(p) = p + amplitude · (f1(p), f2(p), f3(p)), three
+/// independent fractal sums, all in the caller's units (e.g. noise units).
+/// The Jacobian of w is at most 1 + amplitude·√3·L_f in norm, which is the
+/// factor a warped field's gradient bound grows by (lipschitz()).
+class DomainWarp
+{
+public:
+    DomainWarp(std::uint64_t seed, const FractalOptions& options, double amplitude);
+
+    glm::dvec3 operator()(const glm::dvec3& p) const;
+    /// Bound of ‖∂w/∂p‖.
+    double lipschitz() const;
+
+private:
+    FractalNoise mX, mY, mZ;
+    double mAmplitude;
+};
+
+} // namespace strata::terrain

@@ -1,0 +1,94 @@
+#pragma once
+/// \file
+/// Heightfields y = h(x, z) as density fields: from fractal noise or from an
+/// image (the image's pixels are supplied by the caller; the CLI reads PNG
+/// and EXR through OpenImageIO, which this library does not depend on).
+
+#include <strata/terrain/DensityField.h>
+#include <strata/terrain/FractalNoise.h>
+
+#include <cstdint>
+#include <vector>
+
+namespace strata::terrain {
+
+/// Density of a heightfield with slope bound S (metres per metre):
+/// (y − h)·s with s = 1/√(1 + min(S, 1)²), which is the exact distance
+/// on flat ground, at most √2 times too large on slopes steeper than 45°
+/// (gradient bound √(1 + S²)·s), and whose sign and zero set are exact.
+/// The distance bound is the rigorous (y − h)/√(1 + S²).
+class HeightfieldBase : public DensityField
+{
+public:
+    double density(const glm::dvec3& p) const final { return (p.y - height(p.x, p.z)) * mScale; }
+    double lipschitz() const final { return mLipschitz; }
+    double distanceBound(const glm::dvec3& p) const final { return (p.y - height(p.x, p.z)) * mBoundScale; }
+
+    /// Surface height at (x, z), metres.
+    virtual double height(double x, double z) const = 0;
+    /// Bound of |∇h| (metres per metre).
+    double slopeBound() const { return mSlope; }
+
+protected:
+    void setSlopeBound(double slope);
+
+private:
+    double mSlope = 0.0, mScale = 1.0, mBoundScale = 1.0, mLipschitz = 1.0;
+};
+
+/// h(x, z) = base + amplitude · f((x, z) / wavelength), f a 2D fractal sum.
+struct NoiseHeightfieldOptions
+{
+    double base = 0.0;        ///< metres, finite
+    double amplitude = 55.0;  ///< metres, >= 0 (heights typically ± amplitude/5 for fBm)
+    double wavelength = 150.0; ///< metres, > 0: the largest features
+    FractalOptions noise{NoiseType::GRADIENT, FractalType::FBM, 6, 2.0, 0.45};
+};
+
+class NoiseHeightfield final : public HeightfieldBase
+{
+public:
+    /// Throws strata::Error naming the option ("amplitude = -1 ...").
+    NoiseHeightfield(std::uint64_t seed, const NoiseHeightfieldOptions& options);
+    double height(double x, double z) const override;
+
+private:
+    NoiseHeightfieldOptions mOptions;
+    FractalNoise mNoise;
+};
+
+/// A grid of heights, row-major, `values[z·width + x]`, normalised to [0, 1]
+/// (an 8-bit image gives steps of 1/255, a 16-bit one of 1/65535).
+struct HeightImage
+{
+    int width = 0;
+    int height = 0;
+    std::vector<float> values;
+};
+
+/// The image laid over the world rectangle [min.x, max.x] × [min.z, max.z]
+/// (column 0 at min.x, row 0 at min.z; pixel centres on the rectangle's
+/// edges and evenly in between), bilinearly interpolated and clamped at the
+/// edges: h = base + heightScale · value.
+struct ImageHeightfieldOptions
+{
+    glm::dvec2 min{-96.0, -96.0}; ///< world (x, z) of pixel (0, 0), metres
+    glm::dvec2 max{96.0, 96.0};   ///< world (x, z) of the last pixel, metres
+    double base = 0.0;            ///< metres
+    double heightScale = 40.0;    ///< metres for value 1
+};
+
+class ImageHeightfield final : public HeightfieldBase
+{
+public:
+    /// Throws strata::Error if the image is smaller than 2×2, has the wrong
+    /// number of values or a non-finite one, or the rectangle is empty.
+    ImageHeightfield(HeightImage image, const ImageHeightfieldOptions& options);
+    double height(double x, double z) const override;
+
+private:
+    HeightImage mImage;
+    ImageHeightfieldOptions mOptions;
+};
+
+} // namespace strata::terrain

@@ -1,0 +1,287 @@
+#include <strata/terrain/Caves.h>
+
+#include <strata/Error.h>
+
+#include "NoiseHash.h"
+
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <sstream>
+
+namespace strata::terrain {
+
+namespace {
+
+using namespace detail;
+
+std::string show(double v)
+{
+    std::ostringstream out;
+    out << v;
+    return out.str();
+}
+
+void requirePositive(const char* key, double v)
+{
+    if (!(std::isfinite(v) && v > 0.0)) throw Error(std::string(key) + " = " + show(v) + " must be a finite number > 0");
+}
+
+void requireRange(const char* key, double v, double lo, double hi)
+{
+    if (!(std::isfinite(v) && v >= lo && v <= hi)) {
+        throw Error(std::string(key) + " = " + show(v) + " is out of range [" + show(lo) + ", " + show(hi) + "]");
+    }
+}
+
+/// Typical |∇n| across a spaghetti tunnel, per noise unit (calibrated in
+/// TerrainField: the mean horizontal radius then matches `radius`).
+constexpr double SPAGHETTI_TYPICAL_GRADIENT = 1.0;
+/// Cheese: the typical gradient of a fractal field is about a third of its bound.
+constexpr double CHEESE_TYPICAL_FRACTION = 1.0 / 3.0;
+
+inline double unit(std::uint64_t h)
+{
+    return double(h >> 11) * 0x1.0p-53;
+}
+
+} // namespace
+
+// ---- spaghetti ---------------------------------------------------------------
+
+SpaghettiCaves::SpaghettiCaves(std::uint64_t seed, const SpaghettiOptions& options)
+    : mOptions(options), mA(deriveSeed(seed, 2), options.noise), mB(deriveSeed(seed, 3), options.noise)
+{
+    requirePositive("wavelength", options.wavelength);
+    requirePositive("radius", options.radius);
+    requirePositive("vertical_squash", options.verticalSquash);
+    if (std::isnan(options.maxHeight)) throw Error("max_height = nan must be a number");
+    mNoiseRadius = options.radius * SPAGHETTI_TYPICAL_GRADIENT / options.wavelength;
+    mGain = options.wavelength / SPAGHETTI_TYPICAL_GRADIENT; // metres per noise unit
+    // |∇ tube| <= √2·L_n·max(1, squash) / wavelength per metre.
+    const double tubeSlope = std::sqrt(2.0) * mA.lipschitz(3) * std::max(1.0, options.verticalSquash) / options.wavelength;
+    mLipschitz = std::max(1.0, tubeSlope * mGain);
+}
+
+double SpaghettiCaves::tube(const glm::dvec3& p) const
+{
+    const glm::dvec3 q(p.x / mOptions.wavelength, p.y * mOptions.verticalSquash / mOptions.wavelength,
+                       p.z / mOptions.wavelength);
+    const double n1 = mA(q), n2 = mB(q);
+    return std::sqrt(n1 * n1 + n2 * n2) - mNoiseRadius;
+}
+
+double SpaghettiCaves::density(const glm::dvec3& p) const
+{
+    return std::max(tube(p) * mGain, p.y - mOptions.maxHeight);
+}
+
+double SpaghettiCaves::distanceBound(const glm::dvec3& p) const
+{
+    return std::max(tube(p) * mGain / mLipschitz, p.y - mOptions.maxHeight);
+}
+
+// ---- cheese ------------------------------------------------------------------
+
+CheeseCaves::CheeseCaves(std::uint64_t seed, const CheeseOptions& options)
+    : mOptions(options), mNoise(deriveSeed(seed, 4), options.noise)
+{
+    requirePositive("wavelength", options.wavelength);
+    requireRange("threshold", options.threshold, -2.0, 2.0);
+    requirePositive("vertical_squash", options.verticalSquash);
+    if (std::isnan(options.maxHeight)) throw Error("max_height = nan must be a number");
+    const double slope = mNoise.lipschitz(3) * std::max(1.0, options.verticalSquash) / options.wavelength;
+    mBoundScale = 1.0 / slope;
+    mScale = mBoundScale / CHEESE_TYPICAL_FRACTION;
+    mLipschitz = 1.0 / CHEESE_TYPICAL_FRACTION;
+}
+
+double CheeseCaves::excess(const glm::dvec3& p) const
+{
+    const glm::dvec3 q(p.x / mOptions.wavelength, p.y * mOptions.verticalSquash / mOptions.wavelength,
+                       p.z / mOptions.wavelength);
+    const double n = mNoise(q);
+    return mOptions.invert ? n - mOptions.threshold : mOptions.threshold - n;
+}
+
+double CheeseCaves::density(const glm::dvec3& p) const
+{
+    return std::max(excess(p) * mScale, p.y - mOptions.maxHeight);
+}
+
+double CheeseCaves::distanceBound(const glm::dvec3& p) const
+{
+    return std::max(excess(p) * mBoundScale, p.y - mOptions.maxHeight);
+}
+
+// ---- worms -------------------------------------------------------------------
+
+double roundConeDistance(const glm::dvec3& p, const glm::dvec3& a, const glm::dvec3& b, double ra, double rb)
+{
+    const glm::dvec3 v = b - a, w = p - a;
+    const double len2 = glm::dot(v, v);
+    const double len = std::sqrt(len2);
+    const double slope = len > 0.0 ? (rb - ra) / len : 2.0;
+    if (!(std::abs(slope) < 1.0)) {
+        // One end sphere contains the whole cone.
+        return std::min(glm::length(w) - ra, glm::length(p - b) - rb);
+    }
+    const double along = glm::dot(w, v) / len; // metres from a along the axis
+    const double h = glm::length(w - (along / len) * v);
+    // Minimise g(u) = √(h² + u²) − slope·u over the axis offset u from the
+    // foot of the perpendicular: u = slope·h/√(1 − slope²); g is convex, so
+    // clamping to the segment gives the minimum over it.
+    const double u = slope * h / std::sqrt(1.0 - slope * slope);
+    const double t = std::clamp((along + u) / len, 0.0, 1.0);
+    return glm::length(p - (a + t * v)) - (ra + t * (rb - ra));
+}
+
+namespace {
+
+constexpr double BUCKET_SIZE = 8.0;
+std::atomic<std::uint64_t> gNextWormId{1};
+
+struct WormThreadCache
+{
+    std::uint64_t id = 0;
+    std::array<std::int64_t, 3> key{};
+    std::shared_ptr<const void> bucket;
+};
+thread_local WormThreadCache tWormCache;
+
+/// Smooth 1D noise along a worm: 2D gradient noise on a line off the lattice.
+inline double wander(std::uint64_t hashedSeed, double t)
+{
+    return noise2(hashedSeed, glm::dvec2(t, 0.37));
+}
+
+} // namespace
+
+WormCaves::WormCaves(std::uint64_t seed, const WormOptions& options)
+    : mSeed(seed), mOptions(options), mId(gNextWormId.fetch_add(1))
+{
+    requirePositive("cell_size", options.cellSize);
+    requireRange("worms_per_cell", options.wormsPerCell, 0.0, 16.0);
+    if (!(std::isfinite(options.minY) && std::isfinite(options.maxY) && options.maxY >= options.minY)) {
+        throw Error("max_y = " + show(options.maxY) + " must be a finite number >= min_y = " + show(options.minY));
+    }
+    requireRange("segments", options.segments, 1, 256);
+    requirePositive("segment_length", options.segmentLength);
+    requirePositive("radius", options.radius);
+    requireRange("radius_variation", options.radiusVariation, 0.0, 0.9);
+    requireRange("turn", options.turn, 0.0, 10.0);
+    requireRange("max_pitch", options.maxPitch, 0.0, 1.4);
+    mReach = options.segments * options.segmentLength + options.radius * (1.0 + options.radiusVariation);
+    if (mReach > 4096.0) throw Error("segments × segment_length = " + show(mReach) + " m is too long (4096 m at most)");
+}
+
+WormCaves::~WormCaves() = default;
+
+std::vector<WormCaves::Segment> WormCaves::wormsOfCell(std::int64_t cx, std::int64_t cz) const
+{
+    const WormOptions& o = mOptions;
+    const std::uint64_t cell = hashCombine(hashCombine(seedHash(deriveSeed(mSeed, 5)), cx), cz);
+    const double expected = o.wormsPerCell;
+    const int count = int(std::floor(expected)) + (unit(mix64(cell ^ 0x51)) < expected - std::floor(expected) ? 1 : 0);
+    std::vector<Segment> segments;
+    for (int w = 0; w < count; ++w) {
+        std::uint64_t h = mix64(cell + 0x9e3779b97f4a7c15ULL * std::uint64_t(w + 1));
+        const auto next = [&h]() {
+            h = mix64(h + 0x9e3779b97f4a7c15ULL);
+            return unit(h);
+        };
+        glm::dvec3 at((double(cx) + next()) * o.cellSize, o.minY + next() * (o.maxY - o.minY),
+                      (double(cz) + next()) * o.cellSize);
+        const double yaw0 = 6.283185307179586 * next();
+        const std::uint64_t yawSeed = mix64(h ^ 1), pitchSeed = mix64(h ^ 2), radiusSeed = mix64(h ^ 3);
+        const auto radiusAt = [&](int i) {
+            return o.radius * (1.0 + o.radiusVariation * std::clamp(1.5 * wander(radiusSeed, 0.21 * i), -1.0, 1.0));
+        };
+        double ra = radiusAt(0);
+        for (int i = 0; i < o.segments; ++i) {
+            const double t = 0.13 * (i + 0.5);
+            const double yaw = yaw0 + 2.0 * o.turn * wander(yawSeed, t);
+            const double pitch = o.maxPitch * std::clamp(1.6 * wander(pitchSeed, t), -1.0, 1.0);
+            const glm::dvec3 dir(std::cos(pitch) * std::cos(yaw), std::sin(pitch), std::cos(pitch) * std::sin(yaw));
+            const glm::dvec3 to = at + o.segmentLength * dir;
+            const double rb = radiusAt(i + 1);
+            segments.push_back({at, to, ra, rb});
+            at = to;
+            ra = rb;
+        }
+    }
+    return segments;
+}
+
+std::shared_ptr<const std::vector<WormCaves::Segment>> WormCaves::cell(std::int64_t cx, std::int64_t cz) const
+{
+    const std::array<std::int64_t, 2> key{cx, cz};
+    {
+        std::lock_guard<std::mutex> lock(mMutex);
+        auto it = mCells.find(key);
+        if (it != mCells.end()) return it->second;
+    }
+    auto segments = std::make_shared<const std::vector<Segment>>(wormsOfCell(cx, cz));
+    std::lock_guard<std::mutex> lock(mMutex);
+    return mCells.emplace(key, std::move(segments)).first->second;
+}
+
+std::shared_ptr<const WormCaves::Bucket> WormCaves::bucket(const Key& key) const
+{
+    {
+        std::lock_guard<std::mutex> lock(mMutex);
+        auto it = mBuckets.find(key);
+        if (it != mBuckets.end()) return it->second;
+    }
+    // Build outside the lock (two threads may build the same bucket; both
+    // get the same contents, the first one stored wins).
+    const glm::dvec3 lo = BUCKET_SIZE * glm::dvec3(static_cast<double>(key[0]), static_cast<double>(key[1]),
+                                                   static_cast<double>(key[2]));
+    const glm::dvec3 hi = lo + BUCKET_SIZE;
+    auto bucket = std::make_shared<Bucket>();
+    const double margin = mReach + CAP;
+    if (hi.y > mOptions.minY - margin && lo.y < mOptions.maxY + margin) {
+        const auto cellOf = [&](double v) { return std::int64_t(std::floor(v / mOptions.cellSize)); };
+        for (std::int64_t cx = cellOf(lo.x - margin); cx <= cellOf(hi.x + margin); ++cx) {
+            for (std::int64_t cz = cellOf(lo.z - margin); cz <= cellOf(hi.z + margin); ++cz) {
+                for (const Segment& s : *cell(cx, cz)) {
+                    const double r = std::max(s.ra, s.rb);
+                    const glm::dvec3 smin = glm::min(s.a, s.b) - r, smax = glm::max(s.a, s.b) + r;
+                    // Box-to-box distance: every point of the cone is at least this far.
+                    const glm::dvec3 gap = glm::max(glm::max(smin - hi, lo - smax), 0.0);
+                    if (glm::length(gap) < CAP) {
+                        const glm::dvec3 mid = 0.5 * (s.a + s.b);
+                        bucket->push_back({s, mid, 0.5 * glm::length(s.b - s.a) + std::max(s.ra, s.rb)});
+                    }
+                }
+            }
+        }
+    }
+    std::lock_guard<std::mutex> lock(mMutex);
+    return mBuckets.emplace(key, std::move(bucket)).first->second;
+}
+
+double WormCaves::density(const glm::dvec3& p) const
+{
+    const Key key{std::int64_t(std::floor(p.x / BUCKET_SIZE)), std::int64_t(std::floor(p.y / BUCKET_SIZE)),
+                  std::int64_t(std::floor(p.z / BUCKET_SIZE))};
+    WormThreadCache& cache = tWormCache;
+    if (cache.id != mId || cache.key != key || !cache.bucket) {
+        cache.bucket = bucket(key);
+        cache.id = mId;
+        cache.key = key;
+    }
+    double d = CAP;
+    for (const Cone& c : *static_cast<const Bucket*>(cache.bucket.get())) {
+        // Cheap rejection with the segment's bounding sphere: |p − mid| >= d + reach.
+        const glm::dvec3 v = p - c.mid;
+        const double far = d + c.reach;
+        if (glm::dot(v, v) >= far * far) continue;
+        d = std::min(d, roundConeDistance(p, c.s.a, c.s.b, c.s.ra, c.s.rb));
+    }
+    return d;
+}
+
+} // namespace strata::terrain

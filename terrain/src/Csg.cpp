@@ -1,0 +1,74 @@
+#include <strata/terrain/Csg.h>
+
+#include <algorithm>
+#include <cassert>
+
+namespace strata::terrain {
+
+double smoothMin(double a, double b, double k)
+{
+    // Outside the blend the result is exactly min(a, b).
+    if (k <= 0.0 || b - a >= k || a - b >= k) return std::min(a, b);
+    const double h = std::clamp(0.5 + 0.5 * (b - a) / k, 0.0, 1.0);
+    return b + h * (a - b) - k * h * (1.0 - h);
+}
+
+double smoothMax(double a, double b, double k)
+{
+    return -smoothMin(-a, -b, k);
+}
+
+CsgField::CsgField(CsgOperation operation, std::vector<DensityFieldPtr> children, double smoothRadius)
+    : mOperation(operation), mChildren(std::move(children)), mSmooth(smoothRadius)
+{
+    assert(mChildren.size() >= 2 && smoothRadius >= 0.0);
+    mLipschitz = 0.0;
+    for (const DensityFieldPtr& child : mChildren) {
+        assert(child);
+        mLipschitz = std::max(mLipschitz, child->lipschitz());
+    }
+}
+
+double CsgField::density(const glm::dvec3& p) const
+{
+    double d = mChildren[0]->density(p);
+    for (std::size_t i = 1; i < mChildren.size(); ++i) {
+        // A child that cannot change the result is not evaluated: −c is at
+        // most −minDensity for a subtraction, c at least minDensity for a union.
+        const double floor = mChildren[i]->minDensity();
+        if (mOperation == CsgOperation::SUBTRACT && d >= mSmooth - floor) continue;
+        if (mOperation == CsgOperation::UNION && d <= floor - mSmooth) continue;
+        const double c = mChildren[i]->density(p);
+        switch (mOperation) {
+        case CsgOperation::UNION: d = smoothMin(d, c, mSmooth); break;
+        case CsgOperation::SUBTRACT: d = smoothMax(d, -c, mSmooth); break;
+        case CsgOperation::INTERSECT: d = smoothMax(d, c, mSmooth); break;
+        }
+    }
+    return d;
+}
+
+double CsgField::distanceBound(const glm::dvec3& p) const
+{
+    // Sharp min/max of lower distance bounds are lower bounds of the sharp
+    // result. The smooth result differs from the sharp one by at most k/4 in
+    // density; the bound moves by k/2 on the side the blend can reach.
+    double b = mChildren[0]->distanceBound(p);
+    for (std::size_t i = 1; i < mChildren.size(); ++i) {
+        const double floor = mChildren[i]->minDistanceBound();
+        if (mOperation == CsgOperation::SUBTRACT && b >= -floor) continue;
+        if (mOperation == CsgOperation::UNION && b <= floor) continue;
+        const double c = mChildren[i]->distanceBound(p);
+        switch (mOperation) {
+        case CsgOperation::UNION: b = std::min(b, c); break;
+        case CsgOperation::SUBTRACT: b = std::max(b, -c); break;
+        case CsgOperation::INTERSECT: b = std::max(b, c); break;
+        }
+    }
+    if (mSmooth <= 0.0) return b;
+    const double slack = 0.5 * mSmooth * double(mChildren.size() - 1);
+    if (mOperation == CsgOperation::UNION) return b > 0.0 ? std::max(0.0, b - slack) : b;
+    return b < 0.0 ? std::min(0.0, b + slack) : b;
+}
+
+} // namespace strata::terrain

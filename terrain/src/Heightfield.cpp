@@ -1,0 +1,101 @@
+#include <strata/terrain/Heightfield.h>
+
+#include <strata/Error.h>
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+namespace strata::terrain {
+
+namespace {
+
+std::string show(double v)
+{
+    std::ostringstream out;
+    out << v;
+    return out.str();
+}
+
+} // namespace
+
+void HeightfieldBase::setSlopeBound(double slope)
+{
+    mSlope = slope;
+    const double typical = std::min(slope, 1.0);
+    mScale = 1.0 / std::sqrt(1.0 + typical * typical);
+    mBoundScale = 1.0 / std::sqrt(1.0 + slope * slope);
+    mLipschitz = std::sqrt(1.0 + slope * slope) * mScale;
+}
+
+NoiseHeightfield::NoiseHeightfield(std::uint64_t seed, const NoiseHeightfieldOptions& options)
+    : mOptions(options), mNoise(seed, options.noise)
+{
+    if (!std::isfinite(options.base)) throw Error("base = " + show(options.base) + " must be a finite number");
+    if (!(std::isfinite(options.amplitude) && options.amplitude >= 0.0)) {
+        throw Error("amplitude = " + show(options.amplitude) + " must be a finite number >= 0");
+    }
+    if (!(std::isfinite(options.wavelength) && options.wavelength > 0.0)) {
+        throw Error("wavelength = " + show(options.wavelength) + " must be a finite number > 0");
+    }
+    setSlopeBound(options.amplitude / options.wavelength * mNoise.lipschitz(2));
+}
+
+double NoiseHeightfield::height(double x, double z) const
+{
+    return mOptions.base + mOptions.amplitude * mNoise(glm::dvec2(x / mOptions.wavelength, z / mOptions.wavelength));
+}
+
+ImageHeightfield::ImageHeightfield(HeightImage image, const ImageHeightfieldOptions& options)
+    : mImage(std::move(image)), mOptions(options)
+{
+    if (mImage.width < 2 || mImage.height < 2) {
+        throw Error("image is " + std::to_string(mImage.width) + "x" + std::to_string(mImage.height) +
+                    " pixels, at least 2x2 are needed");
+    }
+    if (mImage.values.size() != std::size_t(mImage.width) * std::size_t(mImage.height)) {
+        throw Error("image has " + std::to_string(mImage.values.size()) + " values for " +
+                    std::to_string(mImage.width) + "x" + std::to_string(mImage.height) + " pixels");
+    }
+    for (int a = 0; a < 2; ++a) {
+        if (!(std::isfinite(options.min[a]) && std::isfinite(options.max[a]) && options.max[a] > options.min[a])) {
+            throw Error(std::string("the image rectangle is empty or not finite along ") + (a == 0 ? "x" : "z") +
+                        ": min = " + show(options.min[a]) + ", max = " + show(options.max[a]));
+        }
+    }
+    if (!std::isfinite(options.base)) throw Error("base = " + show(options.base) + " must be a finite number");
+    if (!std::isfinite(options.heightScale)) {
+        throw Error("height_scale = " + show(options.heightScale) + " must be a finite number");
+    }
+    // Bilinear interpolation: the slope along an axis is at most the largest
+    // step between neighbouring pixels along it, over the pixel spacing.
+    double stepX = 0.0, stepZ = 0.0;
+    for (int z = 0; z < mImage.height; ++z) {
+        for (int x = 0; x < mImage.width; ++x) {
+            const float v = mImage.values[std::size_t(z) * mImage.width + x];
+            if (!std::isfinite(v)) throw Error("image value at pixel (" + std::to_string(x) + ", " +
+                                               std::to_string(z) + ") is not finite");
+            if (x + 1 < mImage.width) stepX = std::max(stepX, double(std::abs(mImage.values[std::size_t(z) * mImage.width + x + 1] - v)));
+            if (z + 1 < mImage.height) stepZ = std::max(stepZ, double(std::abs(mImage.values[std::size_t(z + 1) * mImage.width + x] - v)));
+        }
+    }
+    const double spacingX = (options.max.x - options.min.x) / double(mImage.width - 1);
+    const double spacingZ = (options.max.y - options.min.y) / double(mImage.height - 1);
+    const double sx = std::abs(options.heightScale) * stepX / spacingX;
+    const double sz = std::abs(options.heightScale) * stepZ / spacingZ;
+    setSlopeBound(std::sqrt(sx * sx + sz * sz));
+}
+
+double ImageHeightfield::height(double x, double z) const
+{
+    const double u = std::clamp((x - mOptions.min.x) / (mOptions.max.x - mOptions.min.x), 0.0, 1.0) * (mImage.width - 1);
+    const double v = std::clamp((z - mOptions.min.y) / (mOptions.max.y - mOptions.min.y), 0.0, 1.0) * (mImage.height - 1);
+    const int i = std::min(int(u), mImage.width - 2), j = std::min(int(v), mImage.height - 2);
+    const double fu = u - i, fv = v - j;
+    const auto at = [&](int a, int b) { return double(mImage.values[std::size_t(b) * mImage.width + a]); };
+    const double top = at(i, j) + fu * (at(i + 1, j) - at(i, j));
+    const double bottom = at(i, j + 1) + fu * (at(i + 1, j + 1) - at(i, j + 1));
+    return mOptions.base + mOptions.heightScale * (top + fv * (bottom - top));
+}
+
+} // namespace strata::terrain

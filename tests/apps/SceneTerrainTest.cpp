@@ -1,0 +1,306 @@
+// The [terrain] node tree of the scene file (apps/strata/SceneTerrain.h).
+
+#include "Scene.h"
+#include "SceneTerrain.h"
+#include "TestDir.h"
+
+#include <strata/Error.h>
+
+#include <OpenImageIO/imageio.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <deque>
+#include <fstream>
+#include <set>
+#include <sys/wait.h>
+#include <vector>
+
+using strata::app::parseScene;
+using strata::app::Scene;
+
+namespace {
+
+std::string parseError(const std::string& text)
+{
+    try {
+        parseScene(text, "test.toml");
+    } catch (const strata::Error& e) {
+        return e.what();
+    }
+    ADD_FAILURE() << "no error for:\n" << text;
+    return {};
+}
+
+/// A scene whose root is one node of `type` with extra `keys`.
+std::string oneNode(const std::string& type, const std::string& keys)
+{
+    return "[terrain]\nroot = \"a\"\n[terrain.nodes.a]\ntype = \"" + type + "\"\n" + keys;
+}
+
+int runStrata(const std::string& arguments, const std::filesystem::path& dir, std::string& output)
+{
+    const std::filesystem::path log = dir / "command.log";
+    const int status =
+        std::system((std::string(STRATA_EXECUTABLE) + " " + arguments + " > " + log.string() + " 2>&1").c_str());
+    std::ifstream in(log);
+    output.assign((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+/// Writes a width×height grey ramp (value x / (width − 1)) as 8- or 16-bit PNG.
+void writeRamp(const std::filesystem::path& path, int width, int height, bool sixteenBit)
+{
+    std::vector<float> pixels;
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) pixels.push_back(float(x) / float(width - 1));
+    std::unique_ptr<OIIO::ImageOutput> out = OIIO::ImageOutput::create(path.string());
+    ASSERT_TRUE(out);
+    const OIIO::ImageSpec spec(width, height, 1, sixteenBit ? OIIO::TypeDesc::UINT16 : OIIO::TypeDesc::UINT8);
+    ASSERT_TRUE(out->open(path.string(), spec));
+    ASSERT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, pixels.data()));
+    out->close();
+}
+
+/// The surface height of a heightfield-like field at (x, z), by bisection.
+double surfaceHeight(const strata::terrain::DensityField& field, double x, double z)
+{
+    double lo = -200.0, hi = 200.0;
+    for (int i = 0; i < 80; ++i) {
+        const double mid = 0.5 * (lo + hi);
+        (field.density({x, mid, z}) < 0.0 ? lo : hi) = mid;
+    }
+    return 0.5 * (lo + hi);
+}
+
+} // namespace
+
+TEST(SceneTerrain, DefaultSceneIsANodeTree)
+{
+    const Scene scene = parseScene(std::string(strata::app::defaultSceneText()), "<default scene>");
+    ASSERT_TRUE(scene.field);
+    ASSERT_TRUE(scene.buildField);
+    const auto other = scene.buildField(2);
+    int differ = 0;
+    for (double x = -90; x <= 90; x += 10) differ += other->density({x, 0, 3}) != scene.field->density({x, 0, 3});
+    EXPECT_GT(differ, 10) << "--seed must change the terrain";
+    EXPECT_EQ(scene.buildField(1)->density({3, 4, 5}), scene.field->density({3, 4, 5}));
+}
+
+TEST(SceneTerrain, ShorthandStillWorks)
+{
+    const Scene scene = parseScene("[terrain.height]\namplitude = 20\n[terrain.caves]\nenabled = false\n", "t.toml");
+    ASSERT_TRUE(scene.field);
+    EXPECT_GT(scene.field->density({0, 100, 0}), 0.0);
+    EXPECT_LT(scene.field->density({0, -100, 0}), 0.0);
+    EXPECT_EQ(parseError("[terrain]\nroot = \"a\"\n[terrain.height]\namplitude = 3\n[terrain.nodes.a]\ntype = \"sphere\"\n"),
+              "test.toml:3: terrain.height cannot be combined with terrain.root and [terrain.nodes]: describe the "
+              "heightfield and caves as nodes");
+}
+
+TEST(SceneTerrain, EveryNodeTypeIsReachableFromTheSceneFile)
+{
+    const auto dir = strata::test::freshTestDir();
+    writeRamp(dir / "ramp.png", 64, 64, false);
+    const std::string text = R"(
+[terrain]
+root = "all"
+[terrain.nodes.all]
+type = "union"
+children = ["cut", "shapes", "stepped", "moved", "image"]
+[terrain.nodes.cut]
+type = "subtract"
+children = ["land", "worms", "cheese", "spaghetti"]
+smooth = 1.0
+[terrain.nodes.land]
+type = "warp"
+child = "hills"
+amplitude = 4.0
+[terrain.nodes.hills]
+type = "heightfield"
+noise = "simplex"
+fractal = "ridged"
+octaves = 3
+[terrain.nodes.worms]
+type = "worms"
+[terrain.nodes.cheese]
+type = "cheese"
+noise = "cellular_f1"
+invert = true
+threshold = -0.5
+[terrain.nodes.spaghetti]
+type = "spaghetti"
+noise = "value"
+fractal = "billow"
+[terrain.nodes.shapes]
+type = "intersect"
+children = ["ball", "brick", "pill", "floor"]
+smooth = 0.5
+[terrain.nodes.ball]
+type = "sphere"
+center = [0, 30, 0]
+radius = 8
+[terrain.nodes.brick]
+type = "box"
+center = [0, 30, 0]
+size = [12, 12, 12]
+rounding = 1
+[terrain.nodes.pill]
+type = "capsule"
+a = [-10, 30, 0]
+b = [10, 30, 0]
+radius = 6
+[terrain.nodes.floor]
+type = "plane"
+normal = [0, 1, 0]
+offset = 40
+[terrain.nodes.stepped]
+type = "terrace"
+child = "hills"
+step = 3
+sharpness = 4
+[terrain.nodes.moved]
+type = "translate"
+child = "ball"
+offset = [40, 0, 0]
+[terrain.nodes.image]
+type = "image_heightfield"
+file = "ramp.png"
+min = [-50, -50]
+max = [50, 50]
+height_scale = 10
+)";
+    std::set<std::string> used;
+    for (const std::string& type : strata::app::terrainNodeTypes()) {
+        if (text.find("type = \"" + type + "\"") != std::string::npos) used.insert(type);
+    }
+    EXPECT_EQ(used.size(), strata::app::terrainNodeTypes().size()) << "a node type is missing from this test";
+    {
+        std::ofstream(dir / "all.toml") << text;
+    }
+    const Scene scene = strata::app::loadScene(dir / "all.toml");
+    ASSERT_TRUE(scene.field);
+    EXPECT_LT(scene.field->density({0, 30, 0}), 0.0); // inside the shapes
+    EXPECT_LT(scene.field->density({40, 30, 0}), 0.0); // the translated ball
+    EXPECT_GT(scene.field->density({0, 200, 0}), 0.0);
+}
+
+TEST(SceneTerrain, ImageHeightfieldReproducesARampWithinOneStep)
+{
+    const auto dir = strata::test::freshTestDir();
+    for (const bool sixteen : {false, true}) {
+        const std::string name = sixteen ? "ramp16.png" : "ramp8.png";
+        writeRamp(dir / name, 256, 8, sixteen);
+        {
+            std::ofstream(dir / "scene.toml") << oneNode("image_heightfield", "file = \"" + name +
+                                                                                  "\"\nmin = [0, 0]\nmax = [255, 7]\n"
+                                                                                  "height_scale = 51\nbase = -5\n");
+        }
+        const Scene scene = strata::app::loadScene(dir / "scene.toml");
+        const double step = 51.0 / (sixteen ? 65535.0 : 255.0);
+        double worst = 0.0;
+        for (double x = 0.0; x <= 255.0; x += 0.71) {
+            worst = std::max(worst, std::abs(surfaceHeight(*scene.field, x, 3.3) - (-5.0 + 51.0 * x / 255.0)));
+        }
+        EXPECT_LE(worst, step) << name;
+    }
+}
+
+TEST(SceneTerrain, TunnelsReachTheSurfaceInTheDefaultScene)
+{
+    // Air connected to the sky that lies at least 3 m inside the land's rock
+    // (the land without the tunnels) is a tunnel mouth and the tunnel behind it.
+    std::string text(strata::app::defaultSceneText());
+    const Scene scene = parseScene(text, "<default scene>");
+    // The same scene without worms is the land alone.
+    const std::size_t worms = text.find("worms_per_cell = ");
+    ASSERT_NE(worms, std::string::npos);
+    text.replace(worms, text.find('\n', worms) - worms, "worms_per_cell = 0.0");
+    const Scene land = parseScene(text, "<land>");
+
+    const double h = 1.5;
+    const int nx = 128, ny = 58, nz = 128;
+    const auto at = [&](int i, int j, int k) {
+        return glm::dvec3(-96.0 + h * (i + 0.5), -44.0 + h * (j + 0.5), -96.0 + h * (k + 0.5));
+    };
+    std::vector<char> air(std::size_t(nx) * ny * nz), seen(air.size(), 0);
+    const auto index = [&](int i, int j, int k) { return (std::size_t(i) * ny + j) * nz + k; };
+    for (int i = 0; i < nx; ++i)
+        for (int j = 0; j < ny; ++j)
+            for (int k = 0; k < nz; ++k) air[index(i, j, k)] = scene.field->density(at(i, j, k)) > 0.0;
+    std::deque<std::array<int, 3>> queue;
+    for (int i = 0; i < nx; ++i)
+        for (int k = 0; k < nz; ++k)
+            if (air[index(i, ny - 1, k)]) queue.push_back({i, ny - 1, k}), seen[index(i, ny - 1, k)] = 1;
+    int mouths = 0;
+    while (!queue.empty()) {
+        const auto [i, j, k] = queue.front();
+        queue.pop_front();
+        if (land.field->density(at(i, j, k)) < -3.0) ++mouths;
+        const int d[6][3] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+        for (const auto& o : d) {
+            const int a = i + o[0], b = j + o[1], c = k + o[2];
+            if (a < 0 || b < 0 || c < 0 || a >= nx || b >= ny || c >= nz) continue;
+            if (!air[index(a, b, c)] || seen[index(a, b, c)]) continue;
+            seen[index(a, b, c)] = 1;
+            queue.push_back({a, b, c});
+        }
+    }
+    std::cout << "sky-connected air cells inside the land's rock: " << mouths << "\n";
+    EXPECT_GT(mouths, 200);
+}
+
+TEST(SceneTerrain, BadNodesNameFileLineKeyAndValue)
+{
+    EXPECT_EQ(parseError(oneNode("blob", "")),
+              "test.toml:4: terrain.nodes.a.type = 'blob' is not a node type (one of box, capsule, cheese, "
+              "heightfield, image_heightfield, intersect, plane, spaghetti, sphere, subtract, terrace, translate, "
+              "union, warp, worms)");
+    EXPECT_EQ(parseError(oneNode("union", "children = [\"b\", \"c\"]\n[terrain.nodes.b]\ntype = \"sphere\"\n")),
+              "test.toml:5: terrain.nodes.a.children = 'c' names no node: add a [terrain.nodes.c] table");
+    EXPECT_EQ(parseError(oneNode("warp", "child = \"a\"\n")),
+              "test.toml:5: terrain.nodes.a.child = 'a' makes a cycle: a node cannot contain itself");
+    EXPECT_EQ(parseError(oneNode("heightfield", "amplitude = nan\n")),
+              "test.toml:5: terrain.nodes.a.amplitude = nan must be finite");
+    EXPECT_EQ(parseError(oneNode("heightfield", "wavelength = inf\n")),
+              "test.toml:5: terrain.nodes.a.wavelength = inf must be finite");
+    EXPECT_EQ(parseError(oneNode("worms", "radius = -2\n")),
+              "test.toml:5: terrain.nodes.a.radius = -2 is out of range [0.001, 10000]");
+    EXPECT_EQ(parseError(oneNode("heightfield", "octaves = 1000\n")),
+              "test.toml:5: terrain.nodes.a.octaves = 1000 is out of range [1, 24]");
+    EXPECT_EQ(parseError(oneNode("heightfield", "noise = \"perlin\"\n")),
+              "test.toml:5: terrain.nodes.a.noise = 'perlin' is not a noise type (gradient, simplex, value, "
+              "cellular_f1, cellular_f2)");
+    EXPECT_EQ(parseError(oneNode("sphere", "radiuss = 3\n")), "test.toml:5: unknown key 'terrain.nodes.a.radiuss'");
+    EXPECT_EQ(parseError(oneNode("box", "size = [1, -2, 3]\n")),
+              "test.toml:5: terrain.nodes.a.size must be positive on every axis");
+    EXPECT_EQ(parseError(oneNode("sphere", "[terrain.nodes.b]\ntype = \"sphere\"\n")),
+              "test.toml:5: terrain.nodes.b is not used: no node's child or children, nor terrain.root, names it");
+    EXPECT_EQ(parseError("[terrain.nodes.a]\ntype = \"sphere\"\n"),
+              "test.toml: terrain.root is required with [terrain.nodes]: the name of the node to sample");
+    EXPECT_EQ(parseError("[region]\nmin = [0, 0, 0]\nmax = [0, 1, 1]\n").substr(0, 32), "test.toml:3: region.max must be ");
+    const std::string missing = parseError(oneNode("image_heightfield", "file = \"/nonexistent/h.png\"\n"));
+    EXPECT_EQ(missing, "test.toml:5: terrain.nodes.a.file = '/nonexistent/h.png': no such file");
+}
+
+TEST(SceneTerrain, CliRefusesBadNodesAndOverBudgetScenesWithExitTwoWritingNothing)
+{
+    const auto dir = strata::test::freshTestDir();
+    {
+        std::ofstream(dir / "bad.toml") << oneNode("blob", "");
+    }
+    std::string output;
+    EXPECT_EQ(runStrata("generate " + (dir / "bad.toml").string() + " -o " + (dir / "out").string(), dir, output), 2);
+    EXPECT_NE(output.find("bad.toml:4: terrain.nodes.a.type = 'blob'"), std::string::npos) << output;
+    EXPECT_FALSE(std::filesystem::exists(dir / "out" / "terrain.vdb"));
+
+    EXPECT_EQ(runStrata("generate -o " + (dir / "big").string() + " --no-snapshot --max-memory 2MiB", dir, output), 2);
+    EXPECT_NE(output.find("memory budget of 2 MiB"), std::string::npos) << output;
+    EXPECT_NE(output.find("coarser voxel_size"), std::string::npos) << output;
+    EXPECT_FALSE(std::filesystem::exists(dir / "big" / "terrain.vdb"));
+    EXPECT_FALSE(std::filesystem::exists(dir / "big" / "report.json"));
+
+    EXPECT_EQ(runStrata("generate -o " + (dir / "x").string() + " --max-memory lots", dir, output), 2);
+    EXPECT_NE(output.find("--max-memory 'lots'"), std::string::npos) << output;
+}
