@@ -22,6 +22,7 @@ set(BUILD_SHARED_LIBS "${_strata_saved_shared}")
 find_package(glm CONFIG REQUIRED)
 find_package(OpenMesh CONFIG REQUIRED)
 find_package(TinyGLTF CONFIG REQUIRED)
+find_package(meshoptimizer CONFIG REQUIRED)
 find_package(OpenImageIO CONFIG REQUIRED)
 # Debian's OpenImageIO config lists /usr/include/opencv4, which only exists
 # when OpenCV is installed: drop missing include directories.
