@@ -12,8 +12,13 @@ PACKAGES=(
   libcli11-dev libtomlplusplus-dev nlohmann-json3-dev libfmt-dev
   libgtest-dev libbenchmark-dev
   xvfb xauth
-  nodejs npm  # the Khronos glTF validator test (npm installs gltf-validator into the build tree)
 )
+# Node.js and npm run the Khronos glTF validator test (npm installs
+# gltf-validator into the build tree). A machine may already have them from
+# another source (e.g. a nodejs package that bundles npm, where Debian's npm
+# package would conflict): only ask Debian when the commands are missing.
+if ! command -v node >/dev/null 2>&1; then PACKAGES+=(nodejs); fi
+if ! command -v npm >/dev/null 2>&1; then PACKAGES+=(npm); fi
 
 missing=()
 for p in "${PACKAGES[@]}"; do
