@@ -14,7 +14,8 @@ std::string featureNames(std::uint32_t features)
     std::string out;
     for (int i = 0; i < 10; ++i) {
         if (features & (1u << i)) {
-            out += (out.empty() ? "" : "+") + std::string(NAMES[i]);
+            if (!out.empty()) out += '+';
+            out += NAMES[i];
         }
     }
     return out.empty() ? "albedo" : out;
