@@ -2,7 +2,10 @@
 
 #include <strata/Error.h>
 
+#include <glm/trigonometric.hpp>
 #include <gtest/gtest.h>
+
+#include <cmath>
 
 using strata::app::parseScene;
 using strata::app::Scene;
@@ -247,4 +250,39 @@ TEST(SceneMaterial, MapFilesAreLoadedRemappedAndChecked)
         EXPECT_NE(what.find("material.maps.albedo"), std::string::npos) << what;
         EXPECT_NE(what.find("broken.png"), std::string::npos) << what;
     }
+}
+
+TEST(Scene, LightsAndExposure)
+{
+    const Scene scene = parseScene(R"(
+[light]
+sun_azimuth = 90
+sun_elevation = 30
+sun_color = [3.0, 2.9, 2.5]
+exposure = 1.5
+[[light.extra]]
+azimuth = -90
+elevation = 20
+color = [0.2, 0.25, 0.4]
+[[light.extra]]
+azimuth = 180
+)", "t.toml");
+    EXPECT_FLOAT_EQ(scene.lighting.exposure, 1.5f);
+    EXPECT_EQ(scene.lighting.sunColor, glm::vec3(3.0f, 2.9f, 2.5f));
+    EXPECT_NEAR(scene.lighting.sunDirection.x, std::cos(glm::radians(30.0)), 1e-6);
+    ASSERT_EQ(scene.lighting.extraLights.size(), 2u);
+    EXPECT_NEAR(scene.lighting.extraLights[0].direction.x, -std::cos(glm::radians(20.0)), 1e-6);
+    EXPECT_EQ(scene.lighting.extraLights[0].color, glm::vec3(0.2f, 0.25f, 0.4f));
+    EXPECT_EQ(scene.lighting.extraLights[1].color, glm::vec3(0.5f));
+}
+
+TEST(Scene, LightErrorsNameTheKey)
+{
+    EXPECT_EQ(parseError("[light]\nexposure = 0\n"), "test.toml:2: light.exposure = 0 is out of range [0.001, 1000]");
+    EXPECT_EQ(parseError("[light]\nsun_color = [1, -1, 1]\n"), "test.toml:2: light.sun_color must not be negative");
+    EXPECT_EQ(parseError("[[light.extra]]\nazimuth = 0\ncolour = [1, 1, 1]\n"),
+              "test.toml:3: unknown key 'light.extra[0].colour'");
+    EXPECT_EQ(parseError("[light]\nextra = 3\n"),
+              "test.toml:2: light.extra must be an array of at most 3 tables ([[light.extra]])");
+    EXPECT_EQ(parseError("[[light.extra]]\n[[light.extra]]\n[[light.extra]]\n[[light.extra]]\n").rfind("test.toml:", 0), 0u);
 }
