@@ -100,6 +100,18 @@ render::SnapshotOptions makeSnapshotOptions(const Scene& scene, const meshing::T
     return snapshot;
 }
 
+render::MeshView meshView(const meshing::TriangleMesh& mesh)
+{
+    render::MeshView view;
+    view.positions = mesh.positions.data();
+    view.normals = mesh.normals.data();
+    view.vertexCount = mesh.positions.size();
+    view.indices = mesh.indices.data();
+    view.indexCount = mesh.indices.size();
+    view.origin = mesh.origin;
+    return view;
+}
+
 GenerateResult generate(const Scene& scene, const GenerateOptions& options, std::ostream& out)
 {
     StageLog log(out, stdoutIsTerminal(), options.quiet);
@@ -174,13 +186,7 @@ GenerateResult generate(const Scene& scene, const GenerateOptions& options, std:
         log.begin("render");
         const render::SnapshotOptions snapshot = makeSnapshotOptions(scene, mesh, options.width, options.height);
 
-        render::MeshView view;
-        view.positions = mesh.positions.data();
-        view.normals = mesh.normals.data();
-        view.vertexCount = mesh.positions.size();
-        view.indices = mesh.indices.data();
-        view.indexCount = mesh.indices.size();
-        view.origin = mesh.origin;
+        const render::MeshView view = meshView(mesh);
         if (options.backend == "cpu") result.renderer = "strata CPU reference renderer";
         const render::Image image = options.backend == "cpu" ? render::renderSnapshotCpu(view, snapshot)
                                                              : render::renderSnapshot(*context, view, snapshot);

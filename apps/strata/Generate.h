@@ -5,6 +5,7 @@
 #include "Scene.h"
 
 #include <strata/meshing/TriangleMesh.h>
+#include <strata/render/MeshView.h>
 #include <strata/render/SnapshotOptions.h>
 
 #include <cstdint>
@@ -43,6 +44,9 @@ struct GenerateResult
     std::string renderer;                  ///< GL renderer description, empty without snapshot
     std::map<std::string, double> timings; ///< seconds per stage, and "total"
 };
+
+/// A non-owning render view of `mesh` (valid while `mesh` lives).
+render::MeshView meshView(const meshing::TriangleMesh& mesh);
 
 /// The render stage's input: the scene's snapshot size (or `width` ×
 /// `height`), camera framing `mesh`, lighting and material (built-in sets

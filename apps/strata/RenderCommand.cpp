@@ -154,13 +154,7 @@ Command registerRenderCommand(CLI::App& app)
                 auto t1 = Clock::now();
                 const render::SnapshotOptions snapshot = makeSnapshotOptions(scene, mesh, width, height);
                 auto t2 = Clock::now();
-                render::MeshView view;
-                view.positions = mesh.positions.data();
-                view.normals = mesh.normals.data();
-                view.vertexCount = mesh.positions.size();
-                view.indices = mesh.indices.data();
-                view.indexCount = mesh.indices.size();
-                view.origin = mesh.origin;
+                const render::MeshView view = meshView(mesh);
                 const render::Image image = context ? render::renderSnapshot(*context, view, snapshot)
                                                     : render::renderSnapshotCpu(view, snapshot);
                 auto t3 = Clock::now();

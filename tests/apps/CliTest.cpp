@@ -1,5 +1,6 @@
 // The strata executable end to end, as a user runs it.
 
+#include "RunStrata.h"
 #include "TestDir.h"
 
 #include <strata/meshing/GltfIO.h>
@@ -13,26 +14,11 @@
 
 #include <cstdlib>
 #include <fstream>
-#include <sys/wait.h>
 
 namespace {
 
-struct CommandResult
-{
-    int exitCode;
-    std::string output; // stdout and stderr
-};
-
-CommandResult runStrata(const std::string& arguments, const std::filesystem::path& dir)
-{
-    const std::filesystem::path log = dir / "command.log";
-    const std::string command = std::string(STRATA_EXECUTABLE) + " " + arguments + " > " + log.string() + " 2>&1";
-    const int status = std::system(command.c_str());
-    std::ifstream in(log);
-    std::string output((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    std::filesystem::remove(log);
-    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
-}
+using strata::test::CommandResult;
+using strata::test::runStrata;
 
 } // namespace
 

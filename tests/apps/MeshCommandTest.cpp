@@ -1,5 +1,6 @@
 // `strata mesh`, `strata info` and `strata bench mesh` end to end.
 
+#include "RunStrata.h"
 #include "TestDir.h"
 
 #include <strata/meshing/AnalyticShapes.h>
@@ -14,28 +15,13 @@
 #include <cstdlib>
 #include <fstream>
 #include <numbers>
-#include <sys/wait.h>
 
 using namespace strata::meshing;
 
 namespace {
 
-struct CommandResult
-{
-    int exitCode;
-    std::string output; // stdout and stderr
-};
-
-CommandResult runStrata(const std::string& arguments, const std::filesystem::path& dir)
-{
-    const std::filesystem::path log = dir / "command.log";
-    const std::string command = std::string(STRATA_EXECUTABLE) + " " + arguments + " > " + log.string() + " 2>&1";
-    const int status = std::system(command.c_str());
-    std::ifstream in(log);
-    std::string output((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    std::filesystem::remove(log);
-    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
-}
+using strata::test::CommandResult;
+using strata::test::runStrata;
 
 bool contains(const std::string& text, const std::string& part)
 {

@@ -1,32 +1,18 @@
 // `strata render` and `strata generate --backend cpu`, end to end.
 
+#include "RunStrata.h"
 #include "TestDir.h"
 
 #include <strata/render/Image.h>
 
 #include <gtest/gtest.h>
 
-#include <cstdlib>
 #include <fstream>
-#include <sys/wait.h>
 
 namespace {
 
-struct Result
-{
-    int exitCode;
-    std::string output;
-};
-
-Result run(const std::string& arguments, const std::filesystem::path& dir)
-{
-    const std::filesystem::path log = dir / "render-command.log";
-    const std::string command = std::string(STRATA_EXECUTABLE) + " " + arguments + " > " + log.string() + " 2>&1";
-    const int status = std::system(command.c_str());
-    std::ifstream in(log);
-    std::string output((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
-}
+using Result = strata::test::CommandResult;
+const auto run = strata::test::runStrata;
 
 /// A small scene: a cube-ish bump of terrain, quick to generate.
 void writeSmallScene(const std::filesystem::path& path, const std::string& material)

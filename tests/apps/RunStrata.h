@@ -1,0 +1,33 @@
+#pragma once
+// Runs the strata executable (STRATA_EXECUTABLE, set by CMake) as a user
+// would, capturing its exit code and everything it printed.
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+#include <sys/wait.h>
+
+namespace strata::test {
+
+struct CommandResult
+{
+    int exitCode;
+    std::string output; // stdout and stderr
+};
+
+/// `strata ARGUMENTS`, with the output captured through a log file in `dir`.
+inline CommandResult runStrata(const std::string& arguments, const std::filesystem::path& dir)
+{
+    const std::filesystem::path log = dir / "command.log";
+    const std::string command = std::string(STRATA_EXECUTABLE) + " " + arguments + " > " + log.string() + " 2>&1";
+    const int status = std::system(command.c_str());
+    std::ifstream in(log);
+    std::string output((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    in.close();
+    std::filesystem::remove(log);
+    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
+}
+
+} // namespace strata::test
