@@ -1,5 +1,5 @@
 // Render times per feature set at 1280x720, CPU and GL, on the ~200k-triangle
-// heightfield of SnapshotDemo.cpp with the built-in texture sets (512²).
+// heightfield with cliffs, with the built-in texture sets (512²).
 // Not a test (no timing assertions anywhere): a tool for the numbers in the
 // README.
 //
