@@ -28,6 +28,27 @@ struct TriplanarUV
     vec2 z; ///< projection along Z (onto the XY plane): (±p.x + 0.5, p.y)
 };
 
+/// The three world-space projections of `v` (YZ, XZ, XY) with the U
+/// mirroring of triplanarUV() but without its ½ offsets: shared by the UVs
+/// and their screen-space derivatives.
+STRATA_INLINE TriplanarUV triplanarProject(vec3 v, vec3 n)
+{
+    TriplanarUV uv;
+    uv.x = vec2(v.z, v.y);
+    uv.y = vec2(v.x, v.z);
+    uv.z = vec2(v.x, v.y);
+    if (n.x >= 0.0f) {
+        uv.x.x = -uv.x.x;
+    }
+    if (n.y >= 0.0f) {
+        uv.y.x = -uv.y.x;
+    }
+    if (n.z < 0.0f) {
+        uv.z.x = -uv.z.x;
+    }
+    return uv;
+}
+
 /// The three projections of texture-space position `p` for a surface with
 /// normal `n` (need not be unit length; only the signs of its components are
 /// used).
@@ -49,19 +70,7 @@ struct TriplanarUV
 ///   n = +Z: z = (1.5, 2)    n = -Z: z = (-0.5, 2)
 STRATA_INLINE TriplanarUV triplanarUV(vec3 p, vec3 n)
 {
-    TriplanarUV uv;
-    uv.x = vec2(p.z, p.y);
-    uv.y = vec2(p.x, p.z);
-    uv.z = vec2(p.x, p.y);
-    if (n.x >= 0.0f) {
-        uv.x.x = -uv.x.x;
-    }
-    if (n.y >= 0.0f) {
-        uv.y.x = -uv.y.x;
-    }
-    if (n.z < 0.0f) {
-        uv.z.x = -uv.z.x;
-    }
+    TriplanarUV uv = triplanarProject(p, n);
     uv.x.y += 0.5f;
     uv.z.x += 0.5f;
     return uv;
@@ -136,20 +145,7 @@ STRATA_INLINE vec3 toneMapAces(vec3 x)
 /// offsets, with the same mirroring signs as triplanarUV().
 STRATA_INLINE TriplanarUV triplanarUVDerivative(vec3 d, vec3 n)
 {
-    TriplanarUV uv;
-    uv.x = vec2(d.z, d.y);
-    uv.y = vec2(d.x, d.z);
-    uv.z = vec2(d.x, d.y);
-    if (n.x >= 0.0f) {
-        uv.x.x = -uv.x.x;
-    }
-    if (n.y >= 0.0f) {
-        uv.y.x = -uv.y.x;
-    }
-    if (n.z < 0.0f) {
-        uv.z.x = -uv.z.x;
-    }
-    return uv;
+    return triplanarProject(d, n);
 }
 
 /// Blend weights without height: saturate(|n| − offset) per axis, before

@@ -8,6 +8,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace strata::meshing {
@@ -38,6 +39,29 @@ glm::vec3 unitOr(const glm::vec3& v, const glm::vec3& fallback)
 {
     const float len2 = glm::dot(v, v);
     return (len2 > MIN_LENGTH2 && std::isfinite(len2)) ? v / std::sqrt(len2) : fallback;
+}
+
+// The normalised gradient `g` becomes vertex i's normal; a vanishing or
+// non-finite gradient flags the vertex for fillDegenerateNormals().
+void storeNormal(const glm::vec3& g, std::size_t i, TriangleMesh& mesh, std::vector<unsigned char>& degenerate)
+{
+    const float len2 = glm::dot(g, g);
+    if (len2 > MIN_LENGTH2 && std::isfinite(len2)) {
+        mesh.normals[i] = g / std::sqrt(len2);
+    } else {
+        degenerate[i] = 1;
+    }
+}
+
+// Flagged vertices get the area-weighted face normal (or +Y), so every
+// normal is finite and unit length.
+void fillDegenerateNormals(TriangleMesh& mesh, const std::vector<unsigned char>& degenerate)
+{
+    if (std::find(degenerate.begin(), degenerate.end(), 1) == degenerate.end()) return;
+    const std::vector<glm::vec3> faceSums = areaWeightedNormals(mesh);
+    for (std::size_t i = 0; i < degenerate.size(); ++i) {
+        if (degenerate[i]) mesh.normals[i] = unitOr(faceSums[i], FALLBACK_NORMAL);
+    }
 }
 
 } // namespace
@@ -73,23 +97,11 @@ void computeGridNormals(const openvdb::FloatGrid& grid, TriangleMesh& mesh)
                 sampler.wsSample(w + openvdb::Vec3d(h, 0, 0)) - sampler.wsSample(w - openvdb::Vec3d(h, 0, 0)),
                 sampler.wsSample(w + openvdb::Vec3d(0, h, 0)) - sampler.wsSample(w - openvdb::Vec3d(0, h, 0)),
                 sampler.wsSample(w + openvdb::Vec3d(0, 0, h)) - sampler.wsSample(w - openvdb::Vec3d(0, 0, h)));
-            const float len2 = glm::dot(g, g);
-            if (len2 > MIN_LENGTH2 && std::isfinite(len2)) {
-                mesh.normals[i] = g / std::sqrt(len2);
-            } else {
-                degenerate[i] = 1;
-            }
+            storeNormal(g, i, mesh, degenerate);
         }
     });
 
-    bool anyDegenerate = false;
-    for (unsigned char d : degenerate) anyDegenerate |= d != 0;
-    if (!anyDegenerate) return;
-
-    const std::vector<glm::vec3> faceSums = areaWeightedNormals(mesh);
-    for (std::size_t i = 0; i < degenerate.size(); ++i) {
-        if (degenerate[i]) mesh.normals[i] = unitOr(faceSums[i], FALLBACK_NORMAL);
-    }
+    fillDegenerateNormals(mesh, degenerate);
 }
 
 const char* toString(NormalMethod method)
@@ -112,21 +124,10 @@ void computeGradientNormals(const GradientFunction& gradient, TriangleMesh& mesh
                       [&](const tbb::blocked_range<std::size_t>& range) {
         for (std::size_t i = range.begin(); i != range.end(); ++i) {
             const glm::vec3 g(gradient(mesh.origin + glm::dvec3(mesh.positions[i])));
-            const float len2 = glm::dot(g, g);
-            if (len2 > MIN_LENGTH2 && std::isfinite(len2)) {
-                mesh.normals[i] = g / std::sqrt(len2);
-            } else {
-                degenerate[i] = 1;
-            }
+            storeNormal(g, i, mesh, degenerate);
         }
     });
-    bool anyDegenerate = false;
-    for (unsigned char d : degenerate) anyDegenerate |= d != 0;
-    if (!anyDegenerate) return;
-    const std::vector<glm::vec3> faceSums = areaWeightedNormals(mesh);
-    for (std::size_t i = 0; i < degenerate.size(); ++i) {
-        if (degenerate[i]) mesh.normals[i] = unitOr(faceSums[i], FALLBACK_NORMAL);
-    }
+    fillDegenerateNormals(mesh, degenerate);
 }
 
 } // namespace strata::meshing
