@@ -161,6 +161,17 @@ double simplexKernelSlope(double gradientLength)
 /// a = 0.3: 1.212 and 1.233 < 1.3. In 2D: 0.990 and 1.217 < 1.3.
 constexpr double JITTER_MIN = 0.3, JITTER_SPAN = 0.4;
 
+// Keeps the two smallest squared distances seen so far (f1 <= f2).
+inline void keepTwoNearest(double d2, double& f1, double& f2)
+{
+    if (d2 < f1) {
+        f2 = f1;
+        f1 = d2;
+    } else if (d2 < f2) {
+        f2 = d2;
+    }
+}
+
 CellularDistances cellular3(std::uint64_t s, const glm::dvec3& p)
 {
     const double fx = std::floor(p.x), fy = std::floor(p.y), fz = std::floor(p.z);
@@ -179,13 +190,7 @@ CellularDistances cellular3(std::uint64_t s, const glm::dvec3& p)
                 h = mix64(h + 0x9e3779b97f4a7c15ULL);
                 const double jz = JITTER_MIN + JITTER_SPAN * unit(h);
                 const double dx = x - (a + jx), dy = y - (b + jy), dz = z - (c + jz);
-                const double d2 = dx * dx + dy * dy + dz * dz;
-                if (d2 < f1) {
-                    f2 = f1;
-                    f1 = d2;
-                } else if (d2 < f2) {
-                    f2 = d2;
-                }
+                keepTwoNearest(dx * dx + dy * dy + dz * dz, f1, f2);
             }
         }
     }
@@ -206,13 +211,7 @@ CellularDistances cellular2(std::uint64_t s, const glm::dvec2& p)
             h = mix64(h + 0x9e3779b97f4a7c15ULL);
             const double jy = JITTER_MIN + JITTER_SPAN * unit(h);
             const double dx = x - (a + jx), dy = y - (b + jy);
-            const double d2 = dx * dx + dy * dy;
-            if (d2 < f1) {
-                f2 = f1;
-                f1 = d2;
-            } else if (d2 < f2) {
-                f2 = d2;
-            }
+            keepTwoNearest(dx * dx + dy * dy, f1, f2);
         }
     }
     return {std::sqrt(f1), std::sqrt(f2)};
