@@ -43,3 +43,5 @@ set(OpenGL_GL_PREFERENCE GLVND)
 find_package(OpenGL REQUIRED COMPONENTS OpenGL EGL)
 find_package(PkgConfig REQUIRED)
 pkg_check_modules(EPOXY REQUIRED IMPORTED_TARGET epoxy)
+# Windows with an OpenGL context (strata::render's GlfwContext, strata-view).
+find_package(glfw3 CONFIG REQUIRED)

@@ -12,6 +12,7 @@
 #include <glm/common.hpp>
 #include <glm/exponential.hpp>
 #include <glm/geometric.hpp>
+#include <glm/mat4x4.hpp>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
@@ -38,6 +39,7 @@ namespace strata::shading {
 using vec2 = glm::vec2;
 using vec3 = glm::vec3;
 using vec4 = glm::vec4;
+using mat4 = glm::mat4;
 using ivec2 = glm::ivec2;
 using ivec3 = glm::ivec3;
 using uint = unsigned;
@@ -53,6 +55,7 @@ inline vec4 saturate(vec4 x) { return glm::clamp(x, vec4(0.0f), vec4(1.0f)); }
 
 #include "TriplanarShading.h"
 #include "TriplanarMaterial.h"
+#include "Shadow.h"
 
 } // namespace strata::shading
 

@@ -99,6 +99,7 @@ struct SurfaceOutput
     float metallic;
     float occlusion;
     float smoothness;
+    float height; ///< blended mask B: height (MOHS) or detail mask (MODS); 1 without a mask map
 };
 
 STRATA_INLINE int normalBlendMode(uint features)
@@ -126,9 +127,10 @@ STRATA_FEATURE_FUNCTION SurfaceOutput evaluateSurface(STRATA_MAPS_PARAM SurfaceI
     {
         useTop = n.y > 0.0f;
     }
-    int albedoMapY = useTop ? MAP_TOP_ALBEDO : MAP_ALBEDO;
-    int maskMapY = useTop ? MAP_TOP_MASK : MAP_MASK;
-    int normalMapY = useTop ? MAP_TOP_NORMAL : MAP_NORMAL;
+    // The Y projection's maps are chosen per fragment (top or side) with a
+    // branch around two constant-slot fetches rather than one fetch from a
+    // computed slot: a GLSL compiler then keeps two texture fetches instead
+    // of the sampler's whole slot switch (much less code on llvmpipe).
 
     vec4 one = vec4(1.0f);
     vec4 albedoX = one;
@@ -138,7 +140,11 @@ STRATA_FEATURE_FUNCTION SurfaceOutput evaluateSurface(STRATA_MAPS_PARAM SurfaceI
         albedoX = SAMPLE_MAP(MAP_ALBEDO, uv.x, ddx.x, ddy.x);
     }
     if (need.y > 0.0f) {
-        albedoY = SAMPLE_MAP(albedoMapY, uv.y, ddx.y, ddy.y);
+        if (useTop) {
+            albedoY = SAMPLE_MAP(MAP_TOP_ALBEDO, uv.y, ddx.y, ddy.y);
+        } else {
+            albedoY = SAMPLE_MAP(MAP_ALBEDO, uv.y, ddx.y, ddy.y);
+        }
     }
     if (need.z > 0.0f) {
         albedoZ = SAMPLE_MAP(MAP_ALBEDO, uv.z, ddx.z, ddy.z);
@@ -153,7 +159,11 @@ STRATA_FEATURE_FUNCTION SurfaceOutput evaluateSurface(STRATA_MAPS_PARAM SurfaceI
             maskX = SAMPLE_MAP(MAP_MASK, uv.x, ddx.x, ddy.x);
         }
         if (need.y > 0.0f) {
-            maskY = SAMPLE_MAP(maskMapY, uv.y, ddx.y, ddy.y);
+            if (useTop) {
+                maskY = SAMPLE_MAP(MAP_TOP_MASK, uv.y, ddx.y, ddy.y);
+            } else {
+                maskY = SAMPLE_MAP(MAP_MASK, uv.y, ddx.y, ddy.y);
+            }
         }
         if (need.z > 0.0f) {
             maskZ = SAMPLE_MAP(MAP_MASK, uv.z, ddx.z, ddy.z);
@@ -175,6 +185,7 @@ STRATA_FEATURE_FUNCTION SurfaceOutput evaluateSurface(STRATA_MAPS_PARAM SurfaceI
     o.metallic = saturate(mask.x * m.metallic);
     o.occlusion = mix(1.0f, mask.y, m.occlusionStrength);
     o.smoothness = saturate(mask.w * m.smoothness);
+    o.height = mask.z;
     float detailMask = 1.0f;
     STRATA_IF_FEATURE(FEATURE_MODS)
     {
@@ -225,7 +236,11 @@ STRATA_FEATURE_FUNCTION SurfaceOutput evaluateSurface(STRATA_MAPS_PARAM SurfaceI
                 tangentX = decodeNormal(SAMPLE_MAP(MAP_NORMAL, uv.x, ddx.x, ddy.x), m.normalStrength);
             }
             if (w.y > 0.0f) {
-                tangentY = decodeNormal(SAMPLE_MAP(normalMapY, uv.y, ddx.y, ddy.y), m.normalStrength);
+                if (useTop) {
+                    tangentY = decodeNormal(SAMPLE_MAP(MAP_TOP_NORMAL, uv.y, ddx.y, ddy.y), m.normalStrength);
+                } else {
+                    tangentY = decodeNormal(SAMPLE_MAP(MAP_NORMAL, uv.y, ddx.y, ddy.y), m.normalStrength);
+                }
             }
             if (w.z > 0.0f) {
                 tangentZ = decodeNormal(SAMPLE_MAP(MAP_NORMAL, uv.z, ddx.z, ddy.z), m.normalStrength);
@@ -302,6 +317,65 @@ STRATA_FEATURE_FUNCTION vec3 shadeFragment(STRATA_MAPS_PARAM SurfaceInput s, Mat
 {
     SurfaceOutput o = evaluateSurface STRATA_FEATURE_ARGS(STRATA_MAPS_ARG s, m);
     return toneMap(lightSurface(o, s.viewDir, l, m.fresnelStrength), l.exposure);
+}
+
+// ---------------------------------------------------------------------------
+// Debug views (the viewer's keys): what the material computed, shown as
+// colour instead of the lit result. Pure math on SurfaceOutput, so the CPU
+// renderer can show the same views through shadeDebugFragment().
+
+const int DEBUG_VIEW_SHADED = 0;     ///< the lit, tone-mapped material (no debug view)
+const int DEBUG_VIEW_WEIGHTS = 1;    ///< triplanar blend weights X, Y, Z as red, green, blue
+const int DEBUG_VIEW_NORMALS = 2;    ///< the mapped world normal as n·½ + ½
+const int DEBUG_VIEW_METALLIC = 3;   ///< metallic as grey
+const int DEBUG_VIEW_OCCLUSION = 4;  ///< occlusion (after occlusionStrength) as grey
+const int DEBUG_VIEW_HEIGHT = 5;     ///< mask B (height, or the MODS detail mask) as grey
+const int DEBUG_VIEW_SMOOTHNESS = 6; ///< smoothness (after detail) as grey
+const int DEBUG_VIEW_ALBEDO = 7;     ///< albedo (tinted, with detail), unlit
+const int DEBUG_VIEW_COUNT = 8;
+
+/// The sRGB decoding function, for one encoded value 0..1 (inverse of
+/// linearToSrgb()).
+STRATA_INLINE float srgbToLinear(float c)
+{
+    if (c <= 0.04045f) {
+        return max(c, 0.0f) / 12.92f;
+    }
+    return pow((min(c, 1.0f) + 0.055f) / 1.055f, 2.4f);
+}
+
+/// The colour of debug view `view` (DEBUG_VIEW_*) for a fragment: a linear
+/// display value 0..1 like shadeFragment()'s, so the sRGB encoding stores
+/// the data views' values unchanged (value v becomes byte round(255·v)),
+/// while albedo is shown as the colour it is. DEBUG_VIEW_SHADED and unknown
+/// views give black.
+STRATA_INLINE vec3 debugViewColor(SurfaceOutput o, int view)
+{
+    vec3 v = vec3(0.0f);
+    if (view == DEBUG_VIEW_ALBEDO) {
+        return saturate(o.albedo);
+    }
+    if (view == DEBUG_VIEW_WEIGHTS) {
+        v = o.weights;
+    } else if (view == DEBUG_VIEW_NORMALS) {
+        v = o.normal * 0.5f + vec3(0.5f);
+    } else if (view == DEBUG_VIEW_METALLIC) {
+        v = vec3(o.metallic);
+    } else if (view == DEBUG_VIEW_OCCLUSION) {
+        v = vec3(o.occlusion);
+    } else if (view == DEBUG_VIEW_HEIGHT) {
+        v = vec3(o.height);
+    } else if (view == DEBUG_VIEW_SMOOTHNESS) {
+        v = vec3(o.smoothness);
+    }
+    v = saturate(v);
+    return vec3(srgbToLinear(v.x), srgbToLinear(v.y), srgbToLinear(v.z));
+}
+
+/// A debug view of the material at one fragment (no lighting).
+STRATA_FEATURE_FUNCTION vec3 shadeDebugFragment(STRATA_MAPS_PARAM SurfaceInput s, MaterialParams m, int view)
+{
+    return debugViewColor(evaluateSurface STRATA_FEATURE_ARGS(STRATA_MAPS_ARG s, m), view);
 }
 
 #endif // STRATA_TRIPLANAR_MATERIAL_H

@@ -1,17 +1,42 @@
 // Terrain fragment shader: the triplanar material of TriplanarMaterial.h for
 // the feature set STRATA_FEATURES (defined by the renderer), lit by the
-// minimalist Cook–Torrance BRDF, hemisphere ambient, exposure and ACES.
-// Output is linear; the sRGB framebuffer encodes it.
+// minimalist Cook–Torrance BRDF, hemisphere ambient, exposure and ACES, or
+// one of the debug views (uFrame.debugView). Output is linear; the sRGB
+// framebuffer encodes it.
 
 in vec3 vTexturePosition; // texture space
 in vec3 vNormal;
 in vec3 vPosition;        // metres, relative to the mesh origin
 
-// The nine map slots (MAP_* in TriplanarMaterial.h); sRGB textures sample linear.
-uniform sampler2D uMaps[STRATA_MAP_COUNT];
-uniform MaterialParams uMaterial;
-uniform LightingParams uLighting;
-uniform vec3 uCameraPosition; // relative to the mesh origin
+// std140 blocks, mirrored by render/src/UniformBlocks.h (FrameBlock, binding
+// 0, is in TerrainFrame.glsl).
+layout(std140, binding = 1) uniform MaterialBlock
+{
+    MaterialParams uMaterial;
+};
+layout(std140, binding = 2) uniform LightingBlock
+{
+    LightingParams uLighting;
+};
+
+// The nine map slots (MAP_* in TriplanarMaterial.h) on texture units 0..8;
+// sRGB textures sample linear.
+layout(binding = 0) uniform sampler2D uMaps[STRATA_MAP_COUNT];
+
+// Sun shadows (Shadow.h): the parameters (binding 3, mirrored by
+// shading::ShadowParams, checked in render/src/ShadowSetup.h) and the depth
+// map on unit 9, read texel by texel (no hardware comparison or filtering:
+// the PCF is Shadow.h's, the same on the CPU).
+layout(std140, binding = 3) uniform ShadowBlock
+{
+    ShadowParams uShadow;
+};
+layout(binding = 9) uniform sampler2D uShadowMap;
+
+float shadowMapDepth(int x, int y)
+{
+    return texelFetch(uShadowMap, ivec2(x, y), 0).x;
+}
 
 layout(location = 0) out vec4 fragColor;
 
@@ -34,12 +59,27 @@ vec4 sampleMap(int map, vec2 uv, vec2 dUVdx, vec2 dUVdy)
 
 void main()
 {
+    if (uFrame.wireframePass != 0) {
+        fragColor = uFrame.wireColor;
+        return;
+    }
     float len = length(vNormal);
     SurfaceInput s;
     s.n = len > 1e-12f ? vNormal / len : vec3(0.0f, 1.0f, 0.0f);
     s.p = vTexturePosition;
     s.dpdx = dFdx(vTexturePosition);
     s.dpdy = dFdy(vTexturePosition);
-    s.viewDir = safeNormalize(uCameraPosition - vPosition, s.n);
-    fragColor = vec4(shadeFragment(s, uMaterial, uLighting), 1.0f);
+    s.viewDir = safeNormalize(vec3(uFrame.cameraPosition) - vPosition, s.n);
+    // shadeFragment() and shadeDebugFragment() of TriplanarMaterial.h with
+    // the material evaluated once, so the program holds one copy of it
+    // (this halves llvmpipe's compile time per variant).
+    SurfaceOutput o = evaluateSurface(s, uMaterial);
+    if (uFrame.debugView != DEBUG_VIEW_SHADED) {
+        fragColor = vec4(debugViewColor(o, uFrame.debugView), 1.0f);
+        return;
+    }
+    // The interpolated normal (not the mapped one) biases the shadow lookup.
+    float sun = sunVisibility(uShadow, vPosition, vNormal);
+    LightingParams lit = shadowedLighting(uLighting, sun);
+    fragColor = vec4(toneMap(lightSurface(o, s.viewDir, lit, uMaterial.fresnelStrength), lit.exposure), 1.0f);
 }

@@ -1,13 +1,10 @@
 // Terrain vertex shader. Positions are world metres relative to the mesh
 // origin; the view matrix is relative to the same origin (computed in double
-// on the CPU), so large worlds keep their precision.
+// on the CPU), so large worlds keep their precision. Uniforms: FrameBlock
+// (TerrainFrame.glsl).
 
 layout(location = 0) in vec3 aPosition; // metres, relative to the mesh origin
 layout(location = 1) in vec3 aNormal;   // unit, world space
-
-uniform mat4 uViewProjection;  // projection · view(origin)
-uniform float uMapScale;       // texture repeats per metre
-uniform vec3 uTextureOffset;   // fract(origin · mapScale), computed in double
 
 out vec3 vTexturePosition; // texture space: (world position) · mapScale, mod 1
 out vec3 vNormal;
@@ -15,8 +12,8 @@ out vec3 vPosition;        // metres, relative to the mesh origin
 
 void main()
 {
-    vTexturePosition = aPosition * uMapScale + uTextureOffset;
+    vTexturePosition = aPosition * uFrame.mapScale + vec3(uFrame.textureOffset);
     vNormal = aNormal;
     vPosition = aPosition;
-    gl_Position = uViewProjection * vec4(aPosition, 1.0f);
+    gl_Position = uFrame.viewProjection * vec4(aPosition, 1.0f);
 }

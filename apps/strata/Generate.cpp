@@ -1,5 +1,6 @@
 #include "Generate.h"
 
+#include "CaveView.h"
 #include "Progress.h"
 
 #include <strata/AtomicFile.h>
@@ -18,6 +19,7 @@
 
 #include <fstream>
 #include <iomanip>
+#include <iostream>
 #include <memory>
 #include <sstream>
 
@@ -35,31 +37,6 @@ std::string withThousands(std::uint64_t n)
     return out;
 }
 
-render::Camera makeCamera(const Scene& scene, const meshing::Bounds& bounds, double aspect)
-{
-    const CameraSettings& settings = scene.camera;
-    if (settings.position) {
-        render::Camera camera;
-        camera.position = *settings.position;
-        camera.target = *settings.target;
-        camera.fovYDegrees = settings.fov;
-        const double extent = glm::length(bounds.max - bounds.min);
-        camera.nearPlane = std::max(1e-3, extent * 1e-4);
-        camera.farPlane = glm::length(camera.position - camera.target) + 2.0 * extent + 1.0;
-        return camera;
-    }
-    render::Camera camera = render::orbitCamera(bounds.min, bounds.max, settings.azimuth, settings.elevation,
-                                                settings.fov, aspect);
-    if (settings.zoom != 1.0) {
-        const double distance = glm::length(camera.position - camera.target) / settings.zoom;
-        const double radius = 0.5 * glm::length(bounds.max - bounds.min);
-        camera.position = camera.target + (camera.position - camera.target) / settings.zoom;
-        camera.nearPlane = std::max(distance - radius, distance * 1e-3);
-        camera.farPlane = distance + radius;
-    }
-    return camera;
-}
-
 void writeReport(const GenerateResult& result, const Scene& scene, const GenerateOptions& options,
                  const std::filesystem::path& path)
 {
@@ -71,6 +48,7 @@ void writeReport(const GenerateResult& result, const Scene& scene, const Generat
                         {"max", {scene.region.max.x, scene.region.max.y, scene.region.max.z}}};
     report["active_voxels"] = result.activeVoxels;
     report["evaluated_points"] = result.evaluatedPoints;
+    report["bound_evaluations"] = result.boundEvaluations;
     report["grid_memory_bytes"] = result.gridMemoryBytes;
     report["vertices"] = result.vertices;
     report["triangles"] = result.triangles;
@@ -89,12 +67,21 @@ void writeReport(const GenerateResult& result, const Scene& scene, const Generat
 render::SnapshotOptions makeSnapshotOptions(const Scene& scene, const meshing::TriangleMesh& mesh,
                                             std::optional<int> width, std::optional<int> height)
 {
+    return makeSnapshotOptions(scene, mesh, width, height, SnapshotRequest{});
+}
+
+render::SnapshotOptions makeSnapshotOptions(const Scene& scene, const meshing::TriangleMesh& mesh,
+                                            std::optional<int> width, std::optional<int> height,
+                                            const SnapshotRequest& request, const std::optional<render::Camera>& cave)
+{
     render::SnapshotOptions snapshot;
     snapshot.width = width.value_or(scene.snapshot.width);
     snapshot.height = height.value_or(scene.snapshot.height);
     snapshot.samples = scene.snapshot.samples;
     snapshot.anisotropy = scene.snapshot.anisotropy;
-    snapshot.camera = makeCamera(scene, meshing::worldBounds(mesh), double(snapshot.width) / snapshot.height);
+    snapshot.shadows = scene.snapshot.shadows;
+    snapshot.camera = snapshotCamera(scene, request, meshing::worldBounds(mesh),
+                                     double(snapshot.width) / snapshot.height, cave);
     snapshot.lighting = scene.lighting;
     snapshot.material = buildMaterial(scene.material);
     return snapshot;
@@ -116,6 +103,9 @@ GenerateResult generate(const Scene& scene, const GenerateOptions& options, std:
 {
     StageLog log(out, stdoutIsTerminal(), options.quiet);
     GenerateResult result;
+    if (options.snapshot) {
+        checkSnapshotRequest(options.request); // bad flags: nothing written
+    }
 
     std::error_code ec;
     std::filesystem::create_directories(options.outputDir, ec);
@@ -126,15 +116,13 @@ GenerateResult generate(const Scene& scene, const GenerateOptions& options, std:
     // The GL context first: on a machine without one, fail before the long stages.
     std::unique_ptr<render::EglContext> context;
     double contextSeconds = 0.0;
-    if (options.backend != "gl" && options.backend != "cpu") {
-        throw Error("unknown render backend '" + options.backend + "' (use gl or cpu)");
-    }
-    if (options.snapshot && options.backend == "gl") {
+    if (options.snapshot && options.request.backend != "cpu") {
         log.begin("context");
-        context = render::EglContext::create();
-        result.renderer = context->description();
+        context = openBackend(options.request, std::cerr, result.renderer);
         log.end(result.renderer);
         contextSeconds = log.seconds().at("context");
+    } else if (options.snapshot) {
+        result.renderer = "strata CPU reference renderer";
     }
 
     result.seed = options.seed.value_or(scene.terrain.seed);
@@ -161,9 +149,23 @@ GenerateResult generate(const Scene& scene, const GenerateOptions& options, std:
     grid->setName("terrain");
     result.activeVoxels = grid->activeVoxelCount();
     result.evaluatedPoints = stats.evaluatedPoints;
+    result.boundEvaluations = stats.boundEvaluations;
     result.gridMemoryBytes = grid->memUsage();
     log.end(withThousands(result.activeVoxels) + " active voxels, " +
             withThousands(result.gridMemoryBytes / 1024) + " KiB");
+
+    // The cave view needs the grid; found before any file is written.
+    std::optional<render::Camera> caveCamera;
+    if (options.snapshot && options.request.view == "cave") {
+        log.begin("cave");
+        const CaveView cave = findCaveView(*grid, scene.region.min, scene.region.max);
+        caveCamera = cave.camera;
+        std::ostringstream info;
+        info << std::fixed << std::setprecision(1) << "camera at (" << cave.camera.position.x << ", "
+             << cave.camera.position.y << ", " << cave.camera.position.z << "), " << withThousands(cave.caveCells)
+             << " cells of " << cave.cellSize << " m, " << (cave.looksOut ? "looking out" : "looking along the cave");
+        log.end(info.str());
+    }
 
     log.begin("mesh");
     meshing::GridToMeshOptions meshOptions;
@@ -184,15 +186,27 @@ GenerateResult generate(const Scene& scene, const GenerateOptions& options, std:
 
     if (options.snapshot) {
         log.begin("render");
-        const render::SnapshotOptions snapshot = makeSnapshotOptions(scene, mesh, options.width, options.height);
-
+        const render::SnapshotOptions snapshot =
+            makeSnapshotOptions(scene, mesh, options.width, options.height, options.request, caveCamera);
+        const std::string format = options.request.format.empty() ? "png" : options.request.format;
+        const std::vector<std::filesystem::path> paths =
+            snapshotPaths(options.outputDir / ("snapshot." + format), options.request.turntable);
         const render::MeshView view = meshView(mesh);
-        if (options.backend == "cpu") result.renderer = "strata CPU reference renderer";
-        const render::Image image = options.backend == "cpu" ? render::renderSnapshotCpu(view, snapshot)
-                                                             : render::renderSnapshot(*context, view, snapshot);
-        render::writeImage(image, options.outputDir / "snapshot.png");
-        log.end(std::to_string(image.width) + "x" + std::to_string(image.height) + ", " + options.backend + ", " +
-                render::featureNames(render::materialFeatures(snapshot.material)));
+        std::unique_ptr<render::GlRenderer> renderer;
+        if (context) {
+            renderer = std::make_unique<render::GlRenderer>(*context);
+            renderer->setMesh(view);
+        }
+        render::Image image;
+        for (std::size_t frame = 0; frame < paths.size(); ++frame) {
+            render::SnapshotOptions frameOptions = snapshot;
+            frameOptions.camera = turntableFrame(snapshot.camera, int(frame), int(paths.size()));
+            image = renderer ? renderer->renderImage(frameOptions) : render::renderSnapshotCpu(view, frameOptions);
+            render::writeImage(image, paths[frame]);
+        }
+        log.end(std::to_string(image.width) + "x" + std::to_string(image.height) + ", " + (context ? "gl" : "cpu") +
+                ", " + render::featureNames(render::materialFeatures(snapshot.material)) +
+                (paths.size() > 1 ? ", " + std::to_string(paths.size()) + " frames" : std::string()));
     }
 
     result.timings = log.seconds();

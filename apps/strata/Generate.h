@@ -3,6 +3,7 @@
 /// `strata generate`: scene → grid → mesh → files and snapshot.
 
 #include "Scene.h"
+#include "Snapshot.h"
 
 #include <strata/meshing/TriangleMesh.h>
 #include <strata/render/MeshView.h>
@@ -23,7 +24,9 @@ struct GenerateOptions
     std::optional<std::uint64_t> seed;   ///< overrides the scene's seed
     std::optional<int> width, height;    ///< override the snapshot size
     bool snapshot = true;                ///< render snapshot.png (GL backend: needs EGL)
-    std::string backend = "gl";          ///< snapshot renderer: "gl" (EGL/OpenGL) or "cpu" (reference renderer)
+    /// Snapshot renderer (backend auto|gl|cpu), camera (view preset, flags),
+    /// turntable and format (png|exr): see Snapshot.h.
+    SnapshotRequest request;
     bool writePly = false;               ///< also write terrain.ply
     bool quiet = false;                  ///< no terminal output
     int threads = 0;                     ///< 0 = all cores; recorded in the report
@@ -37,7 +40,8 @@ struct GenerateResult
     std::uint64_t seed = 0;
     double voxelSize = 0.0;
     std::uint64_t activeVoxels = 0;
-    std::uint64_t evaluatedPoints = 0;
+    std::uint64_t evaluatedPoints = 0;  ///< density() + bounds() calls (SampleStats)
+    std::uint64_t boundEvaluations = 0; ///< of those, bounds() calls
     std::uint64_t gridMemoryBytes = 0;
     std::uint64_t vertices = 0;
     std::uint64_t triangles = 0;
@@ -55,10 +59,21 @@ render::MeshView meshView(const meshing::TriangleMesh& mesh);
 render::SnapshotOptions makeSnapshotOptions(const Scene& scene, const meshing::TriangleMesh& mesh,
                                             std::optional<int> width, std::optional<int> height);
 
+/// The same for a snapshot request: its view preset and camera flags on top
+/// of the scene's camera (snapshotCamera()); `cave` is the cave view when
+/// request.view is "cave".
+render::SnapshotOptions makeSnapshotOptions(const Scene& scene, const meshing::TriangleMesh& mesh,
+                                            std::optional<int> width, std::optional<int> height,
+                                            const SnapshotRequest& request,
+                                            const std::optional<render::Camera>& cave = std::nullopt);
+
 /// Runs the whole pipeline and writes DIR/terrain.vdb, DIR/terrain.glb,
-/// (DIR/terrain.ply), DIR/snapshot.png and DIR/report.json, each atomically.
-/// When a snapshot is requested the EGL context is created first, so a
-/// machine without one fails before any work is done.
+/// (DIR/terrain.ply), DIR/snapshot.png (or .exr; or snapshot_000.png …
+/// for a turntable) and DIR/report.json, each atomically.
+/// When a snapshot is requested the snapshot request is checked and the EGL
+/// context created first (backend gl: an error without one; auto: the CPU
+/// renderer, with a notice on stderr), so bad flags write nothing; the cave
+/// view is found before any file is written.
 /// Throws strata::Error on bad input or an unavailable GL context.
 GenerateResult generate(const Scene& scene, const GenerateOptions& options, std::ostream& out);
 

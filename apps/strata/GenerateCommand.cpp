@@ -3,6 +3,7 @@
 #include "Commands.h"
 #include "Generate.h"
 #include "Scene.h"
+#include "SnapshotFlags.h"
 
 #include <strata/Error.h>
 
@@ -61,7 +62,7 @@ struct GenerateArguments
     std::string maxMemory = "8GiB";
     std::string size;
     bool noSnapshot = false;
-    std::string backend = "gl";
+    SnapshotFlags snapshot;
     bool writePly = false;
     bool quiet = false;
 };
@@ -72,7 +73,8 @@ Command registerGenerateCommand(CLI::App& app)
 {
     auto args = std::make_shared<GenerateArguments>();
     CLI::App* generate = app.add_subcommand(
-        "generate", "Generate a terrain: writes DIR/terrain.vdb, DIR/terrain.glb, DIR/snapshot.png, DIR/report.json");
+        "generate", "Generate a terrain: writes DIR/terrain.vdb, DIR/terrain.glb, DIR/snapshot.png (or .exr, or "
+        "snapshot_000.png ... with --turntable), DIR/report.json");
     generate->add_option("scene", args->scenePath, "Scene file (TOML); without one, the embedded default scene")
         ->check(CLI::ExistingFile);
     generate->add_option("-o,--output", args->outputDir, "Output directory (created if missing)")->required();
@@ -83,8 +85,7 @@ Command registerGenerateCommand(CLI::App& app)
     generate->add_option("--threads", args->threads, "Worker threads (0 = all cores); output is identical for any count")
         ->check(CLI::Range(0, 1024));
     generate->add_option("--size", args->size, "Snapshot size WIDTHxHEIGHT (default from the scene, 1280x720)");
-    generate->add_option("--backend", args->backend, "Snapshot renderer: gl (OpenGL through EGL) or cpu (reference renderer, no GL needed)")
-        ->check(CLI::IsMember({"gl", "cpu"}));
+    args->snapshot.add(generate);
     generate->add_flag("--no-snapshot", args->noSnapshot, "Skip the snapshot (no OpenGL/EGL needed)");
     generate->add_flag("--ply", args->writePly, "Also write DIR/terrain.ply (binary PLY)");
     generate->add_flag("-q,--quiet", args->quiet, "Print nothing but errors");
@@ -94,7 +95,7 @@ Command registerGenerateCommand(CLI::App& app)
                 options.outputDir = args->outputDir;
                 options.seed = args->seed;
                 options.snapshot = !args->noSnapshot;
-                options.backend = args->backend;
+                options.request = args->snapshot.request(); // bad values: exit 2 before anything is written
                 options.writePly = args->writePly;
                 options.quiet = args->quiet;
                 options.threads = args->threads;

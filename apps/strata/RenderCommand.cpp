@@ -1,13 +1,16 @@
-// `strata render`: one image of a scene's terrain, or of a mesh file, with
-// the scene's material, camera and lighting, through the CPU reference
-// renderer (default) or OpenGL.
+// `strata render`: one image (or a turntable) of a scene's terrain, or of a
+// mesh file, with the scene's material, camera and lighting, through OpenGL
+// (auto, gl) or the CPU reference renderer (cpu; auto without EGL).
 
 #include "Commands.h"
 #include "Generate.h"
+#include "CaveView.h"
 #include "Scene.h"
+#include "SnapshotFlags.h"
 
 #include <strata/Error.h>
 #include <strata/meshing/GltfIO.h>
+#include <strata/meshing/GridIO.h>
 #include <strata/meshing/PlyIO.h>
 #include <strata/render/CpuRenderer.h>
 #include <strata/render/EglContext.h>
@@ -17,6 +20,7 @@
 
 #include <glm/geometric.hpp>
 
+#include <cctype>
 #include <chrono>
 #include <iomanip>
 #include <iostream>
@@ -24,6 +28,7 @@
 #include <optional>
 #include <regex>
 #include <sstream>
+#include <vector>
 
 namespace strata::app {
 
@@ -34,7 +39,7 @@ struct RenderArguments
     std::string scenePath;
     std::string meshPath;
     std::string output;
-    std::string backend = "cpu";
+    SnapshotFlags snapshot;
     std::string size;
     std::optional<std::uint64_t> seed;
     int threads = 0;
@@ -62,7 +67,7 @@ void computeVertexNormals(meshing::TriangleMesh& mesh)
 /// The scene's terrain mesh, through the generate pipeline (no snapshot)
 /// into a scratch folder beside the output, read back and removed.
 meshing::TriangleMesh terrainMesh(const Scene& scene, std::optional<std::uint64_t> seed,
-                                  const std::filesystem::path& output)
+                                  const std::filesystem::path& output, std::optional<render::Camera>* cave)
 {
     const std::filesystem::path scratch =
         std::filesystem::absolute(output).parent_path() / (".strata-render-" + output.filename().string());
@@ -82,6 +87,10 @@ meshing::TriangleMesh terrainMesh(const Scene& scene, std::optional<std::uint64_
         }
     } cleanup{scratch};
     generate(scene, options, log);
+    if (cave) {
+        const openvdb::FloatGrid::Ptr grid = meshing::readLevelSet(scratch / "terrain.vdb");
+        *cave = findCaveView(*grid, scene.region.min, scene.region.max).camera;
+    }
     return meshing::readGltf(scratch / "terrain.glb");
 }
 
@@ -103,7 +112,8 @@ Command registerRenderCommand(CLI::App& app)
     auto args = std::make_shared<RenderArguments>();
     CLI::App* render = app.add_subcommand(
         "render",
-        "Render one image of a scene's terrain (or of --mesh FILE) with the scene's material, camera and light");
+        "Render one image (or --turntable N frames) of a scene's terrain (or of --mesh FILE) with the scene's "
+        "material, camera and light");
     render->add_option("scene", args->scenePath, "Scene file (TOML); without one, the embedded default scene")
         ->check(CLI::ExistingFile);
     render
@@ -111,10 +121,7 @@ Command registerRenderCommand(CLI::App& app)
                      "Render this mesh (.glb, .gltf, .ply, .obj, .stl) instead of the scene's terrain")
         ->check(CLI::ExistingFile);
     render->add_option("-o,--output", args->output, "Output image (.png, .exr, .tif, .jpg, by extension)")->required();
-    render
-        ->add_option("--backend", args->backend,
-                     "Renderer: cpu (reference renderer, default; no GL needed) or gl (OpenGL through EGL)")
-        ->check(CLI::IsMember({"gl", "cpu"}));
+    args->snapshot.add(render);
     render->add_option("--size", args->size, "Image size WIDTHxHEIGHT (default from the scene, 1280x720)");
     render->add_option("--seed", args->seed, "Override the scene's seed");
     render
@@ -124,6 +131,19 @@ Command registerRenderCommand(CLI::App& app)
 
     return {render, [args]() {
                 using Clock = std::chrono::steady_clock;
+                // Every flag checked before any work: bad values exit 2 with nothing written.
+                const SnapshotRequest request = args->snapshot.request();
+                std::filesystem::path output = args->output;
+                std::string ext = output.extension().string();
+                for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+                if (!request.format.empty() && ext != "." + request.format) {
+                    throw Error("--snapshot-format '" + request.format + "' does not match the output name '" +
+                                args->output + "' (use a ." + request.format + " name)");
+                }
+                if (request.view == "cave" && !args->meshPath.empty()) {
+                    throw Error("--view cave needs the scene's terrain grid: it cannot be used with --mesh '" +
+                                args->meshPath + "'");
+                }
                 const Scene scene = args->scenePath.empty() ? parseScene(defaultSceneText(), "<default scene>")
                                                             : loadScene(args->scenePath);
                 std::optional<int> width, height;
@@ -144,21 +164,36 @@ Command registerRenderCommand(CLI::App& app)
                     threadLimit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
                                                                         std::size_t(args->threads));
                 }
-                // GL first: without a context, fail before the long stages.
-                std::unique_ptr<render::EglContext> context;
-                if (args->backend == "gl") context = render::EglContext::create();
+                // GL first: without a context, fail (gl) or fall back (auto) before the long stages.
+                std::string renderer;
+                std::unique_ptr<render::EglContext> context = openBackend(request, std::cerr, renderer);
 
                 auto t0 = Clock::now();
+                std::optional<render::Camera> cave;
                 const meshing::TriangleMesh mesh =
-                    args->meshPath.empty() ? terrainMesh(scene, args->seed, args->output) : readMesh(args->meshPath);
+                    args->meshPath.empty()
+                        ? terrainMesh(scene, args->seed, args->output, request.view == "cave" ? &cave : nullptr)
+                        : readMesh(args->meshPath);
                 auto t1 = Clock::now();
-                const render::SnapshotOptions snapshot = makeSnapshotOptions(scene, mesh, width, height);
+                const render::SnapshotOptions snapshot = makeSnapshotOptions(scene, mesh, width, height, request, cave);
                 auto t2 = Clock::now();
                 const render::MeshView view = meshView(mesh);
-                const render::Image image = context ? render::renderSnapshot(*context, view, snapshot)
-                                                    : render::renderSnapshotCpu(view, snapshot);
+                const std::vector<std::filesystem::path> paths = snapshotPaths(output, request.turntable);
+                std::unique_ptr<render::GlRenderer> glRenderer;
+                if (context) {
+                    glRenderer = std::make_unique<render::GlRenderer>(*context);
+                    glRenderer->setMesh(view);
+                }
+                std::vector<render::Image> images;
+                for (std::size_t frame = 0; frame < paths.size(); ++frame) {
+                    render::SnapshotOptions frameOptions = snapshot;
+                    frameOptions.camera = turntableFrame(snapshot.camera, int(frame), int(paths.size()));
+                    images.push_back(glRenderer ? glRenderer->renderImage(frameOptions)
+                                                : render::renderSnapshotCpu(view, frameOptions));
+                }
+                const render::Image& image = images.back();
                 auto t3 = Clock::now();
-                render::writeImage(image, args->output);
+                for (std::size_t frame = 0; frame < paths.size(); ++frame) render::writeImage(images[frame], paths[frame]);
                 if (!args->quiet) {
                     auto seconds = [](auto a, auto b) { return std::chrono::duration<double>(b - a).count(); };
                     std::cout << std::fixed << std::setprecision(3)
@@ -167,7 +202,9 @@ Command registerRenderCommand(CLI::App& app)
                               << mesh.triangleCount() << " triangles\n  material  " << std::setw(8) << seconds(t1, t2)
                               << " s   " << render::featureNames(render::materialFeatures(snapshot.material))
                               << "\n  render    " << std::setw(8) << seconds(t2, t3) << " s   " << image.width << "x"
-                              << image.height << ", " << args->backend << std::endl;
+                              << image.height << ", " << (context ? "gl" : "cpu")
+                              << (paths.size() > 1 ? ", " + std::to_string(paths.size()) + " frames" : std::string())
+                              << std::endl;
                 }
                 return 0;
             }};

@@ -188,6 +188,11 @@ Scene parseScene(std::string_view text, const std::string& source)
     scene.snapshot.height = int(snapshot.integer("height", scene.snapshot.height, 1, 16384));
     scene.snapshot.samples = int(snapshot.integer("samples", scene.snapshot.samples, 1, 16));
     scene.snapshot.anisotropy = float(snapshot.number("anisotropy", scene.snapshot.anisotropy, 1.0, 16.0));
+    render::ShadowOptions& shadows = scene.snapshot.shadows;
+    shadows.enabled = snapshot.boolean("shadows", shadows.enabled);
+    shadows.resolution = int(snapshot.integer("shadow_resolution", shadows.resolution, 16, 16384));
+    shadows.normalBias = float(snapshot.number("shadow_normal_bias", shadows.normalBias, 0.0, 16.0));
+    shadows.depthBias = float(snapshot.number("shadow_depth_bias", shadows.depthBias, 0.0, 16.0));
     snapshot.finish();
 
     root.finish();

@@ -5,6 +5,7 @@
 #include "SceneMaterial.h"
 
 #include <strata/render/Material.h>
+#include <strata/render/SnapshotOptions.h>
 #include <strata/terrain/SampleLevelSet.h>
 #include <strata/terrain/TerrainField.h>
 
@@ -36,6 +37,7 @@ struct SnapshotSettings
     int height = 720;
     int samples = 4; ///< MSAA samples
     float anisotropy = 1.0f; ///< 1 = trilinear; up to 16
+    render::ShadowOptions shadows; ///< [snapshot] shadows, shadow_resolution, shadow_normal_bias, shadow_depth_bias
 };
 
 

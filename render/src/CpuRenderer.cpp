@@ -2,6 +2,7 @@
 
 #include "MaterialMaps.h"
 #include "ShadingBridge.h"
+#include "ShadowSetup.h"
 
 #include <strata/Error.h>
 
@@ -51,7 +52,7 @@ struct Triangle
     std::int64_t x[3], y[3]; // fixed point, SUBPIXEL_BITS
     float sx[3], sy[3];      // the same, as float pixels
     float invW[3];
-    float z[3]; // NDC depth
+    float z[3]; // window depth 0.5·z_ndc + 0.5, as GL interpolates it
     glm::vec3 position[3];
     glm::vec3 normal[3];
     float area2;                // twice the signed area in float pixels, > 0
@@ -133,12 +134,27 @@ struct Frame
     CpuMaps maps;
 };
 
-using ShadeFunction = glm::vec3 (*)(const Frame&, const shading::SurfaceInput&);
+using ShadeFunction = glm::vec3 (*)(const Frame&, const shading::SurfaceInput&, const shading::LightingParams&);
 
-template <unsigned FEATURES> glm::vec3 shadeWith(const Frame& frame, const shading::SurfaceInput& s)
+template <unsigned FEATURES>
+glm::vec3 shadeWith(const Frame& frame, const shading::SurfaceInput& s, const shading::LightingParams& lighting)
 {
-    return shading::shadeFragment<FEATURES, CpuMaps>(frame.maps, s, frame.material, frame.lighting);
+    return shading::shadeFragment<FEATURES, CpuMaps>(frame.maps, s, frame.material, lighting);
 }
+
+/// The CPU side of SHADOW_FETCH: a square depth map, stored rows top to
+/// bottom as the rasterizer writes them, read in GL's texel order (y = 0 the
+/// bottom row).
+struct CpuShadowMap
+{
+    std::vector<float> texels;
+    int resolution = 0;
+
+    float depth(int x, int y) const
+    {
+        return texels[std::size_t(resolution - 1 - y) * std::size_t(resolution) + std::size_t(x)];
+    }
+};
 
 /// Exact instantiations for common feature sets (every test folds to a
 /// constant); anything else runs the all-features instantiation, which
@@ -168,48 +184,14 @@ std::uint8_t encode(float linearDisplay)
     return std::uint8_t(std::lround(c * 255.0f));
 }
 
-} // namespace
-
-Image renderSnapshotCpu(const MeshView& mesh, const SnapshotOptions& options)
+/// Clips, projects, snaps and culls the mesh's triangles for a
+/// width × height viewport, `clip` being the vertices in clip space. With
+/// `cullBackFaces` false both windings are kept (the shadow pass). Each
+/// input triangle gives at most 7 (clipping by 6 planes); collected per
+/// chunk, in input order.
+std::vector<Triangle> setupTriangles(const MeshView& mesh, const std::vector<glm::vec4>& clip, int width, int height,
+                                     bool cullBackFaces)
 {
-    checkSnapshotOptions(options);
-    for (std::size_t i = 0; i < mesh.indexCount; ++i) {
-        if (mesh.indices[i] >= mesh.vertexCount) {
-            throw Error("snapshot: mesh index " + std::to_string(i) + " is " + std::to_string(mesh.indices[i]) +
-                        ", beyond the " + std::to_string(mesh.vertexCount) + " vertices");
-        }
-    }
-    const int width = options.width;
-    const int height = options.height;
-    const Material& material = options.material;
-    const std::array<TexturePtr, 9> textures = detail::resolveMaps(material);
-
-    Frame frame;
-    frame.width = width;
-    frame.height = height;
-    frame.mapScale = material.mapScale;
-    const glm::dvec3 originScaled = mesh.origin * double(material.mapScale);
-    frame.textureOffset = glm::vec3(originScaled - glm::floor(originScaled));
-    frame.cameraPosition = glm::vec3(options.camera.position - mesh.origin);
-    frame.material = detail::toShading(material);
-    frame.lighting = detail::toShading(options.lighting);
-    for (std::size_t i = 0; i < 9; ++i) frame.maps.maps[i] = textures[i].get();
-    frame.maps.features = materialFeatures(material);
-    const ShadeFunction shade = shadeFunctionFor(frame.maps.features);
-
-    const glm::mat4 viewProjection =
-        projectionMatrix(options.camera, double(width) / double(height)) * viewMatrix(options.camera, mesh.origin);
-
-    // Vertices to clip space.
-    std::vector<glm::vec4> clip(mesh.vertexCount);
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, mesh.vertexCount), [&](const auto& r) {
-        for (std::size_t i = r.begin(); i != r.end(); ++i) {
-            clip[i] = viewProjection * glm::vec4(mesh.positions[i], 1.0f);
-        }
-    });
-
-    // Triangles: clip, project, snap, cull. Each input triangle gives at most
-    // 7 (clipping by 6 planes); collected per chunk in input order.
     const std::size_t triangleCount = mesh.indexCount / 3;
     const glm::vec4 planes[6] = {{0, 0, 1, 1},     {0, 0, -1, 1},     {-1, 0, 0, GUARD},
                                  {1, 0, 0, GUARD}, {0, -1, 0, GUARD}, {0, 1, 0, GUARD}};
@@ -253,16 +235,17 @@ Image renderSnapshotCpu(const MeshView& mesh, const SnapshotOptions& options)
                 fx[k] = std::llround(double(wx) * SUBPIXEL);
                 fy[k] = std::llround(double(float(height) - wy) * SUBPIXEL);
                 invW[k] = iw;
-                z[k] = v.z * iw;
+                z[k] = (v.z * iw) * 0.5f + 0.5f;
             }
             for (int k = 1; k + 1 < count; ++k) {
                 const int ids[3] = {0, k, k + 1};
                 // In image space (y down) a GL front face (CCW, y up) is clockwise: edge(0,1,2) < 0.
                 const std::int64_t area = edge(fx[ids[0]], fy[ids[0]], fx[ids[1]], fy[ids[1]], fx[ids[2]], fy[ids[2]]);
-                if (area >= 0) continue; // back-facing or degenerate
+                if (area == 0 || (area > 0 && cullBackFaces)) continue; // degenerate or back-facing
                 Triangle tri;
-                // Reorder to a positive area: 0, 2, 1.
-                const int order[3] = {ids[0], ids[2], ids[1]};
+                // Reorder to a positive area: 0, 2, 1 for front faces.
+                const int front[3] = {ids[0], ids[2], ids[1]};
+                const int* order = area < 0 ? front : ids;
                 for (int m = 0; m < 3; ++m) {
                     const int o = order[m];
                     tri.x[m] = fx[o];
@@ -274,7 +257,7 @@ Image renderSnapshotCpu(const MeshView& mesh, const SnapshotOptions& options)
                     tri.position[m] = polygon[current][o].position;
                     tri.normal[m] = polygon[current][o].normal;
                 }
-                tri.area2 = float(-area) / (SUBPIXEL * SUBPIXEL);
+                tri.area2 = float(area < 0 ? -area : area) / (SUBPIXEL * SUBPIXEL);
                 const std::int64_t half = 1 << (SUBPIXEL_BITS - 1);
                 auto lo = [&](const std::int64_t* v) { return std::min({v[0], v[1], v[2]}); };
                 auto hi = [&](const std::int64_t* v) { return std::max({v[0], v[1], v[2]}); };
@@ -295,19 +278,161 @@ Image renderSnapshotCpu(const MeshView& mesh, const SnapshotOptions& options)
         triangles.insert(triangles.end(), chunk.begin(), chunk.end());
         std::vector<Triangle>().swap(chunk);
     }
+    return triangles;
+}
 
-    // Bin into tiles, in triangle order (serial: deterministic).
-    const int tilesX = (width + TILE - 1) / TILE;
-    const int tilesY = (height + TILE - 1) / TILE;
-    std::vector<std::vector<std::uint32_t>> bins(std::size_t(tilesX) * std::size_t(tilesY));
+constexpr std::uint32_t NONE = std::numeric_limits<std::uint32_t>::max();
+
+/// Triangles binned into TILE × TILE tiles, in triangle order.
+struct Bins
+{
+    int tilesX = 0, tilesY = 0;
+    std::vector<std::vector<std::uint32_t>> tiles;
+};
+
+Bins binTriangles(const std::vector<Triangle>& triangles, int width, int height)
+{
+    // Serial: deterministic order.
+    Bins bins;
+    bins.tilesX = (width + TILE - 1) / TILE;
+    bins.tilesY = (height + TILE - 1) / TILE;
+    bins.tiles.resize(std::size_t(bins.tilesX) * std::size_t(bins.tilesY));
     for (std::size_t i = 0; i < triangles.size(); ++i) {
         const Triangle& t = triangles[i];
         for (int ty = t.minY / TILE; ty <= t.maxY / TILE; ++ty) {
             for (int tx = t.minX / TILE; tx <= t.maxX / TILE; ++tx) {
-                bins[std::size_t(ty) * std::size_t(tilesX) + std::size_t(tx)].push_back(std::uint32_t(i));
+                bins.tiles[std::size_t(ty) * std::size_t(bins.tilesX) + std::size_t(tx)].push_back(std::uint32_t(i));
             }
         }
     }
+    return bins;
+}
+
+/// Visibility in one tile [x0, x1) × [y0, y1): GL's top-left rule on pixel
+/// centres, window depth interpolated linearly in screen space, GL_LESS
+/// against a buffer cleared to 1. Fills depth[] and id[] (TILE-strided).
+void resolveTile(const std::vector<Triangle>& triangles, const std::vector<std::uint32_t>& bin, int x0, int y0, int x1,
+                 int y1, float* depth, std::uint32_t* id)
+{
+    std::fill(depth, depth + TILE * TILE, 1.0f);
+    std::fill(id, id + TILE * TILE, NONE);
+    for (std::uint32_t index : bin) {
+        const Triangle& t = triangles[index];
+        const bool tl0 = isTopLeft(t.x[1], t.y[1], t.x[2], t.y[2]);
+        const bool tl1 = isTopLeft(t.x[2], t.y[2], t.x[0], t.y[0]);
+        const bool tl2 = isTopLeft(t.x[0], t.y[0], t.x[1], t.y[1]);
+        const int bx0 = std::max(x0, t.minX), bx1 = std::min(x1 - 1, t.maxX);
+        const int by0 = std::max(y0, t.minY), by1 = std::min(y1 - 1, t.maxY);
+        for (int py = by0; py <= by1; ++py) {
+            const std::int64_t cy = (std::int64_t(py) << SUBPIXEL_BITS) + (1 << (SUBPIXEL_BITS - 1));
+            for (int px = bx0; px <= bx1; ++px) {
+                const std::int64_t cx = (std::int64_t(px) << SUBPIXEL_BITS) + (1 << (SUBPIXEL_BITS - 1));
+                const std::int64_t e0 = edge(t.x[1], t.y[1], t.x[2], t.y[2], cx, cy);
+                const std::int64_t e1 = edge(t.x[2], t.y[2], t.x[0], t.y[0], cx, cy);
+                const std::int64_t e2 = edge(t.x[0], t.y[0], t.x[1], t.y[1], cx, cy);
+                if (!((e0 > 0 || (e0 == 0 && tl0)) && (e1 > 0 || (e1 == 0 && tl1)) && (e2 > 0 || (e2 == 0 && tl2)))) {
+                    continue;
+                }
+                const float fxp = float(px) + 0.5f;
+                const float fyp = float(py) + 0.5f;
+                const float l0 =
+                    ((t.sx[2] - t.sx[1]) * (fyp - t.sy[1]) - (t.sy[2] - t.sy[1]) * (fxp - t.sx[1])) / t.area2;
+                const float l1 =
+                    ((t.sx[0] - t.sx[2]) * (fyp - t.sy[2]) - (t.sy[0] - t.sy[2]) * (fxp - t.sx[2])) / t.area2;
+                const float z = l0 * t.z[0] + l1 * t.z[1] + (1.0f - l0 - l1) * t.z[2];
+                if (z < 0.0f || z > 1.0f) continue;
+                const int k = (py - y0) * TILE + (px - x0);
+                if (z < depth[k]) {
+                    depth[k] = z;
+                    id[k] = index;
+                }
+            }
+        }
+    }
+}
+
+/// The sun's depth map (shaders/Shadow.h, step 1), rasterized like any view:
+/// resolution², rows top to bottom, 1 where nothing is seen.
+CpuShadowMap renderShadowMap(const MeshView& mesh, const shading::ShadowParams& sp)
+{
+    CpuShadowMap map;
+    map.resolution = sp.resolution;
+    map.texels.assign(std::size_t(sp.resolution) * std::size_t(sp.resolution), 1.0f);
+    std::vector<glm::vec4> clip(mesh.vertexCount);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, mesh.vertexCount), [&](const auto& r) {
+        for (std::size_t i = r.begin(); i != r.end(); ++i) {
+            clip[i] = sp.lightViewProjection * glm::vec4(mesh.positions[i], 1.0f);
+        }
+    });
+    const int size = sp.resolution;
+    const std::vector<Triangle> triangles = setupTriangles(mesh, clip, size, size, false);
+    const Bins bins = binTriangles(triangles, size, size);
+    tbb::parallel_for(0, bins.tilesX * bins.tilesY, [&](int tileIndex) {
+        const int x0 = (tileIndex % bins.tilesX) * TILE;
+        const int y0 = (tileIndex / bins.tilesX) * TILE;
+        const int x1 = std::min(size, x0 + TILE);
+        const int y1 = std::min(size, y0 + TILE);
+        float depth[TILE * TILE];
+        std::uint32_t id[TILE * TILE];
+        resolveTile(triangles, bins.tiles[std::size_t(tileIndex)], x0, y0, x1, y1, depth, id);
+        for (int py = y0; py < y1; ++py) {
+            std::copy_n(depth + (py - y0) * TILE, x1 - x0,
+                        map.texels.data() + std::size_t(py) * std::size_t(size) + x0);
+        }
+    });
+    return map;
+}
+
+} // namespace
+
+Image renderSnapshotCpu(const MeshView& mesh, const SnapshotOptions& options)
+{
+    checkSnapshotOptions(options);
+    for (std::size_t i = 0; i < mesh.indexCount; ++i) {
+        if (mesh.indices[i] >= mesh.vertexCount) {
+            throw Error("snapshot: mesh index " + std::to_string(i) + " is " + std::to_string(mesh.indices[i]) +
+                        ", beyond the " + std::to_string(mesh.vertexCount) + " vertices");
+        }
+    }
+    const int width = options.width;
+    const int height = options.height;
+    const Material& material = options.material;
+    const std::array<TexturePtr, 9> textures = detail::resolveMaps(material);
+
+    Frame frame;
+    frame.width = width;
+    frame.height = height;
+    frame.mapScale = material.mapScale;
+    const glm::dvec3 originScaled = mesh.origin * double(material.mapScale);
+    frame.textureOffset = glm::vec3(originScaled - glm::floor(originScaled));
+    frame.cameraPosition = glm::vec3(options.camera.position - mesh.origin);
+    frame.material = detail::toShading(material);
+    frame.lighting = detail::toShading(options.lighting);
+    for (std::size_t i = 0; i < 9; ++i) frame.maps.maps[i] = textures[i].get();
+    frame.maps.features = effectiveFeatures(material, options.featureMask);
+    const ShadeFunction shade = shadeFunctionFor(frame.maps.features);
+    const int debugView = int(options.debugView);
+
+    // Shadow pass.
+    const shading::ShadowParams shadow =
+        detail::makeShadowParams(detail::meshBounds(mesh), options.lighting, options.shadows);
+    CpuShadowMap shadowMap;
+    if (shadow.enabled != 0 && debugView == shading::DEBUG_VIEW_SHADED) { // debug views are unlit
+        shadowMap = renderShadowMap(mesh, shadow);
+    }
+
+    const glm::mat4 viewProjection =
+        projectionMatrix(options.camera, double(width) / double(height)) * viewMatrix(options.camera, mesh.origin);
+
+    // Vertices to clip space.
+    std::vector<glm::vec4> clip(mesh.vertexCount);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, mesh.vertexCount), [&](const auto& r) {
+        for (std::size_t i = r.begin(); i != r.end(); ++i) {
+            clip[i] = viewProjection * glm::vec4(mesh.positions[i], 1.0f);
+        }
+    });
+    const std::vector<Triangle> triangles = setupTriangles(mesh, clip, width, height, true);
+    const Bins bins = binTriangles(triangles, width, height);
 
     Image image;
     image.width = width;
@@ -315,53 +440,15 @@ Image renderSnapshotCpu(const MeshView& mesh, const SnapshotOptions& options)
     image.pixels.resize(std::size_t(width) * std::size_t(height) * 4);
     const glm::vec3 sky = options.lighting.skyColor;
     const std::uint8_t skyBytes[4] = {encode(sky.r), encode(sky.g), encode(sky.b), 255};
-    constexpr std::uint32_t NONE = std::numeric_limits<std::uint32_t>::max();
 
-    tbb::parallel_for(0, tilesX * tilesY, [&](int tileIndex) {
-        const int x0 = (tileIndex % tilesX) * TILE;
-        const int y0 = (tileIndex / tilesX) * TILE;
+    tbb::parallel_for(0, bins.tilesX * bins.tilesY, [&](int tileIndex) {
+        const int x0 = (tileIndex % bins.tilesX) * TILE;
+        const int y0 = (tileIndex / bins.tilesX) * TILE;
         const int x1 = std::min(width, x0 + TILE);
         const int y1 = std::min(height, y0 + TILE);
         float depth[TILE * TILE];
         std::uint32_t id[TILE * TILE];
-        std::fill(std::begin(depth), std::end(depth), std::numeric_limits<float>::infinity());
-        std::fill(std::begin(id), std::end(id), NONE);
-
-        // Visibility.
-        for (std::uint32_t index : bins[std::size_t(tileIndex)]) {
-            const Triangle& t = triangles[index];
-            const bool tl0 = isTopLeft(t.x[1], t.y[1], t.x[2], t.y[2]);
-            const bool tl1 = isTopLeft(t.x[2], t.y[2], t.x[0], t.y[0]);
-            const bool tl2 = isTopLeft(t.x[0], t.y[0], t.x[1], t.y[1]);
-            const int bx0 = std::max(x0, t.minX), bx1 = std::min(x1 - 1, t.maxX);
-            const int by0 = std::max(y0, t.minY), by1 = std::min(y1 - 1, t.maxY);
-            for (int py = by0; py <= by1; ++py) {
-                const std::int64_t cy = (std::int64_t(py) << SUBPIXEL_BITS) + (1 << (SUBPIXEL_BITS - 1));
-                for (int px = bx0; px <= bx1; ++px) {
-                    const std::int64_t cx = (std::int64_t(px) << SUBPIXEL_BITS) + (1 << (SUBPIXEL_BITS - 1));
-                    const std::int64_t e0 = edge(t.x[1], t.y[1], t.x[2], t.y[2], cx, cy);
-                    const std::int64_t e1 = edge(t.x[2], t.y[2], t.x[0], t.y[0], cx, cy);
-                    const std::int64_t e2 = edge(t.x[0], t.y[0], t.x[1], t.y[1], cx, cy);
-                    if (!((e0 > 0 || (e0 == 0 && tl0)) && (e1 > 0 || (e1 == 0 && tl1)) &&
-                          (e2 > 0 || (e2 == 0 && tl2)))) {
-                        continue;
-                    }
-                    const float fxp = float(px) + 0.5f;
-                    const float fyp = float(py) + 0.5f;
-                    const float l0 =
-                        ((t.sx[2] - t.sx[1]) * (fyp - t.sy[1]) - (t.sy[2] - t.sy[1]) * (fxp - t.sx[1])) / t.area2;
-                    const float l1 =
-                        ((t.sx[0] - t.sx[2]) * (fyp - t.sy[2]) - (t.sy[0] - t.sy[2]) * (fxp - t.sx[2])) / t.area2;
-                    const float zNdc = l0 * t.z[0] + l1 * t.z[1] + (1.0f - l0 - l1) * t.z[2];
-                    if (zNdc < -1.0f || zNdc > 1.0f) continue;
-                    const int k = (py - y0) * TILE + (px - x0);
-                    if (zNdc < depth[k]) {
-                        depth[k] = zNdc;
-                        id[k] = index;
-                    }
-                }
-            }
-        }
+        resolveTile(triangles, bins.tiles[std::size_t(tileIndex)], x0, y0, x1, y1, depth, id);
 
         // Shading, in 2×2 quads (tile origins are even).
         for (int py = y0; py < y1; ++py) {
@@ -395,7 +482,14 @@ Image renderSnapshotCpu(const MeshView& mesh, const SnapshotOptions& options)
                 s.dpdy = py == qy ? dy : -dy;
                 s.n = shading::safeNormalize(self.normal, glm::vec3(0.0f, 1.0f, 0.0f));
                 s.viewDir = shading::safeNormalize(frame.cameraPosition - self.position, s.n);
-                const glm::vec3 c = shade(frame, s);
+                glm::vec3 c;
+                if (debugView != shading::DEBUG_VIEW_SHADED) {
+                    c = shading::shadeDebugFragment<feature::ALL, CpuMaps>(frame.maps, s, frame.material, debugView);
+                } else {
+                    // The interpolated (not the normal-mapped) normal biases the lookup.
+                    const float visibility = shading::sunVisibility(shadowMap, shadow, self.position, self.normal);
+                    c = shade(frame, s, shading::shadowedLighting(frame.lighting, visibility));
+                }
                 out[0] = encode(c.r);
                 out[1] = encode(c.g);
                 out[2] = encode(c.b);

@@ -1,290 +1,61 @@
 #include <strata/render/GlRenderer.h>
 
 #include <strata/Error.h>
-#include <strata/render/EglContext.h>
+#include <strata/render/GlContext.h>
 
+#include "GlProgram.h"
 #include "MaterialMaps.h"
 #include "ShadingBridge.h"
+#include "ShadowSetup.h"
+#include "UniformBlocks.h"
 #include <strata/shaders/EmbeddedShaders.h>
 
 #include <epoxy/gl.h>
 
 #include <glm/geometric.hpp>
-#include <glm/gtc/type_ptr.hpp>
 
 #include <algorithm>
 #include <array>
 #include <cassert>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <limits>
+#include <map>
 #include <string>
 #include <utility>
 #include <vector>
 
 namespace strata::render {
 
+using detail::GlObject;
+
+static_assert(int(DebugView::Shaded) == shading::DEBUG_VIEW_SHADED);
+static_assert(int(DebugView::TriplanarWeights) == shading::DEBUG_VIEW_WEIGHTS);
+static_assert(int(DebugView::WorldNormals) == shading::DEBUG_VIEW_NORMALS);
+static_assert(int(DebugView::Metallic) == shading::DEBUG_VIEW_METALLIC);
+static_assert(int(DebugView::Occlusion) == shading::DEBUG_VIEW_OCCLUSION);
+static_assert(int(DebugView::Height) == shading::DEBUG_VIEW_HEIGHT);
+static_assert(int(DebugView::Smoothness) == shading::DEBUG_VIEW_SMOOTHNESS);
+static_assert(int(DebugView::Albedo) == shading::DEBUG_VIEW_ALBEDO);
+static_assert(DEBUG_VIEW_COUNT == shading::DEBUG_VIEW_COUNT);
+static_assert(detail::MATERIAL_MAP_UNITS == STRATA_MAP_COUNT);
+
 namespace {
 
-// ---------------------------------------------------------------------------
-// Small RAII owner of one GL object name.
-
-class GlObject
+float driverMaxAnisotropy()
 {
-public:
-    using Deleter = void (*)(GLuint);
-
-    GlObject() = default;
-    GlObject(GLuint id, Deleter deleter) : mId(id), mDeleter(deleter) {}
-    ~GlObject() { reset(); }
-    GlObject(GlObject&& other) noexcept : mId(std::exchange(other.mId, 0)), mDeleter(other.mDeleter) {}
-    GlObject& operator=(GlObject&& other) noexcept
-    {
-        if (this != &other) {
-            reset();
-            mId = std::exchange(other.mId, 0);
-            mDeleter = other.mDeleter;
-        }
-        return *this;
+    if (epoxy_gl_version() < 46 && !epoxy_has_gl_extension("GL_EXT_texture_filter_anisotropic") &&
+        !epoxy_has_gl_extension("GL_ARB_texture_filter_anisotropic")) {
+        return 1.0f;
     }
-    GlObject(const GlObject&) = delete;
-    GlObject& operator=(const GlObject&) = delete;
-
-    GLuint id() const { return mId; }
-
-    void reset()
-    {
-        if (mId != 0 && mDeleter) {
-            mDeleter(mId);
-        }
-        mId = 0;
-    }
-
-private:
-    GLuint mId = 0;
-    Deleter mDeleter = nullptr;
-};
-
-GlObject createBuffer()
-{
-    GLuint id = 0;
-    glCreateBuffers(1, &id);
-    return {id, [](GLuint i) { glDeleteBuffers(1, &i); }};
+    GLfloat maximum = 1.0f;
+    glGetFloatv(GL_MAX_TEXTURE_MAX_ANISOTROPY_EXT, &maximum);
+    detail::clearGlErrors();
+    return std::max(maximum, 1.0f);
 }
 
-GlObject createVertexArray()
-{
-    GLuint id = 0;
-    glCreateVertexArrays(1, &id);
-    return {id, [](GLuint i) { glDeleteVertexArrays(1, &i); }};
-}
-
-GlObject createTexture2D()
-{
-    GLuint id = 0;
-    glCreateTextures(GL_TEXTURE_2D, 1, &id);
-    return {id, [](GLuint i) { glDeleteTextures(1, &i); }};
-}
-
-GlObject createRenderbuffer()
-{
-    GLuint id = 0;
-    glCreateRenderbuffers(1, &id);
-    return {id, [](GLuint i) { glDeleteRenderbuffers(1, &i); }};
-}
-
-GlObject createFramebuffer()
-{
-    GLuint id = 0;
-    glCreateFramebuffers(1, &id);
-    return {id, [](GLuint i) { glDeleteFramebuffers(1, &i); }};
-}
-
-// ---------------------------------------------------------------------------
-// Errors.
-
-std::string glErrorName(GLenum error)
-{
-    switch (error) {
-    case GL_INVALID_ENUM:
-        return "GL_INVALID_ENUM";
-    case GL_INVALID_VALUE:
-        return "GL_INVALID_VALUE";
-    case GL_INVALID_OPERATION:
-        return "GL_INVALID_OPERATION";
-    case GL_INVALID_FRAMEBUFFER_OPERATION:
-        return "GL_INVALID_FRAMEBUFFER_OPERATION";
-    case GL_OUT_OF_MEMORY:
-        return "GL_OUT_OF_MEMORY";
-    case GL_STACK_UNDERFLOW:
-        return "GL_STACK_UNDERFLOW";
-    case GL_STACK_OVERFLOW:
-        return "GL_STACK_OVERFLOW";
-    default:
-        return "GL error " + std::to_string(error);
-    }
-}
-
-/// Throws strata::Error naming `what` when GL has recorded an error.
-void checkGl(const char* what)
-{
-    GLenum error = glGetError();
-    if (error == GL_NO_ERROR) {
-        return;
-    }
-    std::string names = glErrorName(error);
-    // Drain the queue (bounded: a lost context may report forever).
-    for (int i = 0; i < 8 && (error = glGetError()) != GL_NO_ERROR; ++i) {
-        names += ", " + glErrorName(error);
-    }
-    throw Error("OpenGL error while " + std::string(what) + ": " + names);
-}
-
-void clearGlErrors()
-{
-    for (int i = 0; i < 64 && glGetError() != GL_NO_ERROR; ++i) {
-    }
-}
-
-/// GLSL logs locate messages as "<string>:<line>(<column>)" (Mesa) or
-/// "<string>(<line>)" (NVIDIA). The embedded programs number file N's lines
-/// from N·SOURCE_LINE_BASE + 1 (Mesa ignores the string number of #line), so
-/// the line alone says which file: put the file names back. The log becomes
-/// one line, of the errors alone when there are any.
-std::string readableLog(const std::string& log)
-{
-    auto digitsAt = [](const std::string& s, std::size_t from) {
-        std::size_t end = from;
-        while (end < s.size() && s[end] >= '0' && s[end] <= '9') {
-            ++end;
-        }
-        return end;
-    };
-    std::vector<std::string> errors;
-    std::vector<std::string> others;
-    std::size_t start = 0;
-    while (start < log.size()) {
-        std::size_t end = log.find('\n', start);
-        if (end == std::string::npos) {
-            end = log.size();
-        }
-        std::string line = log.substr(start, end - start);
-        start = end + 1;
-        while (!line.empty() && (line.back() == '\r' || line.back() == ' ')) {
-            line.pop_back();
-        }
-        if (line.empty()) {
-            continue;
-        }
-        const std::size_t stringEnd = digitsAt(line, 0);
-        if (stringEnd > 0 && stringEnd + 1 < line.size() && (line[stringEnd] == ':' || line[stringEnd] == '(')) {
-            const std::size_t lineEnd = digitsAt(line, stringEnd + 1);
-            if (lineEnd > stringEnd + 1 && lineEnd - stringEnd < 10) {
-                const long number = std::stol(line.substr(stringEnd + 1, lineEnd - stringEnd - 1));
-                const auto file = std::size_t(number / shaders::SOURCE_LINE_BASE);
-                if (file < shaders::SOURCE_NAME_COUNT) {
-                    line = shaders::SOURCE_NAMES[file] + line.substr(stringEnd, 1) +
-                           std::to_string(number % shaders::SOURCE_LINE_BASE) + line.substr(lineEnd);
-                }
-            }
-        }
-        (line.find("error") != std::string::npos ? errors : others).push_back(line);
-    }
-    // Errors only, when there are any: the warnings that follow them are noise.
-    std::string out;
-    for (const std::string& line : errors.empty() ? others : errors) {
-        out += (out.empty() ? "" : " | ") + line;
-    }
-    return out.empty() ? "(empty log)" : out;
-}
-
-GlObject compileShader(GLenum stage, const char* source, const char* name)
-{
-    GLuint id = glCreateShader(stage);
-    GlObject shader(id, [](GLuint i) { glDeleteShader(i); });
-    glShaderSource(id, 1, &source, nullptr);
-    glCompileShader(id);
-    GLint ok = GL_FALSE;
-    glGetShaderiv(id, GL_COMPILE_STATUS, &ok);
-    if (!ok) {
-        GLint length = 0;
-        glGetShaderiv(id, GL_INFO_LOG_LENGTH, &length);
-        std::string log(std::size_t(std::max(length, 1)), '\0');
-        glGetShaderInfoLog(id, GLsizei(log.size()), nullptr, log.data());
-        log.resize(std::strlen(log.c_str()));
-        throw Error(std::string("GLSL compile error in the ") + name + " shader: " + readableLog(log));
-    }
-    return shader;
-}
-
-GlObject linkProgram(const GlObject& vertex, const GlObject& fragment)
-{
-    GLuint id = glCreateProgram();
-    GlObject program(id, [](GLuint i) { glDeleteProgram(i); });
-    glAttachShader(id, vertex.id());
-    glAttachShader(id, fragment.id());
-    glLinkProgram(id);
-    GLint ok = GL_FALSE;
-    glGetProgramiv(id, GL_LINK_STATUS, &ok);
-    if (!ok) {
-        GLint length = 0;
-        glGetProgramiv(id, GL_INFO_LOG_LENGTH, &length);
-        std::string log(std::size_t(std::max(length, 1)), '\0');
-        glGetProgramInfoLog(id, GLsizei(log.size()), nullptr, log.data());
-        log.resize(std::strlen(log.c_str()));
-        throw Error("GLSL link error in the terrain program: " + readableLog(log));
-    }
-    glDetachShader(id, vertex.id());
-    glDetachShader(id, fragment.id());
-    return program;
-}
-
-// ---------------------------------------------------------------------------
-// Inputs.
-
-void checkOptions(const MeshView& mesh, const SnapshotOptions& options)
-{
-    checkSnapshotOptions(options);
-    assert(mesh.indexCount % 3 == 0);
-    assert(mesh.vertexCount == 0 || (mesh.positions && mesh.normals));
-    assert(mesh.indexCount == 0 || mesh.indices);
-    if (mesh.indexCount > std::size_t(std::numeric_limits<GLsizei>::max())) {
-        throw Error("snapshot: mesh has too many indices for one draw (" + std::to_string(mesh.indexCount) + ")");
-    }
-    for (std::size_t i = 0; i < mesh.indexCount; ++i) {
-        if (mesh.indices[i] >= mesh.vertexCount) {
-            throw Error("snapshot: mesh index " + std::to_string(i) + " is " + std::to_string(mesh.indices[i]) +
-                        ", beyond the " + std::to_string(mesh.vertexCount) + " vertices");
-        }
-    }
-}
-
-/// Uploads a Texture's mip chain as built on the CPU (the same texels the
-/// CPU sampler filters): sRGB8_ALPHA8 or RGBA8 by kind, repeating,
-/// trilinear (anisotropic where asked). Rows are already bottom to top.
-GlObject uploadTexture(const Texture& texture, float anisotropy)
-{
-    GlObject object = createTexture2D();
-    const GLuint id = object.id();
-    const auto levels = GLsizei(texture.levels.size());
-    glTextureStorage2D(id, levels, texture.srgb ? GL_SRGB8_ALPHA8 : GL_RGBA8, texture.width(), texture.height());
-    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-    for (GLsizei level = 0; level < levels; ++level) {
-        const Texture::Level& l = texture.levels[std::size_t(level)];
-        glTextureSubImage2D(id, level, 0, 0, l.width, l.height, GL_RGBA, GL_UNSIGNED_BYTE, l.texels.data());
-    }
-    glTextureParameteri(id, GL_TEXTURE_MAX_LEVEL, levels - 1);
-    glTextureParameteri(id, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
-    glTextureParameteri(id, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    glTextureParameteri(id, GL_TEXTURE_WRAP_S, GL_REPEAT);
-    glTextureParameteri(id, GL_TEXTURE_WRAP_T, GL_REPEAT);
-    if (anisotropy > 1.0f) {
-        glTextureParameterf(id, GL_TEXTURE_MAX_ANISOTROPY_EXT, anisotropy);
-    }
-    checkGl("uploading a texture");
-    return object;
-}
 
 /// The fragment program for one feature set: STRATA_FEATURES defined right
 /// after the #version line.
@@ -296,16 +67,11 @@ std::string fragmentSource(std::uint32_t features)
     return source;
 }
 
-float maxAnisotropy()
+std::string hex(unsigned value)
 {
-    if (epoxy_gl_version() < 46 && !epoxy_has_gl_extension("GL_EXT_texture_filter_anisotropic") &&
-        !epoxy_has_gl_extension("GL_ARB_texture_filter_anisotropic")) {
-        return 1.0f;
-    }
-    GLfloat maximum = 1.0f;
-    glGetFloatv(GL_MAX_TEXTURE_MAX_ANISOTROPY_EXT, &maximum);
-    clearGlErrors();
-    return maximum;
+    char buffer[16];
+    std::snprintf(buffer, sizeof(buffer), "%x", value);
+    return buffer;
 }
 
 struct RenderTarget
@@ -313,38 +79,38 @@ struct RenderTarget
     GlObject framebuffer;
     GlObject color;
     GlObject depth;
+    int width = 0;
+    int height = 0;
+    int samples = 0;
 };
 
 RenderTarget createRenderTarget(int width, int height, int samples, bool withDepth)
 {
     RenderTarget target;
-    target.framebuffer = createFramebuffer();
-    target.color = createRenderbuffer();
+    target.width = width;
+    target.height = height;
+    target.samples = samples;
+    target.framebuffer = detail::createFramebuffer();
+    target.color = detail::createRenderbuffer();
     glNamedRenderbufferStorageMultisample(target.color.id(), samples > 1 ? samples : 0, GL_SRGB8_ALPHA8, width, height);
     glNamedFramebufferRenderbuffer(target.framebuffer.id(), GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, target.color.id());
     if (withDepth) {
-        target.depth = createRenderbuffer();
+        target.depth = detail::createRenderbuffer();
         glNamedRenderbufferStorageMultisample(target.depth.id(), samples > 1 ? samples : 0, GL_DEPTH_COMPONENT24, width,
                                               height);
         glNamedFramebufferRenderbuffer(target.framebuffer.id(), GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER,
                                        target.depth.id());
     }
-    checkGl("creating the framebuffer");
+    detail::checkGl("creating the framebuffer");
     const GLenum status = glCheckNamedFramebufferStatus(target.framebuffer.id(), GL_FRAMEBUFFER);
     if (status != GL_FRAMEBUFFER_COMPLETE) {
         throw Error("OpenGL framebuffer " + std::to_string(width) + "x" + std::to_string(height) + " with " +
-                    std::to_string(samples) + " samples is incomplete (status 0x" +
-                    [status] {
-                        char buffer[16];
-                        std::snprintf(buffer, sizeof(buffer), "%x", unsigned(status));
-                        return std::string(buffer);
-                    }() +
-                    ")");
+                    std::to_string(samples) + " samples is incomplete (status 0x" + hex(status) + ")");
     }
     return target;
 }
 
-/// Restores the GL state renderSnapshot changes to GL's defaults, however
+/// Restores the GL state the renderer changes to GL's defaults, however
 /// it leaves.
 struct StateGuard
 {
@@ -353,157 +119,425 @@ struct StateGuard
         glBindFramebuffer(GL_FRAMEBUFFER, 0);
         glBindVertexArray(0);
         glUseProgram(0);
-        for (GLuint unit = 0; unit < 9; ++unit) {
+        for (GLuint unit = 0; unit < detail::MATERIAL_MAP_UNITS; ++unit) {
             glBindTextureUnit(unit, 0);
+        }
+        glBindTextureUnit(detail::SHADOW_MAP_UNIT, 0);
+        for (GLuint binding : {detail::FRAME_BLOCK_BINDING, detail::MATERIAL_BLOCK_BINDING,
+                               detail::LIGHTING_BLOCK_BINDING, detail::SHADOW_BLOCK_BINDING}) {
+            glBindBufferBase(GL_UNIFORM_BUFFER, binding, 0);
         }
         glDisable(GL_FRAMEBUFFER_SRGB);
         glDisable(GL_DEPTH_TEST);
+        glDepthFunc(GL_LESS);
         glDisable(GL_CULL_FACE);
         glEnable(GL_MULTISAMPLE);
+        glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
+        glDisable(GL_POLYGON_OFFSET_LINE);
+        glPolygonOffset(0.0f, 0.0f);
         glPixelStorei(GL_PACK_ALIGNMENT, 4);
         glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
     }
 };
 
+void checkCamera(const Camera& c)
+{
+    if (!(c.nearPlane > 0.0 && c.farPlane > c.nearPlane)) {
+        throw Error("render: camera needs 0 < near < far");
+    }
+    if (!(c.fovYDegrees > 0.0 && c.fovYDegrees < 180.0)) {
+        throw Error("render: camera fovYDegrees outside (0, 180)");
+    }
+    if (!(glm::length(c.target - c.position) > 0.0)) {
+        throw Error("render: camera position equals its target");
+    }
+}
+
+struct ResidentTexture
+{
+    TexturePtr source; // keeps the pointer valid as the key
+    GlObject object;
+};
+
 } // namespace
 
-Image renderSnapshot(EglContext& context, const MeshView& mesh, const SnapshotOptions& options)
+detail::GlObject detail::uploadTexture(const Texture& texture)
 {
-    checkOptions(mesh, options);
-    const Material& material = options.material;
-    const std::array<TexturePtr, 9> maps = detail::resolveMaps(material);
-    const std::uint32_t features = materialFeatures(material);
+    GlObject object = detail::createTexture2D();
+    const GLuint id = object.id();
+    const auto levels = GLsizei(texture.levels.size());
+    glTextureStorage2D(id, levels, texture.srgb ? GL_SRGB8_ALPHA8 : GL_RGBA8, texture.width(), texture.height());
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    for (GLsizei level = 0; level < levels; ++level) {
+        const Texture::Level& l = texture.levels[std::size_t(level)];
+        glTextureSubImage2D(id, level, 0, 0, l.width, l.height, GL_RGBA, GL_UNSIGNED_BYTE, l.texels.data());
+    }
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    glTextureParameteri(id, GL_TEXTURE_MAX_LEVEL, levels - 1);
+    glTextureParameteri(id, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+    glTextureParameteri(id, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTextureParameteri(id, GL_TEXTURE_WRAP_S, GL_REPEAT);
+    glTextureParameteri(id, GL_TEXTURE_WRAP_T, GL_REPEAT);
+    detail::checkGl("uploading a texture");
+    return object;
+}
 
+struct GlRenderer::Impl
+{
+    explicit Impl(GlContext& c) : context(c) {}
+
+    GlContext& context;
+    GLint maxSamples = 1;
+    GLint maxRenderbufferSize = 0;
+    GLint maxTextureSize = 0;
+    float maxAnisotropy = 1.0f;
+
+    // Uniform buffers (std140).
+    GlObject frameBuffer;
+    GlObject materialBuffer;
+    GlObject lightingBuffer;
+
+    // Mesh.
+    GlObject vertexArray;
+    GlObject vertexBuffer;
+    GlObject indexBuffer;
+    GLsizei indexCount = 0;
+    glm::dvec3 origin{0.0};
+    detail::MeshBounds bounds; // of the vertices, mesh-relative (fits the shadow map)
+
+    // Sun shadows: depth map, its framebuffer, the depth-pass program, the
+    // depth pass's FrameBlock and the ShadowBlock (binding 3).
+    GlObject shadowMap;
+    GlObject shadowFramebuffer;
+    GlObject shadowProgram;
+    GlObject shadowFrameBuffer;
+    GlObject shadowBuffer;
+    int shadowResolution = 0;
+    // The light view the map holds (valid while shadowCurrent): a frame with
+    // the same mesh, light and resolution reuses it (the viewer's frames).
+    glm::mat4 shadowDrawnView{1.0f};
+    bool shadowCurrent = false;
+
+    // Material.
+    bool haveMaterial = false;
+    Material material;
+    float anisotropy = 1.0f;
+    std::vector<ResidentTexture> textures;
+    std::array<GLuint, STRATA_MAP_COUNT> units{};
+
+    // Programs, one per feature set.
+    GlObject vertexShader;
+    std::map<std::uint32_t, GlObject> programs;
+    ProgramStats stats;
+
+    // Off-screen target of drawFrame().
+    RenderTarget multisampled;
+    RenderTarget resolved;
+    bool haveFrame = false;
+
+    GLuint program(std::uint32_t features)
+    {
+        features = normalizeFeatures(features);
+        const auto found = programs.find(features);
+        if (found != programs.end()) {
+            return found->second.id();
+        }
+        const auto t0 = std::chrono::steady_clock::now();
+        if (!vertexShader) {
+            vertexShader = detail::compileShader(GL_VERTEX_SHADER, shaders::TERRAIN_VERT, "terrain vertex");
+        }
+        const std::string names = featureNames(features);
+        const GlObject fragment =
+            detail::compileShader(GL_FRAGMENT_SHADER, fragmentSource(features), "terrain fragment (" + names + ")");
+        GlObject linked = detail::linkProgram(vertexShader, fragment, "terrain (" + names + ")");
+        detail::checkGl("building the terrain program");
+        const GLuint id = linked.id();
+        programs.emplace(features, std::move(linked));
+        stats.compiled = int(programs.size());
+        stats.featureSets.push_back(features);
+        stats.compileSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        return id;
+    }
+
+    /// The sun's depth map (shaders/Shadow.h, step 1) for `sp` into
+    /// shadowMap, and the ShadowBlock; with shadows off or no mesh only the
+    /// block (enabled = 0). Needs the terrain vertex shader (program() first).
+    /// Leaves the framebuffer, viewport and FrameBlock binding to the caller.
+    void renderShadowMap(const shading::ShadowParams& sp)
+    {
+        if (!shadowBuffer) {
+            shadowBuffer = detail::createBuffer();
+            glNamedBufferStorage(shadowBuffer.id(), sizeof(shading::ShadowParams), nullptr, GL_DYNAMIC_STORAGE_BIT);
+            shadowFrameBuffer = detail::createBuffer();
+            glNamedBufferStorage(shadowFrameBuffer.id(), sizeof(detail::FrameBlock), nullptr, GL_DYNAMIC_STORAGE_BIT);
+        }
+        glNamedBufferSubData(shadowBuffer.id(), 0, sizeof(sp), &sp);
+        glBindBufferBase(GL_UNIFORM_BUFFER, detail::SHADOW_BLOCK_BINDING, shadowBuffer.id());
+        if (sp.enabled == 0 || indexCount == 0) {
+            return;
+        }
+        if (sp.resolution > maxTextureSize) {
+            throw Error("render: shadow resolution " + std::to_string(sp.resolution) +
+                        " exceeds this OpenGL's texture limit of " + std::to_string(maxTextureSize));
+        }
+        if (!shadowProgram) {
+            const GlObject fragment =
+                detail::compileShader(GL_FRAGMENT_SHADER, shaders::SHADOW_DEPTH_FRAG, "shadow depth fragment");
+            shadowProgram = detail::linkProgram(vertexShader, fragment, "shadow depth");
+        }
+        if (shadowResolution != sp.resolution) {
+            shadowFramebuffer = GlObject();
+            shadowMap = detail::createTexture2D();
+            glTextureStorage2D(shadowMap.id(), 1, GL_DEPTH_COMPONENT32F, sp.resolution, sp.resolution);
+            glTextureParameteri(shadowMap.id(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+            glTextureParameteri(shadowMap.id(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+            glTextureParameteri(shadowMap.id(), GL_TEXTURE_COMPARE_MODE, GL_NONE);
+            glTextureParameteri(shadowMap.id(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+            glTextureParameteri(shadowMap.id(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+            shadowFramebuffer = detail::createFramebuffer();
+            glNamedFramebufferTexture(shadowFramebuffer.id(), GL_DEPTH_ATTACHMENT, shadowMap.id(), 0);
+            glNamedFramebufferDrawBuffer(shadowFramebuffer.id(), GL_NONE);
+            glNamedFramebufferReadBuffer(shadowFramebuffer.id(), GL_NONE);
+            const GLenum status = glCheckNamedFramebufferStatus(shadowFramebuffer.id(), GL_FRAMEBUFFER);
+            if (status != GL_FRAMEBUFFER_COMPLETE) {
+                throw Error("OpenGL shadow-map framebuffer " + std::to_string(sp.resolution) + "² is incomplete (status 0x" +
+                            hex(status) + ")");
+            }
+            shadowResolution = sp.resolution;
+            shadowCurrent = false;
+        }
+        if (shadowCurrent && shadowDrawnView == sp.lightViewProjection) {
+            return; // the map already holds this mesh from this light
+        }
+        detail::FrameBlock frame{};
+        frame.viewProjection = sp.lightViewProjection;
+        glNamedBufferSubData(shadowFrameBuffer.id(), 0, sizeof(frame), &frame);
+        glBindBufferBase(GL_UNIFORM_BUFFER, detail::FRAME_BLOCK_BINDING, shadowFrameBuffer.id());
+        // Same rules as the CPU's shadow pass: both windings, GL_LESS, cleared to 1.
+        glBindFramebuffer(GL_FRAMEBUFFER, shadowFramebuffer.id());
+        glViewport(0, 0, sp.resolution, sp.resolution);
+        glDisable(GL_FRAMEBUFFER_SRGB);
+        glDisable(GL_CULL_FACE);
+        glEnable(GL_DEPTH_TEST);
+        glDepthFunc(GL_LESS);
+        glDepthMask(GL_TRUE);
+        glClearDepth(1.0);
+        glClear(GL_DEPTH_BUFFER_BIT);
+        glUseProgram(shadowProgram.id());
+        glBindVertexArray(vertexArray.id());
+        glDrawElements(GL_TRIANGLES, indexCount, GL_UNSIGNED_INT, nullptr);
+        detail::checkGl("drawing the shadow map");
+        shadowDrawnView = sp.lightViewProjection;
+        shadowCurrent = true;
+    }
+
+    void ensureMaterial()
+    {
+        if (!haveMaterial) {
+            throw Error("render: no material set (call GlRenderer::setMaterial first)");
+        }
+    }
+};
+
+GlRenderer::GlRenderer(GlContext& context) : mImpl(std::make_unique<Impl>(context))
+{
+    Impl& r = *mImpl;
     context.makeCurrent();
-    clearGlErrors();
+    detail::clearGlErrors();
+    glGetIntegerv(GL_MAX_SAMPLES, &r.maxSamples);
+    glGetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &r.maxRenderbufferSize);
+    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &r.maxTextureSize);
+    r.maxAnisotropy = driverMaxAnisotropy();
+    r.frameBuffer = detail::createBuffer();
+    r.materialBuffer = detail::createBuffer();
+    r.lightingBuffer = detail::createBuffer();
+    glNamedBufferStorage(r.frameBuffer.id(), sizeof(detail::FrameBlock), nullptr, GL_DYNAMIC_STORAGE_BIT);
+    glNamedBufferStorage(r.materialBuffer.id(), sizeof(detail::MaterialBlock), nullptr, GL_DYNAMIC_STORAGE_BIT);
+    glNamedBufferStorage(r.lightingBuffer.id(), sizeof(detail::LightingBlock), nullptr, GL_DYNAMIC_STORAGE_BIT);
+    r.vertexArray = detail::createVertexArray();
+    r.stats.possible = int(allFeatureSets().size());
+    detail::checkGl("creating the renderer");
+}
+
+GlRenderer::~GlRenderer()
+{
+    // GL names are deleted in the context that made them.
+    try {
+        mImpl->context.makeCurrent();
+    } catch (const Error&) {
+        // The context is gone or elsewhere: nothing sensible to delete in.
+    }
+}
+
+GlContext& GlRenderer::context() const { return mImpl->context; }
+
+void GlRenderer::setMesh(const MeshView& mesh)
+{
+    Impl& r = *mImpl;
+    assert(mesh.indexCount % 3 == 0);
+    assert(mesh.vertexCount == 0 || (mesh.positions && mesh.normals));
+    assert(mesh.indexCount == 0 || mesh.indices);
+    if (mesh.indexCount > std::size_t(std::numeric_limits<GLsizei>::max())) {
+        throw Error("render: mesh has too many indices for one draw (" + std::to_string(mesh.indexCount) + ")");
+    }
+    for (std::size_t i = 0; i < mesh.indexCount; ++i) {
+        if (mesh.indices[i] >= mesh.vertexCount) {
+            throw Error("snapshot: mesh index " + std::to_string(i) + " is " + std::to_string(mesh.indices[i]) +
+                        ", beyond the " + std::to_string(mesh.vertexCount) + " vertices");
+        }
+    }
+    r.context.makeCurrent();
+    detail::clearGlErrors();
+    // Fresh buffers: immutable storage cannot be resized.
+    r.vertexArray = detail::createVertexArray();
+    r.vertexBuffer = GlObject();
+    r.indexBuffer = GlObject();
+    r.indexCount = 0;
+    r.shadowCurrent = false; // the shadow map shows the old mesh
+    r.origin = mesh.origin;
+    r.bounds = detail::meshBounds(mesh);
+    if (mesh.vertexCount == 0 || mesh.indexCount == 0) {
+        return;
+    }
+    r.vertexBuffer = detail::createBuffer();
+    r.indexBuffer = detail::createBuffer();
+    const std::size_t arrayBytes = mesh.vertexCount * sizeof(glm::vec3);
+    glNamedBufferStorage(r.vertexBuffer.id(), GLsizeiptr(2 * arrayBytes), nullptr, GL_DYNAMIC_STORAGE_BIT);
+    glNamedBufferSubData(r.vertexBuffer.id(), 0, GLsizeiptr(arrayBytes), mesh.positions);
+    glNamedBufferSubData(r.vertexBuffer.id(), GLintptr(arrayBytes), GLsizeiptr(arrayBytes), mesh.normals);
+    glNamedBufferStorage(r.indexBuffer.id(), GLsizeiptr(mesh.indexCount * sizeof(std::uint32_t)), mesh.indices, 0);
+    const GLuint vao = r.vertexArray.id();
+    glVertexArrayVertexBuffer(vao, 0, r.vertexBuffer.id(), 0, sizeof(glm::vec3));
+    glVertexArrayVertexBuffer(vao, 1, r.vertexBuffer.id(), GLintptr(arrayBytes), sizeof(glm::vec3));
+    glVertexArrayElementBuffer(vao, r.indexBuffer.id());
+    for (GLuint attribute = 0; attribute < 2; ++attribute) {
+        glEnableVertexArrayAttrib(vao, attribute);
+        glVertexArrayAttribFormat(vao, attribute, 3, GL_FLOAT, GL_FALSE, 0);
+        glVertexArrayAttribBinding(vao, attribute, attribute);
+    }
+    detail::checkGl("uploading the mesh");
+    r.indexCount = GLsizei(mesh.indexCount);
+}
+
+void GlRenderer::setMaterial(const Material& material, float anisotropy)
+{
+    Impl& r = *mImpl;
+    checkMaterial(material);
+    if (!(anisotropy >= 1.0f && anisotropy <= 16.0f)) {
+        throw Error("render: anisotropy " + std::to_string(anisotropy) + " outside 1..16");
+    }
+    const std::array<TexturePtr, STRATA_MAP_COUNT> maps = detail::resolveMaps(material);
+    r.context.makeCurrent();
+    detail::clearGlErrors();
+    for (const TexturePtr& texture : maps) {
+        if (texture->width() > r.maxTextureSize || texture->height() > r.maxTextureSize) {
+            throw Error("render: texture " + std::to_string(texture->width()) + "x" +
+                        std::to_string(texture->height()) + " exceeds this OpenGL's limit of " +
+                        std::to_string(r.maxTextureSize));
+        }
+    }
+    const float applied = std::min(anisotropy, r.maxAnisotropy);
+    std::vector<ResidentTexture> kept;
+    for (std::size_t slot = 0; slot < maps.size(); ++slot) {
+        const Texture* key = maps[slot].get();
+        auto sameSource = [key](const ResidentTexture& t) { return t.source.get() == key; };
+        auto found = std::find_if(kept.begin(), kept.end(), sameSource);
+        if (found == kept.end()) {
+            auto old = std::find_if(r.textures.begin(), r.textures.end(), sameSource);
+            if (old != r.textures.end()) {
+                kept.push_back(std::move(*old));
+                r.textures.erase(old);
+            } else {
+                kept.push_back({maps[slot], detail::uploadTexture(*maps[slot])});
+            }
+            found = kept.end() - 1;
+            if (applied > 1.0f || r.maxAnisotropy > 1.0f) {
+                glTextureParameterf(found->object.id(), GL_TEXTURE_MAX_ANISOTROPY_EXT, applied);
+            }
+        }
+        r.units[slot] = found->object.id();
+    }
+    r.textures = std::move(kept); // textures no longer used are deleted here
+    const detail::MaterialBlock block = detail::toBlock(detail::toShading(material));
+    glNamedBufferSubData(r.materialBuffer.id(), 0, sizeof(block), &block);
+    detail::checkGl("setting the material");
+    r.material = material;
+    r.anisotropy = applied;
+    r.haveMaterial = true;
+}
+
+std::uint32_t GlRenderer::activeFeatures(std::uint32_t mask) const
+{
+    return mImpl->haveMaterial ? effectiveFeatures(mImpl->material, mask) : normalizeFeatures(0u);
+}
+
+void GlRenderer::prepareProgram(std::uint32_t features)
+{
+    mImpl->context.makeCurrent();
+    detail::clearGlErrors();
+    mImpl->program(features);
+}
+
+ProgramStats GlRenderer::stats() const { return mImpl->stats; }
+
+void GlRenderer::finish()
+{
+    mImpl->context.makeCurrent();
+    glFinish();
+}
+
+void GlRenderer::draw(const Camera& camera, const Lighting& lighting, unsigned framebuffer, int width, int height,
+                      const DrawOptions& options)
+{
+    Impl& r = *mImpl;
+    r.ensureMaterial();
+    checkCamera(camera);
+    if (width < 1 || height < 1) {
+        throw Error("render: viewport " + std::to_string(width) + "x" + std::to_string(height) + " is empty");
+    }
+    if (int(options.debugView) < 0 || int(options.debugView) >= DEBUG_VIEW_COUNT) {
+        throw Error("render: debug view " + std::to_string(int(options.debugView)) + " outside 0.." +
+                    std::to_string(DEBUG_VIEW_COUNT - 1));
+    }
+    if (lighting.extraLights.size() > 3) {
+        throw Error("render: at most 3 extra lights");
+    }
+    r.context.makeCurrent();
+    detail::clearGlErrors();
     StateGuard guard;
 
-    const int width = options.width;
-    const int height = options.height;
-    GLint maxSamples = 1;
-    glGetIntegerv(GL_MAX_SAMPLES, &maxSamples);
-    GLint maxRenderbufferSize = 0;
-    glGetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &maxRenderbufferSize);
-    GLint maxTextureSize = 0;
-    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxTextureSize);
-    if (width > maxRenderbufferSize || height > maxRenderbufferSize) {
-        throw Error("snapshot: size " + std::to_string(width) + "x" + std::to_string(height) +
-                    " exceeds this OpenGL's limit of " + std::to_string(maxRenderbufferSize));
-    }
-    for (const TexturePtr& texture : maps) {
-        if (texture->width() > maxTextureSize || texture->height() > maxTextureSize) {
-            throw Error("snapshot: texture " + std::to_string(texture->width()) + "x" +
-                        std::to_string(texture->height()) + " exceeds this OpenGL's limit of " +
-                        std::to_string(maxTextureSize));
-        }
-    }
-    const int samples = std::clamp(options.samples, 1, std::max(maxSamples, 1));
+    const GLuint program = r.program(effectiveFeatures(r.material, options.featureMask));
 
-    // Program.
-    const GlObject vertexShader = compileShader(GL_VERTEX_SHADER, shaders::TERRAIN_VERT, "terrain vertex");
-    const std::string fragment = fragmentSource(features);
-    const GlObject fragmentShader = compileShader(GL_FRAGMENT_SHADER, fragment.c_str(), "terrain fragment");
-    const GlObject program = linkProgram(vertexShader, fragmentShader);
-    checkGl("building the terrain program");
-
-    // Textures: the nine slots, each texture uploaded once.
-    const float anisotropy = std::min(options.anisotropy, maxAnisotropy());
-    std::vector<GlObject> uploaded;
-    std::vector<const Texture*> uploadedFrom;
-    GLuint units[9] = {};
-    for (std::size_t slot = 0; slot < 9; ++slot) {
-        const auto found = std::find(uploadedFrom.begin(), uploadedFrom.end(), maps[slot].get());
-        if (found != uploadedFrom.end()) {
-            units[slot] = uploaded[std::size_t(found - uploadedFrom.begin())].id();
-            continue;
-        }
-        uploaded.push_back(uploadTexture(*maps[slot], anisotropy));
-        uploadedFrom.push_back(maps[slot].get());
-        units[slot] = uploaded.back().id();
-    }
-
-    // Mesh: positions then normals in one buffer, indices in another.
-    const GlObject vertexArray = createVertexArray();
-    const GlObject vertexBuffer = createBuffer();
-    const GlObject indexBuffer = createBuffer();
-    const std::size_t arrayBytes = mesh.vertexCount * sizeof(glm::vec3);
-    if (mesh.vertexCount > 0 && mesh.indexCount > 0) {
-        glNamedBufferStorage(vertexBuffer.id(), GLsizeiptr(2 * arrayBytes), nullptr, GL_DYNAMIC_STORAGE_BIT);
-        glNamedBufferSubData(vertexBuffer.id(), 0, GLsizeiptr(arrayBytes), mesh.positions);
-        glNamedBufferSubData(vertexBuffer.id(), GLintptr(arrayBytes), GLsizeiptr(arrayBytes), mesh.normals);
-        glNamedBufferStorage(indexBuffer.id(), GLsizeiptr(mesh.indexCount * sizeof(std::uint32_t)), mesh.indices, 0);
-        glVertexArrayVertexBuffer(vertexArray.id(), 0, vertexBuffer.id(), 0, sizeof(glm::vec3));
-        glVertexArrayVertexBuffer(vertexArray.id(), 1, vertexBuffer.id(), GLintptr(arrayBytes), sizeof(glm::vec3));
-        glVertexArrayElementBuffer(vertexArray.id(), indexBuffer.id());
-        for (GLuint attribute = 0; attribute < 2; ++attribute) {
-            glEnableVertexArrayAttrib(vertexArray.id(), attribute);
-            glVertexArrayAttribFormat(vertexArray.id(), attribute, 3, GL_FLOAT, GL_FALSE, 0);
-            glVertexArrayAttribBinding(vertexArray.id(), attribute, attribute);
-        }
-        checkGl("uploading the mesh");
-    }
-
-    // Framebuffers: multisampled target, resolved into a single-sample one.
-    const RenderTarget resolved = createRenderTarget(width, height, 1, samples == 1);
-    RenderTarget multisampled;
-    if (samples > 1) {
-        multisampled = createRenderTarget(width, height, samples, true);
-    }
-    const GLuint drawFramebuffer = samples > 1 ? multisampled.framebuffer.id() : resolved.framebuffer.id();
-
-    // Uniforms.
+    // Uniform blocks.
     const double aspect = double(width) / double(height);
-    const glm::mat4 viewProjection = projectionMatrix(options.camera, aspect) * viewMatrix(options.camera, mesh.origin);
+    detail::FrameBlock frame{};
+    frame.viewProjection = projectionMatrix(camera, aspect) * viewMatrix(camera, r.origin);
+    frame.cameraPosition = glm::vec4(glm::vec3(camera.position - r.origin), 1.0f);
     // Texture space is world · mapScale; the integer part of the origin's
     // share is dropped in double precision (textures repeat every unit).
-    const glm::dvec3 originScaled = mesh.origin * double(material.mapScale);
-    const glm::vec3 textureOffset = glm::vec3(originScaled - glm::floor(originScaled));
-    const Lighting& lighting = options.lighting;
-    const shading::MaterialParams mp = detail::toShading(material);
-    const shading::LightingParams lp = detail::toShading(lighting);
-    const glm::vec3 cameraPosition = glm::vec3(options.camera.position - mesh.origin);
+    const glm::dvec3 originScaled = r.origin * double(r.material.mapScale);
+    frame.textureOffset = glm::vec4(glm::vec3(originScaled - glm::floor(originScaled)), 0.0f);
+    frame.wireColor = options.wireColor;
+    frame.mapScale = r.material.mapScale;
+    frame.debugView = int(options.debugView);
+    frame.wireframePass = 0;
+    glNamedBufferSubData(r.frameBuffer.id(), 0, sizeof(frame), &frame);
+    const detail::LightingBlock lightingBlock = detail::toBlock(detail::toShading(lighting));
+    glNamedBufferSubData(r.lightingBuffer.id(), 0, sizeof(lightingBlock), &lightingBlock);
+    glBindBufferBase(GL_UNIFORM_BUFFER, detail::FRAME_BLOCK_BINDING, r.frameBuffer.id());
+    glBindBufferBase(GL_UNIFORM_BUFFER, detail::MATERIAL_BLOCK_BINDING, r.materialBuffer.id());
+    glBindBufferBase(GL_UNIFORM_BUFFER, detail::LIGHTING_BLOCK_BINDING, r.lightingBuffer.id());
+    detail::checkGl("setting the uniform blocks");
 
-    const GLuint p = program.id();
-    auto location = [p](const std::string& name) { return glGetUniformLocation(p, name.c_str()); };
-    auto set1f = [&](const std::string& name, float v) { glProgramUniform1f(p, location(name), v); };
-    auto set3f = [&](const std::string& name, const glm::vec3& v) {
-        glProgramUniform3fv(p, location(name), 1, glm::value_ptr(v));
-    };
-    glProgramUniformMatrix4fv(p, location("uViewProjection"), 1, GL_FALSE, glm::value_ptr(viewProjection));
-    glProgramUniform1f(p, location("uMapScale"), material.mapScale);
-    glProgramUniform3fv(p, location("uTextureOffset"), 1, glm::value_ptr(textureOffset));
-    set3f("uCameraPosition", cameraPosition);
-    for (int slot = 0; slot < 9; ++slot) {
-        glProgramUniform1i(p, location("uMaps[" + std::to_string(slot) + "]"), slot);
-    }
-    set3f("uMaterial.albedoTint", mp.albedoTint);
-    set1f("uMaterial.blendOffset", mp.blendOffset);
-    set1f("uMaterial.blendExponent", mp.blendExponent);
-    set1f("uMaterial.heightStrength", mp.heightStrength);
-    set1f("uMaterial.metallic", mp.metallic);
-    set1f("uMaterial.smoothness", mp.smoothness);
-    set1f("uMaterial.occlusionStrength", mp.occlusionStrength);
-    set1f("uMaterial.normalStrength", mp.normalStrength);
-    set1f("uMaterial.detailScale", mp.detailScale);
-    set1f("uMaterial.detailAlbedo", mp.detailAlbedo);
-    set1f("uMaterial.detailSmoothness", mp.detailSmoothness);
-    set1f("uMaterial.detailNormalStrength", mp.detailNormalStrength);
-    set3f("uMaterial.emissionColor", mp.emissionColor);
-    set1f("uMaterial.fresnelStrength", mp.fresnelStrength);
-    for (int i = 0; i < STRATA_MAX_LIGHTS; ++i) {
-        const std::string prefix = "uLighting.lights[" + std::to_string(i) + "].";
-        set3f(prefix + "direction", lp.lights[i].direction);
-        set3f(prefix + "color", lp.lights[i].color);
-    }
-    glProgramUniform1i(p, location("uLighting.lightCount"), lp.lightCount);
-    set3f("uLighting.skyAmbient", lp.skyAmbient);
-    set3f("uLighting.groundAmbient", lp.groundAmbient);
-    set1f("uLighting.exposure", lp.exposure);
-    checkGl("setting the uniforms");
+    // Sun shadows: the depth pass into the shadow map, then the main pass
+    // reads it on unit SHADOW_MAP_UNIT with the ShadowBlock.
+    r.renderShadowMap(detail::makeShadowParams(r.bounds, lighting, options.shadows));
+    glBindBufferBase(GL_UNIFORM_BUFFER, detail::FRAME_BLOCK_BINDING, r.frameBuffer.id());
+    glBindTextureUnit(detail::SHADOW_MAP_UNIT, r.shadowMap.id());
 
-    // Draw. The framebuffer is sRGB and GL_FRAMEBUFFER_SRGB is on: the
-    // shader and the clear colour are linear, the stored bytes sRGB-encoded.
-    glBindFramebuffer(GL_FRAMEBUFFER, drawFramebuffer);
+    // The framebuffer is sRGB and GL_FRAMEBUFFER_SRGB is on: the shader and
+    // the clear colour are linear, the stored bytes sRGB-encoded.
+    glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
     glViewport(0, 0, width, height);
     glEnable(GL_FRAMEBUFFER_SRGB);
     glEnable(GL_MULTISAMPLE);
@@ -515,43 +549,127 @@ Image renderSnapshot(EglContext& context, const MeshView& mesh, const SnapshotOp
     glFrontFace(GL_CCW);
     glDisable(GL_BLEND);
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-    const glm::vec3 sky = lighting.skyColor;
-    glClearColor(sky.r, sky.g, sky.b, 1.0f);
-    glClearDepth(1.0);
-    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-    if (mesh.vertexCount > 0 && mesh.indexCount > 0) {
-        glUseProgram(p);
-        glBindVertexArray(vertexArray.id());
-        for (GLuint slot = 0; slot < 9; ++slot) {
-            glBindTextureUnit(slot, units[slot]);
+    if (options.clear) {
+        const glm::vec3 sky = lighting.skyColor;
+        glClearColor(sky.r, sky.g, sky.b, 1.0f);
+        glClearDepth(1.0);
+        glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    }
+    if (r.indexCount > 0) {
+        glUseProgram(program);
+        glBindVertexArray(r.vertexArray.id());
+        glBindTextures(0, GLsizei(r.units.size()), r.units.data());
+        glDrawElements(GL_TRIANGLES, r.indexCount, GL_UNSIGNED_INT, nullptr);
+        if (options.wireframe) {
+            frame.wireframePass = 1;
+            glNamedBufferSubData(r.frameBuffer.id(), 0, sizeof(frame), &frame);
+            glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);
+            glEnable(GL_POLYGON_OFFSET_LINE);
+            glPolygonOffset(-1.0f, -1.0f);
+            glDepthFunc(GL_LEQUAL);
+            glDrawElements(GL_TRIANGLES, r.indexCount, GL_UNSIGNED_INT, nullptr);
         }
-        glDrawElements(GL_TRIANGLES, GLsizei(mesh.indexCount), GL_UNSIGNED_INT, nullptr);
     }
-    checkGl("drawing the mesh");
+    detail::checkGl("drawing the mesh");
+}
 
+void GlRenderer::drawFrame(const Camera& camera, const Lighting& lighting, int width, int height, int samples,
+                           const DrawOptions& options)
+{
+    Impl& r = *mImpl;
+    if (width < 1 || height < 1) {
+        throw Error("render: size " + std::to_string(width) + "x" + std::to_string(height) + " is empty");
+    }
+    r.context.makeCurrent();
+    if (width > r.maxRenderbufferSize || height > r.maxRenderbufferSize) {
+        throw Error("snapshot: size " + std::to_string(width) + "x" + std::to_string(height) +
+                    " exceeds this OpenGL's limit of " + std::to_string(r.maxRenderbufferSize));
+    }
+    samples = std::clamp(samples, 1, std::max(r.maxSamples, 1));
+    detail::clearGlErrors();
+    if (r.resolved.width != width || r.resolved.height != height || r.resolved.samples != samples) {
+        r.haveFrame = false;
+        r.multisampled = RenderTarget();
+        r.resolved = createRenderTarget(width, height, 1, samples == 1);
+        r.resolved.samples = samples; // the key: which multisampled target it resolves
+        if (samples > 1) {
+            r.multisampled = createRenderTarget(width, height, samples, true);
+        }
+    }
+    const GLuint target = samples > 1 ? r.multisampled.framebuffer.id() : r.resolved.framebuffer.id();
+    draw(camera, lighting, target, width, height, options);
     if (samples > 1) {
-        glBlitNamedFramebuffer(multisampled.framebuffer.id(), resolved.framebuffer.id(), 0, 0, width, height, 0, 0,
+        glBlitNamedFramebuffer(r.multisampled.framebuffer.id(), r.resolved.framebuffer.id(), 0, 0, width, height, 0, 0,
                                width, height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
-        checkGl("resolving the multisampled framebuffer");
+        detail::checkGl("resolving the multisampled framebuffer");
     }
+    r.haveFrame = true;
+}
 
-    // Read back (GL rows run bottom to top) and flip.
+void GlRenderer::blitFrame(unsigned framebuffer, int width, int height)
+{
+    Impl& r = *mImpl;
+    if (!r.haveFrame || width < 1 || height < 1) {
+        return;
+    }
+    r.context.makeCurrent();
+    detail::clearGlErrors();
+    glDisable(GL_FRAMEBUFFER_SRGB);
+    const bool same = width == r.resolved.width && height == r.resolved.height;
+    glBlitNamedFramebuffer(r.resolved.framebuffer.id(), framebuffer, 0, 0, r.resolved.width, r.resolved.height, 0, 0,
+                           width, height, GL_COLOR_BUFFER_BIT, same ? GL_NEAREST : GL_LINEAR);
+    detail::checkGl("copying the frame to the window");
+}
+
+Image GlRenderer::readFrame()
+{
+    Impl& r = *mImpl;
+    if (!r.haveFrame) {
+        throw Error("render: no frame to read (call GlRenderer::drawFrame first)");
+    }
+    r.context.makeCurrent();
+    detail::clearGlErrors();
+    StateGuard guard;
+    const int width = r.resolved.width;
+    const int height = r.resolved.height;
     Image image;
     image.width = width;
     image.height = height;
     image.pixels.resize(std::size_t(width) * std::size_t(height) * 4);
     std::vector<std::uint8_t> rows(image.pixels.size());
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, resolved.framebuffer.id());
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, r.resolved.framebuffer.id());
     glReadBuffer(GL_COLOR_ATTACHMENT0);
     glPixelStorei(GL_PACK_ALIGNMENT, 1);
     glReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, rows.data());
-    checkGl("reading the image back");
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+    detail::checkGl("reading the image back");
+    // GL rows run bottom to top: flip.
     const std::size_t rowBytes = std::size_t(width) * 4;
     for (int y = 0; y < height; ++y) {
         std::memcpy(image.pixels.data() + std::size_t(y) * rowBytes,
                     rows.data() + std::size_t(height - 1 - y) * rowBytes, rowBytes);
     }
     return image;
+}
+
+Image GlRenderer::renderImage(const SnapshotOptions& options)
+{
+    checkSnapshotOptions(options);
+    setMaterial(options.material, options.anisotropy);
+    DrawOptions draw;
+    draw.debugView = options.debugView;
+    draw.featureMask = options.featureMask;
+    draw.shadows = options.shadows;
+    drawFrame(options.camera, options.lighting, options.width, options.height, options.samples, draw);
+    return readFrame();
+}
+
+Image renderSnapshot(GlContext& context, const MeshView& mesh, const SnapshotOptions& options)
+{
+    checkSnapshotOptions(options);
+    GlRenderer renderer(context);
+    renderer.setMesh(mesh);
+    return renderer.renderImage(options);
 }
 
 } // namespace strata::render

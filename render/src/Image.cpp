@@ -7,6 +7,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
+#include <limits>
 #include <string>
 
 namespace strata::render {
@@ -78,7 +80,7 @@ void writeImage(const Image& image, const fs::path& path)
         const std::size_t pixelCount = std::size_t(image.width) * std::size_t(image.height);
 
         OIIO::ImageSpec spec(image.width, image.height, channels,
-                             linear ? OIIO::TypeDesc::HALF : OIIO::TypeDesc::UINT8);
+                             linear ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8);
         spec.attribute("oiio:ColorSpace", linear ? "Linear" : "sRGB");
         if (channels == 4) {
             // Our alpha is unassociated: do not let the writer un-premultiply.
@@ -156,6 +158,54 @@ Image readImage(const fs::path& path)
         dst[3] = alphaChannel >= 0 ? toByte(src[alphaChannel]) : 255;
     }
     return image;
+}
+
+namespace {
+
+void requireSameSize(const Image& a, const Image& b, const char* what)
+{
+    if (a.width != b.width || a.height != b.height || a.pixels.size() != b.pixels.size()) {
+        throw Error(std::string(what) + ": images differ in size (" + std::to_string(a.width) + "x" +
+                    std::to_string(a.height) + " and " + std::to_string(b.width) + "x" + std::to_string(b.height) + ")");
+    }
+}
+
+} // namespace
+
+double psnr(const Image& a, const Image& b)
+{
+    requireSameSize(a, b, "psnr");
+    double sum = 0.0;
+    std::size_t count = 0;
+    for (std::size_t i = 0; i < a.pixels.size(); i += 4) {
+        for (std::size_t c = 0; c < 3; ++c) {
+            const double d = double(a.pixels[i + c]) - double(b.pixels[i + c]);
+            sum += d * d;
+        }
+        count += 3;
+    }
+    if (count == 0 || sum == 0.0) {
+        return std::numeric_limits<double>::infinity();
+    }
+    return 10.0 * std::log10(255.0 * 255.0 / (sum / double(count)));
+}
+
+double fractionWithin(const Image& a, const Image& b, int tolerance)
+{
+    requireSameSize(a, b, "fractionWithin");
+    const std::size_t pixels = a.pixels.size() / 4;
+    if (pixels == 0) {
+        return 1.0;
+    }
+    std::size_t within = 0;
+    for (std::size_t i = 0; i < a.pixels.size(); i += 4) {
+        bool ok = true;
+        for (std::size_t c = 0; c < 3; ++c) {
+            ok = ok && std::abs(int(a.pixels[i + c]) - int(b.pixels[i + c])) <= tolerance;
+        }
+        within += ok;
+    }
+    return double(within) / double(pixels);
 }
 
 } // namespace strata::render

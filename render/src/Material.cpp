@@ -40,6 +40,30 @@ std::uint32_t materialFeatures(const Material& m)
     return f;
 }
 
+std::uint32_t normalizeFeatures(std::uint32_t f)
+{
+    f &= feature::ALL;
+    if (!(f & feature::MASK_MAP)) f &= ~(feature::MODS | feature::HEIGHT_BLEND);
+    if (f & feature::MODS) f &= ~feature::HEIGHT_BLEND;
+    if (!(f & (feature::NORMAL_MAP | feature::DETAIL_NORMAL))) f &= ~(feature::NORMAL_UDN | feature::NORMAL_RNM);
+    if (f & feature::NORMAL_RNM) f &= ~feature::NORMAL_UDN;
+    return f;
+}
+
+std::uint32_t effectiveFeatures(const Material& material, std::uint32_t mask)
+{
+    return normalizeFeatures(materialFeatures(material) & mask);
+}
+
+std::vector<std::uint32_t> allFeatureSets()
+{
+    std::vector<std::uint32_t> sets;
+    for (std::uint32_t f = 0; f <= feature::ALL; ++f) {
+        if (normalizeFeatures(f) == f) sets.push_back(f);
+    }
+    return sets;
+}
+
 void checkMaterial(const Material& m)
 {
     auto range = [](const char* key, float value, float lo, float hi) {

@@ -8,6 +8,14 @@
 
 namespace strata::render {
 
+const char* debugViewName(DebugView view)
+{
+    static const char* const NAMES[DEBUG_VIEW_COUNT] = {"shaded",    "weights", "normals",    "metallic",
+                                                        "occlusion", "height",  "smoothness", "albedo"};
+    const int i = int(view);
+    return i >= 0 && i < DEBUG_VIEW_COUNT ? NAMES[i] : "unknown";
+}
+
 void checkSnapshotOptions(const SnapshotOptions& options)
 {
     auto require = [](bool ok, const std::string& message) {
@@ -30,6 +38,16 @@ void checkSnapshotOptions(const SnapshotOptions& options)
     require(c.fovYDegrees > 0.0 && c.fovYDegrees < 180.0, "camera fovYDegrees outside (0, 180)");
     require(glm::length(c.target - c.position) > 0.0, "camera position equals its target");
     require(options.lighting.extraLights.size() <= 3, "at most 3 extra lights");
+    require(int(options.debugView) >= 0 && int(options.debugView) < DEBUG_VIEW_COUNT,
+            "debug view " + std::to_string(int(options.debugView)) + " outside 0.." +
+                std::to_string(DEBUG_VIEW_COUNT - 1));
+    const ShadowOptions& shadows = options.shadows;
+    require(shadows.resolution >= 16 && shadows.resolution <= 16384,
+            "shadow resolution " + std::to_string(shadows.resolution) + " outside 16..16384");
+    require(shadows.normalBias >= 0.0f && shadows.normalBias <= 16.0f,
+            "shadow normal bias " + std::to_string(shadows.normalBias) + " outside 0..16 texels");
+    require(shadows.depthBias >= 0.0f && shadows.depthBias <= 16.0f,
+            "shadow depth bias " + std::to_string(shadows.depthBias) + " outside 0..16 texels");
 }
 
 } // namespace strata::render

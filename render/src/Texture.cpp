@@ -327,7 +327,14 @@ float textureLod(const Texture& texture, glm::vec2 dUVdx, glm::vec2 dUVdy)
     const float x2 = dUVdx.x * w * dUVdx.x * w + dUVdx.y * h * dUVdx.y * h;
     const float y2 = dUVdy.x * w * dUVdy.x * w + dUVdy.y * h * dUVdy.y * h;
     const float rho2 = std::max(x2, y2);
-    return rho2 > 0.0f ? 0.5f * std::log2(rho2) : -1000.0f;
+    if (!(rho2 > 0.0f)) {
+        return -1000.0f;
+    }
+    // log2 as Mesa's llvmpipe computes it (lp_build_fast_log2): the exponent
+    // plus the mantissa's fraction, exact at powers of two and linear between.
+    int exponent = 0;
+    const float mantissa = std::frexp(rho2, &exponent); // rho2 = mantissa · 2^exponent, mantissa in [0.5, 1)
+    return 0.5f * (float(exponent - 1) + (2.0f * mantissa - 1.0f));
 }
 
 glm::vec4 sampleTrilinear(const Texture& texture, glm::vec2 uv, glm::vec2 dUVdx, glm::vec2 dUVdy)

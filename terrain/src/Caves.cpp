@@ -9,6 +9,9 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <deque>
+#include <map>
+#include <mutex>
 #include <sstream>
 
 namespace strata::terrain {
@@ -157,10 +160,71 @@ inline double wander(std::uint64_t hashedSeed, double t)
     return noise2(hashedSeed, glm::dvec2(t, 0.37));
 }
 
+/// A bounded cache: keys are spread over SHARDS shards by hash, each a map
+/// with its own mutex holding at most CAPACITY / SHARDS entries; when a
+/// shard is full, its oldest entry goes (first in, first out). Values are
+/// immutable and shared, so an evicted value stays valid for whoever still
+/// holds it.
+template <class Key, class Value, std::size_t CAPACITY>
+class BoundedCache
+{
+public:
+    std::shared_ptr<const Value> find(const Key& key) const
+    {
+        Shard& shard = mShards[shardOf(key)];
+        std::lock_guard<std::mutex> lock(shard.mutex);
+        const auto it = shard.map.find(key);
+        return it != shard.map.end() ? it->second : nullptr;
+    }
+    void store(const Key& key, std::shared_ptr<const Value> value)
+    {
+        Shard& shard = mShards[shardOf(key)];
+        std::lock_guard<std::mutex> lock(shard.mutex);
+        if (!shard.map.emplace(key, std::move(value)).second) return; // another thread stored it first
+        shard.order.push_back(key);
+        if (shard.order.size() > CAPACITY / SHARDS) {
+            shard.map.erase(shard.order.front());
+            shard.order.pop_front();
+        }
+    }
+    std::size_t size() const
+    {
+        std::size_t n = 0;
+        for (Shard& shard : mShards) {
+            std::lock_guard<std::mutex> lock(shard.mutex);
+            n += shard.map.size();
+        }
+        return n;
+    }
+
+private:
+    static constexpr std::size_t SHARDS = 64;
+    static_assert(CAPACITY % SHARDS == 0);
+    static std::size_t shardOf(const Key& key)
+    {
+        std::uint64_t h = 0x2545f4914f6cdd1dULL;
+        for (const std::int64_t k : key) h = hashCombine(h, k);
+        return std::size_t(mix64(h) % SHARDS);
+    }
+    struct Shard
+    {
+        std::mutex mutex;
+        std::map<Key, std::shared_ptr<const Value>> map;
+        std::deque<Key> order; ///< keys in the order they were stored
+    };
+    mutable Shard mShards[SHARDS];
+};
+
 } // namespace
 
+struct WormCaves::Cache
+{
+    BoundedCache<Key, Bucket, BUCKET_CACHE_SLOTS> buckets;
+    BoundedCache<std::array<std::int64_t, 2>, std::vector<Segment>, CELL_CACHE_SLOTS> cells;
+};
+
 WormCaves::WormCaves(std::uint64_t seed, const WormOptions& options)
-    : mSeed(seed), mOptions(options), mId(gNextWormId.fetch_add(1))
+    : mSeed(seed), mOptions(options), mId(gNextWormId.fetch_add(1)), mCache(std::make_unique<Cache>())
 {
     requirePositive("cell_size", options.cellSize);
     requireRange("worms_per_cell", options.wormsPerCell, 0.0, 16.0);
@@ -218,25 +282,22 @@ std::vector<WormCaves::Segment> WormCaves::wormsOfCell(std::int64_t cx, std::int
 std::shared_ptr<const std::vector<WormCaves::Segment>> WormCaves::cell(std::int64_t cx, std::int64_t cz) const
 {
     const std::array<std::int64_t, 2> key{cx, cz};
-    {
-        std::lock_guard<std::mutex> lock(mMutex);
-        auto it = mCells.find(key);
-        if (it != mCells.end()) return it->second;
-    }
+    if (auto found = mCache->cells.find(key)) return found;
     auto segments = std::make_shared<const std::vector<Segment>>(wormsOfCell(cx, cz));
-    std::lock_guard<std::mutex> lock(mMutex);
-    return mCells.emplace(key, std::move(segments)).first->second;
+    mCache->cells.store(key, segments);
+    return segments;
+}
+
+std::size_t WormCaves::cachedBuckets() const
+{
+    return mCache->buckets.size();
 }
 
 std::shared_ptr<const WormCaves::Bucket> WormCaves::bucket(const Key& key) const
 {
-    {
-        std::lock_guard<std::mutex> lock(mMutex);
-        auto it = mBuckets.find(key);
-        if (it != mBuckets.end()) return it->second;
-    }
+    if (auto found = mCache->buckets.find(key)) return found;
     // Build outside the lock (two threads may build the same bucket; both
-    // get the same contents, the first one stored wins).
+    // get the same contents, whichever is stored).
     const glm::dvec3 lo = BUCKET_SIZE * glm::dvec3(static_cast<double>(key[0]), static_cast<double>(key[1]),
                                                    static_cast<double>(key[2]));
     const glm::dvec3 hi = lo + BUCKET_SIZE;
@@ -246,7 +307,9 @@ std::shared_ptr<const WormCaves::Bucket> WormCaves::bucket(const Key& key) const
         const auto cellOf = [&](double v) { return std::int64_t(std::floor(v / mOptions.cellSize)); };
         for (std::int64_t cx = cellOf(lo.x - margin); cx <= cellOf(hi.x + margin); ++cx) {
             for (std::int64_t cz = cellOf(lo.z - margin); cz <= cellOf(hi.z + margin); ++cz) {
-                for (const Segment& s : *cell(cx, cz)) {
+                // Hold the cell while reading it: the cache may evict it meanwhile.
+                const std::shared_ptr<const std::vector<Segment>> segments = cell(cx, cz);
+                for (const Segment& s : *segments) {
                     const double r = std::max(s.ra, s.rb);
                     const glm::dvec3 smin = glm::min(s.a, s.b) - r, smax = glm::max(s.a, s.b) + r;
                     // Box-to-box distance: every point of the cone is at least this far.
@@ -259,8 +322,9 @@ std::shared_ptr<const WormCaves::Bucket> WormCaves::bucket(const Key& key) const
             }
         }
     }
-    std::lock_guard<std::mutex> lock(mMutex);
-    return mBuckets.emplace(key, std::move(bucket)).first->second;
+    std::shared_ptr<const Bucket> built = std::move(bucket);
+    mCache->buckets.store(key, built);
+    return built;
 }
 
 double WormCaves::density(const glm::dvec3& p) const
@@ -282,6 +346,12 @@ double WormCaves::density(const glm::dvec3& p) const
         d = std::min(d, roundConeDistance(p, c.s.a, c.s.b, c.s.ra, c.s.rb));
     }
     return d;
+}
+
+Interval WormCaves::bounds(const WorldBox& box) const
+{
+    const double d = density(box.centre()), r = box.radius();
+    return {std::max(d - r, minDensity()), std::min(d + r, CAP)};
 }
 
 } // namespace strata::terrain

@@ -48,6 +48,26 @@ double CsgField::density(const glm::dvec3& p) const
     return d;
 }
 
+Interval CsgField::bounds(const WorldBox& box) const
+{
+    Interval d = mChildren[0]->bounds(box);
+    for (std::size_t i = 1; i < mChildren.size(); ++i) {
+        // density() skips the child at p when it cannot change the result
+        // there; if that holds at every point of the box (d.lo, d.hi decide
+        // it), every value is unchanged and so is the interval.
+        const double floor = mChildren[i]->minDensity();
+        if (mOperation == CsgOperation::SUBTRACT && d.lo >= mSmooth - floor) continue;
+        if (mOperation == CsgOperation::UNION && d.hi <= floor - mSmooth) continue;
+        const Interval c = mChildren[i]->bounds(box);
+        switch (mOperation) {
+        case CsgOperation::UNION: d = {smoothMin(d.lo, c.lo, mSmooth), smoothMin(d.hi, c.hi, mSmooth)}; break;
+        case CsgOperation::SUBTRACT: d = {smoothMax(d.lo, -c.hi, mSmooth), smoothMax(d.hi, -c.lo, mSmooth)}; break;
+        case CsgOperation::INTERSECT: d = {smoothMax(d.lo, c.lo, mSmooth), smoothMax(d.hi, c.hi, mSmooth)}; break;
+        }
+    }
+    return d;
+}
+
 double CsgField::distanceBound(const glm::dvec3& p) const
 {
     // Sharp min/max of lower distance bounds are lower bounds of the sharp

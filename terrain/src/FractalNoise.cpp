@@ -4,6 +4,8 @@
 
 #include "NoiseHash.h"
 
+#include <glm/geometric.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <sstream>
@@ -366,6 +368,95 @@ double FractalNoise::lipschitz(int dimensions) const
     for (int i = 0; i < mCount; ++i) bound += mOctaves[i].weight * mOctaves[i].frequency;
     const double shapeSlope = mOptions.fractal == FractalType::FBM ? 1.0 : 2.0;
     return shapeSlope * noiseLipschitz(mOptions.noise, dimensions) * bound;
+}
+
+Interval basisRange(NoiseType type, int dimensions)
+{
+    const double halfDiagonal = 0.5 * std::sqrt(double(dimensions));
+    switch (type) {
+    case NoiseType::GRADIENT: {
+        const double r = noiseLipschitz(type, dimensions) * halfDiagonal;
+        return {-r, r};
+    }
+    case NoiseType::VALUE: return {-1.0, 1.0};
+    case NoiseType::CELLULAR_F1: return {-1.0, 2.0 * 0.7 * 2.0 * halfDiagonal - 1.0};
+    case NoiseType::SIMPLEX:
+    case NoiseType::CELLULAR_F2: break;
+    }
+    return {-HUGE_VAL, HUGE_VAL};
+}
+
+namespace {
+
+/// The bases are computed in double (the fraction inside the cell from the
+/// unrounded floor), with rounding errors of order 1e-15 relative to the
+/// lattice coordinates: below 1e-9 out to 1e6 noise units. Each octave's
+/// interval is widened by far more than that, so it stays rigorous.
+constexpr double BASIS_ROUNDING = 1e-6;
+
+/// The shape of a fractal sum applied to an interval of basis values: the
+/// identity (fBm), 1 − 2|n| (ridged) or 2|n| − 1 (billow), exactly.
+Interval shapeInterval(FractalType fractal, double lo, double hi)
+{
+    if (fractal == FractalType::FBM) return {lo, hi};
+    // |n| over [lo, hi]: 0 when it straddles zero, else the nearer end.
+    const double absLo = (lo <= 0.0 && hi >= 0.0) ? 0.0 : std::min(std::abs(lo), std::abs(hi));
+    const double absHi = std::max(std::abs(lo), std::abs(hi));
+    if (fractal == FractalType::RIDGED) return {1.0 - 2.0 * absHi, 1.0 - 2.0 * absLo};
+    return {2.0 * absLo - 1.0, 2.0 * absHi - 1.0};
+}
+
+} // namespace
+
+Interval FractalNoise::bounds(const glm::dvec3& lo, const glm::dvec3& hi) const
+{
+    const double slope = noiseLipschitz(mOptions.noise, 3);
+    const Interval range = basisRange(mOptions.noise, 3);
+    const glm::dvec3 centre = 0.5 * (lo + hi);
+    const double radius = 0.5 * glm::length(hi - lo);
+    Interval sum{0.0, 0.0};
+    for (int i = 0; i < mCount; ++i) {
+        const Octave& o = mOctaves[i];
+        const glm::dvec3 q = centre * o.frequency + glm::dvec3(o.offset[0], o.offset[1], o.offset[2]);
+        // The octave sees a box of half diagonal f_i·radius around q.
+        const double n = basis(o.seed, q), reach = slope * o.frequency * radius + BASIS_ROUNDING;
+        const Interval shaped =
+            shapeInterval(mOptions.fractal, std::max(n - reach, range.lo), std::min(n + reach, range.hi));
+        sum.lo += o.weight * shaped.lo;
+        sum.hi += o.weight * shaped.hi;
+    }
+    return sum;
+}
+
+Interval FractalNoise::bounds(const glm::dvec2& lo, const glm::dvec2& hi) const
+{
+    const double slope = noiseLipschitz(mOptions.noise, 2);
+    const Interval range = basisRange(mOptions.noise, 2);
+    const glm::dvec2 centre = 0.5 * (lo + hi);
+    const double radius = 0.5 * glm::length(hi - lo);
+    Interval sum{0.0, 0.0};
+    for (int i = 0; i < mCount; ++i) {
+        const Octave& o = mOctaves[i];
+        const glm::dvec2 offset(o.offset[0], o.offset[1]);
+        const glm::dvec2 qlo = lo * o.frequency + offset, qhi = hi * o.frequency + offset;
+        double n = 0.0, reach = slope * o.frequency * radius;
+        if (mOptions.noise == NoiseType::GRADIENT && std::floor(qlo.x) == std::floor(qhi.x) &&
+            std::floor(qlo.y) == std::floor(qhi.y)) {
+            // Inside one lattice cell: the mean value form, usually several
+            // times tighter than the gradient bound (both are rigorous).
+            double spread = 0.0;
+            n = noise2Spread(o.seed, qlo, qhi, spread);
+            reach = std::min(reach, spread);
+        } else {
+            n = basis(o.seed, centre * o.frequency + offset);
+        }
+        reach += BASIS_ROUNDING;
+        const Interval shaped =
+            shapeInterval(mOptions.fractal, std::max(n - reach, range.lo), std::min(n + reach, range.hi));
+        sum.lo += o.weight * shaped.lo;
+        sum.hi += o.weight * shaped.hi;
+    }
+    return sum;
 }
 
 DomainWarp::DomainWarp(std::uint64_t seed, const FractalOptions& options, double amplitude)

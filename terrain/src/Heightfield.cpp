@@ -2,6 +2,8 @@
 
 #include <strata/Error.h>
 
+#include <glm/geometric.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <sstream>
@@ -28,6 +30,20 @@ void HeightfieldBase::setSlopeBound(double slope)
     mLipschitz = std::sqrt(1.0 + slope * slope) * mScale;
 }
 
+Interval HeightfieldBase::bounds(const WorldBox& box) const
+{
+    const Interval h = heightBounds(glm::dvec2(box.min.x, box.min.z), glm::dvec2(box.max.x, box.max.z));
+    return {(box.min.y - h.hi) * mScale, (box.max.y - h.lo) * mScale};
+}
+
+Interval HeightfieldBase::heightBounds(const glm::dvec2& min, const glm::dvec2& max) const
+{
+    const glm::dvec2 c = 0.5 * (min + max);
+    const double reach = mSlope * 0.5 * glm::length(max - min);
+    const double h = height(c.x, c.y);
+    return {h - reach, h + reach};
+}
+
 NoiseHeightfield::NoiseHeightfield(std::uint64_t seed, const NoiseHeightfieldOptions& options)
     : mOptions(options), mNoise(seed, options.noise)
 {
@@ -44,6 +60,13 @@ NoiseHeightfield::NoiseHeightfield(std::uint64_t seed, const NoiseHeightfieldOpt
 double NoiseHeightfield::height(double x, double z) const
 {
     return mOptions.base + mOptions.amplitude * mNoise(glm::dvec2(x / mOptions.wavelength, z / mOptions.wavelength));
+}
+
+Interval NoiseHeightfield::heightBounds(const glm::dvec2& min, const glm::dvec2& max) const
+{
+    const double w = mOptions.wavelength;
+    const Interval n = mNoise.bounds(min / w, max / w);
+    return {mOptions.base + mOptions.amplitude * n.lo, mOptions.base + mOptions.amplitude * n.hi};
 }
 
 ImageHeightfield::ImageHeightfield(HeightImage image, const ImageHeightfieldOptions& options)
@@ -84,6 +107,40 @@ ImageHeightfield::ImageHeightfield(HeightImage image, const ImageHeightfieldOpti
     const double sx = std::abs(options.heightScale) * stepX / spacingX;
     const double sz = std::abs(options.heightScale) * stepZ / spacingZ;
     setSlopeBound(std::sqrt(sx * sx + sz * sz));
+    const auto [lo, hi] = std::minmax_element(mImage.values.begin(), mImage.values.end());
+    mMinValue = *lo;
+    mMaxValue = *hi;
+}
+
+Interval ImageHeightfield::heightBounds(const glm::dvec2& min, const glm::dvec2& max) const
+{
+    // The pixel coordinates of the rectangle's corners, as height() computes
+    // them (clamping is monotone, so the rectangle maps into [u0, u1] × [v0, v1]).
+    const auto pixel = [](double x, double lo, double hi, int size) {
+        return std::clamp((x - lo) / (hi - lo), 0.0, 1.0) * (size - 1);
+    };
+    const double u0 = pixel(min.x, mOptions.min.x, mOptions.max.x, mImage.width);
+    const double u1 = pixel(max.x, mOptions.min.x, mOptions.max.x, mImage.width);
+    const double v0 = pixel(min.y, mOptions.min.y, mOptions.max.y, mImage.height);
+    const double v1 = pixel(max.y, mOptions.min.y, mOptions.max.y, mImage.height);
+    const int i0 = std::max(0, int(std::floor(u0))), i1 = std::min(mImage.width - 1, int(std::ceil(u1)));
+    const int j0 = std::max(0, int(std::floor(v0))), j1 = std::min(mImage.height - 1, int(std::ceil(v1)));
+    double lo = mMinValue, hi = mMaxValue;
+    constexpr double MAX_PIXELS = 4096.0;
+    if (double(i1 - i0 + 1) * double(j1 - j0 + 1) <= MAX_PIXELS) {
+        lo = HUGE_VAL;
+        hi = -HUGE_VAL;
+        for (int j = j0; j <= j1; ++j)
+            for (int i = i0; i <= i1; ++i) {
+                const double v = mImage.values[std::size_t(j) * mImage.width + i];
+                lo = std::min(lo, v);
+                hi = std::max(hi, v);
+            }
+    }
+    const double a = mOptions.base + mOptions.heightScale * lo, b = mOptions.base + mOptions.heightScale * hi;
+    Interval h{std::min(a, b), std::max(a, b)};
+    const Interval lipschitz = HeightfieldBase::heightBounds(min, max);
+    return {std::max(h.lo, lipschitz.lo), std::min(h.hi, lipschitz.hi)};
 }
 
 double ImageHeightfield::height(double x, double z) const

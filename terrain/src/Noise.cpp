@@ -91,6 +91,87 @@ double noise2(std::uint64_t s, const glm::dvec2& p)
     return NOISE2_SCALE * lerp(lerp(n00, n01, v), lerp(n10, n11, v), u);
 }
 
+namespace {
+
+/// A closed interval and the operations the gradient enclosure needs.
+struct Range
+{
+    double lo, hi;
+};
+inline Range operator+(Range a, Range b) { return {a.lo + b.lo, a.hi + b.hi}; }
+inline Range operator*(Range a, Range b)
+{
+    const double p[4] = {a.lo * b.lo, a.lo * b.hi, a.hi * b.lo, a.hi * b.hi};
+    return {std::min(std::min(p[0], p[1]), std::min(p[2], p[3])), std::max(std::max(p[0], p[1]), std::max(p[2], p[3]))};
+}
+inline Range point(double v) { return {v, v}; }
+inline double magnitude(Range a) { return std::max(std::abs(a.lo), std::abs(a.hi)); }
+
+/// fade' (t) = 30 t² (1 − t)² over [a, b] ⊂ [0, 1]: it rises on [0, 1/2]
+/// and falls on [1/2, 1], so its extremes are at the ends or 1/2 (1.875).
+inline Range fadeSlope(double a, double b)
+{
+    const auto f = [](double t) { return 30.0 * t * t * (1.0 - t) * (1.0 - t); };
+    const double fa = f(a), fb = f(b);
+    return {std::min(fa, fb), (a <= 0.5 && b >= 0.5) ? 1.875 : std::max(fa, fb)};
+}
+
+/// g·(x, y) + k over the rectangle: exact (affine).
+inline Range affine(const double* g, double k, double xc, double yc, double hx, double hy)
+{
+    const double c = g[0] * xc + g[1] * yc + k, r = std::abs(g[0]) * hx + std::abs(g[1]) * hy;
+    return {c - r, c + r};
+}
+
+} // namespace
+
+double noise2Spread(std::uint64_t s, const glm::dvec2& lo, const glm::dvec2& hi, double& spread)
+{
+    // Inside one cell, with x, y the fractions and u = fade(x), v = fade(y):
+    //   n / NOISE2_SCALE = n00 + v·D0 + u·(E + v·F),
+    // with the affine functions n00 = g00·(x, y), D0 = n01 − n00,
+    // E = n10 − n00, F = n11 − n10 − n01 + n00 (n_ij = g_ij·((x, y) − (i, j))).
+    // That is noise2's lerp(lerp(n00, n01, v), lerp(n10, n11, v), u) expanded.
+    // Its partial derivatives are
+    //   ∂x = g00.x + v·D0_x + u'·(E + v·F) + u·(E_x + v·F_x)
+    //   ∂y = g00.y + v'·D0 + v·D0_y + u·(E_y + v'·F + v·F_y),
+    // (D0_x etc. constants). Evaluating them in interval arithmetic over the
+    // rectangle (u, v increasing, u', v' by fadeSlope, the affine terms
+    // exact) encloses ∇n at every point of it (the inclusion property of
+    // interval arithmetic). For p in the rectangle the segment from the
+    // centre c to p stays in it, so by the mean value theorem
+    //   |n(p) − n(c)| = |∇n(ξ)·(p − c)| <= max|∂x|·hx + max|∂y|·hy.
+    const double fx = std::floor(lo.x), fy = std::floor(lo.y);
+    const double x0 = lo.x - fx, x1 = hi.x - fx, y0 = lo.y - fy, y1 = hi.y - fy;
+    const std::int64_t ix = latticeIndex(fx), iy = latticeIndex(fy);
+    const std::uint64_t hx0 = hashCombine(s, ix), hx1 = hashCombine(s, ix + 1);
+    const double* g00 = GRAD2[pick(hashCombine(hx0, iy), 8)];
+    const double* g01 = GRAD2[pick(hashCombine(hx0, iy + 1), 8)];
+    const double* g10 = GRAD2[pick(hashCombine(hx1, iy), 8)];
+    const double* g11 = GRAD2[pick(hashCombine(hx1, iy + 1), 8)];
+
+    const double xc = 0.5 * (x0 + x1), yc = 0.5 * (y0 + y1), hx = 0.5 * (x1 - x0), hy = 0.5 * (y1 - y0);
+    const double d0[2] = {g01[0] - g00[0], g01[1] - g00[1]};
+    const double e[2] = {g10[0] - g00[0], g10[1] - g00[1]};
+    const double f[2] = {g11[0] - g10[0] - g01[0] + g00[0], g11[1] - g10[1] - g01[1] + g00[1]};
+    const Range D0 = affine(d0, -g01[1], xc, yc, hx, hy);
+    const Range E = affine(e, -g10[0], xc, yc, hx, hy);
+    const Range F = affine(f, -g11[0] - g11[1] + g10[0] + g01[1], xc, yc, hx, hy);
+    const Range u{fade(x0), fade(x1)}, v{fade(y0), fade(y1)};
+    const Range du = fadeSlope(x0, x1), dv = fadeSlope(y0, y1);
+    const Range gx = point(g00[0]) + v * point(d0[0]) + du * (E + v * F) + u * (point(e[0]) + v * point(f[0]));
+    const Range gy = point(g00[1]) + dv * D0 + v * point(d0[1]) + u * (point(e[1]) + dv * F + v * point(f[1]));
+    spread = NOISE2_SCALE * (magnitude(gx) * hx + magnitude(gy) * hy);
+
+    // The centre value as noise2 computes it (grad2 with the same gradients).
+    const double n00 = g00[0] * xc + g00[1] * yc;
+    const double n01 = g01[0] * xc + g01[1] * (yc - 1.0);
+    const double n10 = g10[0] * (xc - 1.0) + g10[1] * yc;
+    const double n11 = g11[0] * (xc - 1.0) + g11[1] * (yc - 1.0);
+    const double uc = fade(xc), vc = fade(yc);
+    return NOISE2_SCALE * lerp(lerp(n00, n01, vc), lerp(n10, n11, vc), uc);
+}
+
 } // namespace detail
 
 std::uint64_t deriveSeed(std::uint64_t seed, std::uint64_t stream)

@@ -67,4 +67,11 @@ inline unsigned pick(std::uint64_t h, unsigned n)
 double noise3(std::uint64_t hashedSeed, const glm::dvec3& p);
 double noise2(std::uint64_t hashedSeed, const glm::dvec2& p);
 
+/// noise2 over the rectangle [lo, hi], which must lie in one lattice cell
+/// (floor(lo) == floor(hi) per axis): returns noise2 at its centre c and
+/// sets `spread` to a bound of |noise2(p) − noise2(c)| for every p in it
+/// (mean value form with an interval enclosure of the gradient; the proof
+/// is in Noise.cpp).
+double noise2Spread(std::uint64_t hashedSeed, const glm::dvec2& lo, const glm::dvec2& hi, double& spread);
+
 } // namespace strata::terrain::detail

@@ -5,8 +5,20 @@
 
 #include <algorithm>
 #include <cassert>
+#include <cmath>
 
 namespace strata::terrain {
+
+Interval convexBounds(const DensityField& field, const WorldBox& box)
+{
+    double hi = -HUGE_VAL;
+    for (int corner = 0; corner < 8; ++corner) {
+        const glm::dvec3 p((corner & 1) ? box.max.x : box.min.x, (corner & 2) ? box.max.y : box.min.y,
+                           (corner & 4) ? box.max.z : box.min.z);
+        hi = std::max(hi, field.density(p));
+    }
+    return {field.density(box.centre()) - box.radius(), hi};
+}
 
 BoxField::BoxField(const glm::dvec3& center, const glm::dvec3& halfSize, double rounding)
     : mCenter(center), mHalf(halfSize - rounding), mRounding(rounding)
@@ -42,6 +54,18 @@ PlaneField::PlaneField(const glm::dvec3& normal, double offset)
 double PlaneField::density(const glm::dvec3& p) const
 {
     return glm::dot(mNormal, p) - mOffset;
+}
+
+} // namespace strata::terrain
+
+namespace strata::terrain {
+
+Interval PlaneField::bounds(const WorldBox& box) const
+{
+    const glm::dvec3 half = 0.5 * (box.max - box.min);
+    const double d = density(box.centre());
+    const double reach = glm::dot(glm::abs(mNormal), half);
+    return {d - reach, d + reach};
 }
 
 } // namespace strata::terrain

@@ -34,7 +34,8 @@ constexpr int LEAF_DIM = int(Leaf::DIM); // 8: the tiles we evaluate
 /// Top-level pruning blocks, subdivided down to tiles: the size of a
 /// level-1 internal node, so a block found all inside is one tile.
 constexpr int BLOCK_DIM = int(Tree::RootNodeType::ChildNodeType::ChildNodeType::DIM); // 128
-constexpr int SUB_DIM = 2;               // last pruning level, inside an evaluated tile
+/// Pruning levels inside an evaluated tile: 4³ then 2³ sub-blocks.
+constexpr int SUB_DIMS[] = {4, 2};
 constexpr int MAX_HALF_WIDTH = 64;
 /// Index coordinates stay well inside int32 (OpenVDB's Coord).
 constexpr double MAX_INDEX = 1073741824.0; // 2^30
@@ -42,7 +43,7 @@ constexpr double MAX_INDEX = 1073741824.0; // 2^30
 /// pass to 2^19 blocks.
 constexpr double MAX_VOXELS = 1099511627776.0;
 /// Relative slack on the pruning test: fields are evaluated through float
-/// noise, so their Lipschitz bound holds only up to rounding.
+/// noise, so their interval bounds hold only up to rounding.
 constexpr double PRUNE_SLACK = 1e-4;
 
 std::string show(double value)
@@ -170,7 +171,6 @@ public:
         const glm::dvec3 hi = world(box.max()) - 0.5 * mVoxelSize;
         mBoxCentre = 0.5 * (lo + hi);
         mBoxHalf = 0.5 * (hi - lo);
-        mLipschitz = mClosed ? std::max(field.lipschitz(), 1.0) : field.lipschitz();
     }
 
     glm::dvec3 world(const Coord& ijk) const
@@ -178,20 +178,21 @@ public:
         return glm::dvec3(double(ijk.x()) * mVoxelSize, double(ijk.y()) * mVoxelSize, double(ijk.z()) * mVoxelSize);
     }
 
-    double lipschitz() const { return mLipschitz; }
-
     double operator()(const glm::dvec3& p) const
     {
         const double d = mField.density(p);
         return mClosed ? std::max(d, box(p)) : d;
     }
 
-    /// A signed lower bound of the distance to the surface (see
-    /// DensityField::distanceBound).
-    double bound(const glm::dvec3& p) const
+    /// An interval of operator() over the box (DensityField::bounds; the
+    /// region box term is 1-Lipschitz, and max is non-decreasing in both
+    /// arguments, so max of the ends bounds max of the values).
+    Interval bounds(const WorldBox& b) const
     {
-        const double b = mField.distanceBound(p);
-        return mClosed ? std::max(b, box(p)) : b;
+        const Interval d = mField.bounds(b);
+        if (!mClosed) return d;
+        const double c = box(b.centre()), r = b.radius();
+        return {std::max(d.lo, c - r), std::max(d.hi, c + r)};
     }
 
 private:
@@ -206,7 +207,6 @@ private:
     double mVoxelSize;
     bool mClosed;
     glm::dvec3 mBoxCentre{0.0}, mBoxHalf{0.0};
-    double mLipschitz = 1.0;
 };
 
 /// An aligned cube of voxels (part of it may lie outside the index box)
@@ -222,8 +222,9 @@ struct Uniform
 struct BlockResult
 {
     std::vector<Coord> tiles;      ///< 8³ tiles that may hold the surface
+    std::vector<char> tileInBand;  ///< per tile: its bound put it all within the band
     std::vector<Uniform> uniforms; ///< cubes pruned away
-    std::uint64_t evaluated = 0;
+    std::uint64_t bounds = 0;      ///< bounds() calls
 };
 
 /// What evaluating one 8³ tile gave.
@@ -231,7 +232,8 @@ struct TileResult
 {
     std::unique_ptr<Leaf> leaf; ///< null when the tile holds no active voxel
     bool inside = false;        ///< the tile's sign when it has no leaf
-    std::uint64_t evaluated = 0;
+    std::uint64_t evaluated = 0; ///< density() calls
+    std::uint64_t bounds = 0;    ///< bounds() calls
 };
 
 class LevelSetSampler
@@ -242,38 +244,38 @@ public:
     {
     }
 
-    /// True when no voxel centre of the aligned cube `cube` lies within
-    /// `background` of the surface: |b(c)| > r + background, with b the
-    /// field's distance bound at the cube's centre c and r the distance from
-    /// c to the farthest voxel centre. The whole cube (not its part inside
-    /// the region) is probed, so the decision depends only on the cube: two
-    /// regions that share voxels prune them alike. `d` receives b(c).
-    ///
-    /// When the bound does not decide, the density itself is tried with the
-    /// field's gradient bound L: |d(c)| > L·r + background means every voxel
-    /// of the cube would be stored as an inactive ±background anyway, so
-    /// skipping them changes nothing. (For fields whose density is a close
-    /// distance estimate with L > 1, this test is the sharper one near the
-    /// surface, the bound the sharper one far away.) `evaluations` counts
-    /// the calls.
-    bool prunable(const CoordBBox& cube, double& d, std::uint64_t& evaluations) const
+    /// What an interval bound says about the voxels of a cube.
+    enum class Verdict
     {
-        const glm::dvec3 lo = mField.world(cube.min()), hi = mField.world(cube.max());
-        const glm::dvec3 centre = 0.5 * (lo + hi);
-        const double radius = 0.5 * glm::length(hi - lo);
+        OUTSIDE, ///< every voxel has density >= background: all inactive air
+        INSIDE,  ///< every voxel has density <= −background: all inactive rock
+        IN_BAND, ///< every voxel has |density| < background: all active, no use bounding parts
+        MIXED,   ///< undecided: split it or evaluate its voxels
+    };
+
+    /// Bounds the field over the box spanned by the voxel centres of the
+    /// aligned cube `cube` (DensityField::bounds). OUTSIDE or INSIDE when the
+    /// interval lies entirely at or beyond ±background: every one of those
+    /// voxels would be stored as an inactive ±background anyway, with that
+    /// sign, so none needs evaluating. IN_BAND when it lies strictly within:
+    /// every voxel must be evaluated, so bounding its parts would only cost.
+    /// A relative slack of PRUNE_SLACK keeps rounding from deciding. The
+    /// whole cube (not its part inside the region) is bounded, so the verdict
+    /// depends only on the cube: two regions that share voxels treat them
+    /// alike. `evaluations` counts the call (see SampleStats on its cost).
+    Verdict classify(const CoordBBox& cube, std::uint64_t& evaluations) const
+    {
         ++evaluations;
-        d = mField.bound(centre);
-        if (std::abs(d) > (radius + mBackground) * (1.0 + PRUNE_SLACK)) return true;
-        // With L <= 1 the bound test is the stronger one for every field
-        // whose bound is at least |density| / L (the default): skip this.
-        if (mField.lipschitz() <= 1.0) return false;
-        ++evaluations;
-        d = mField(centre);
-        return std::abs(d) > (mField.lipschitz() * radius + mBackground) * (1.0 + PRUNE_SLACK);
+        const Interval d = mField.bounds({mField.world(cube.min()), mField.world(cube.max())});
+        const double outer = mBackground * (1.0 + PRUNE_SLACK), inner = mBackground * (1.0 - PRUNE_SLACK);
+        if (d.lo > outer) return Verdict::OUTSIDE;
+        if (d.hi < -outer) return Verdict::INSIDE;
+        if (d.lo > -inner && d.hi < inner) return Verdict::IN_BAND;
+        return Verdict::MIXED;
     }
 
     /// Coarse pass: subdivides an aligned cube down to 8³ tiles, dropping
-    /// every cube that the probe at its centre proves far from the surface.
+    /// every cube whose interval bound puts it all outside the band.
     /// Stops adding tiles once `tileCount` passes `tileLimit`.
     void visit(const Coord& origin, int dim, BlockResult& out, std::atomic<std::uint64_t>& tileCount,
                std::uint64_t tileLimit) const
@@ -283,11 +285,12 @@ public:
         clip.intersect(mBox);
         if (clip.empty()) return;
         if (tileCount.load(std::memory_order_relaxed) > tileLimit) return;
-        double d = 0.0;
-        if (prunable(cube, d, out.evaluated)) {
-            out.uniforms.push_back({origin, dim, d < 0.0});
+        const Verdict verdict = classify(cube, out.bounds);
+        if (verdict == Verdict::OUTSIDE || verdict == Verdict::INSIDE) {
+            out.uniforms.push_back({origin, dim, verdict == Verdict::INSIDE});
         } else if (dim == LEAF_DIM) {
             out.tiles.push_back(origin);
+            out.tileInBand.push_back(verdict == Verdict::IN_BAND);
             tileCount.fetch_add(1, std::memory_order_relaxed);
         } else {
             const int half = dim / 2;
@@ -298,49 +301,91 @@ public:
         }
     }
 
-    /// Fine pass: evaluates one 8³ tile (after one more pruning level of 2³
-    /// sub-blocks). Active voxels hold |d| < background; the others hold
-    /// ±background with the sign of d.
-    TileResult evaluate(const Coord& origin) const
+    /// The values of one tile as they are filled in.
+    struct Fill
+    {
+        float values[Leaf::SIZE];
+        Leaf::NodeMaskType active;
+        bool anyInside = false, anyOutside = false;
+    };
+
+    /// Evaluates the voxels of `cube` inside `clip` one by one.
+    void evaluateVoxels(const CoordBBox& cube, const CoordBBox& clip, Fill& fill, TileResult& result) const
+    {
+        CoordBBox sub = cube;
+        sub.intersect(clip);
+        if (sub.empty()) return;
+        for (int x = sub.min().x(); x <= sub.max().x(); ++x)
+            for (int y = sub.min().y(); y <= sub.max().y(); ++y)
+                for (int z = sub.min().z(); z <= sub.max().z(); ++z) {
+                    const Coord ijk(x, y, z);
+                    const double d = mField(mField.world(ijk));
+                    ++result.evaluated;
+                    const openvdb::Index offset = Leaf::coordToOffset(ijk);
+                    if (std::abs(d) < mBackground) {
+                        fill.values[offset] = float(d);
+                        fill.active.setOn(offset);
+                    } else {
+                        fill.values[offset] = float(d < 0.0 ? -mBackground : mBackground);
+                    }
+                    (d < 0.0 ? fill.anyInside : fill.anyOutside) = true;
+                }
+    }
+
+    /// Fills the part inside `clip` of the aligned cube at `origin` of size
+    /// `parent` (the tile, or a sub-block of it), whose own bound was MIXED:
+    /// each of its SUB_DIMS[level]³ parts is filled whole when its bound
+    /// decides it, evaluated voxel by voxel when IN_BAND or at the last
+    /// level, else split further.
+    void refine(const Coord& origin, int level, const CoordBBox& clip, Fill& fill, TileResult& result) const
+    {
+        constexpr int LEVELS = int(sizeof(SUB_DIMS) / sizeof(SUB_DIMS[0]));
+        const int dim = SUB_DIMS[level];
+        const int parent = level == 0 ? LEAF_DIM : SUB_DIMS[level - 1];
+        for (int sx = 0; sx < parent; sx += dim)
+            for (int sy = 0; sy < parent; sy += dim)
+                for (int sz = 0; sz < parent; sz += dim) {
+                    const Coord subOrigin = origin.offsetBy(sx, sy, sz);
+                    const CoordBBox subCube(subOrigin, subOrigin.offsetBy(dim - 1));
+                    CoordBBox sub = subCube;
+                    sub.intersect(clip);
+                    if (sub.empty()) continue;
+                    const Verdict verdict = classify(subCube, result.bounds);
+                    if (verdict == Verdict::MIXED && level + 1 < LEVELS) {
+                        refine(subOrigin, level + 1, clip, fill, result);
+                    } else if (verdict == Verdict::MIXED || verdict == Verdict::IN_BAND) {
+                        evaluateVoxels(subCube, clip, fill, result);
+                    } else {
+                        const bool inside = verdict == Verdict::INSIDE;
+                        const float value = float(inside ? -mBackground : mBackground);
+                        for (int x = sub.min().x(); x <= sub.max().x(); ++x)
+                            for (int y = sub.min().y(); y <= sub.max().y(); ++y)
+                                for (int z = sub.min().z(); z <= sub.max().z(); ++z)
+                                    fill.values[Leaf::coordToOffset(Coord(x, y, z))] = value;
+                        (inside ? fill.anyInside : fill.anyOutside) = true;
+                    }
+                }
+    }
+
+    /// Fine pass: evaluates one 8³ tile, pruning 4³ and then 2³ sub-blocks
+    /// by their interval bounds first (unless the tile's own bound put it all
+    /// in the band: `inBand`). Active voxels hold |d| < background; the
+    /// others hold ±background with the sign of d (of the interval when
+    /// pruned).
+    TileResult evaluate(const Coord& origin, bool inBand) const
     {
         TileResult result;
         CoordBBox clip(origin, origin.offsetBy(LEAF_DIM - 1));
         clip.intersect(mBox);
 
-        float values[Leaf::SIZE];
-        Leaf::NodeMaskType active;
-        bool anyInside = false, anyOutside = false;
-        const float inside = float(-mBackground), outside = float(mBackground);
+        Fill fill;
+        if (inBand) evaluateVoxels(CoordBBox(origin, origin.offsetBy(LEAF_DIM - 1)), clip, fill, result);
+        else refine(origin, 0, clip, fill, result);
 
-        for (int sx = 0; sx < LEAF_DIM; sx += SUB_DIM)
-            for (int sy = 0; sy < LEAF_DIM; sy += SUB_DIM)
-                for (int sz = 0; sz < LEAF_DIM; sz += SUB_DIM) {
-                    const Coord subOrigin = origin.offsetBy(sx, sy, sz);
-                    const CoordBBox subCube(subOrigin, subOrigin.offsetBy(SUB_DIM - 1));
-                    CoordBBox sub = subCube;
-                    sub.intersect(clip);
-                    if (sub.empty()) continue;
-                    double probe = 0.0;
-                    const bool pruned = prunable(subCube, probe, result.evaluated);
-                    for (int x = sub.min().x(); x <= sub.max().x(); ++x)
-                        for (int y = sub.min().y(); y <= sub.max().y(); ++y)
-                            for (int z = sub.min().z(); z <= sub.max().z(); ++z) {
-                                const Coord ijk(x, y, z);
-                                const openvdb::Index offset = Leaf::coordToOffset(ijk);
-                                double d = probe;
-                                if (!pruned) {
-                                    d = mField(mField.world(ijk));
-                                    ++result.evaluated;
-                                }
-                                if (!pruned && std::abs(d) < mBackground) {
-                                    values[offset] = float(d);
-                                    active.setOn(offset);
-                                } else {
-                                    values[offset] = d < 0.0 ? inside : outside;
-                                }
-                                (d < 0.0 ? anyInside : anyOutside) = true;
-                            }
-                }
+        float* values = fill.values;
+        Leaf::NodeMaskType& active = fill.active;
+        const bool anyInside = fill.anyInside, anyOutside = fill.anyOutside;
+        const float inside = float(-mBackground), outside = float(mBackground);
 
         if (clip != CoordBBox(origin, origin.offsetBy(LEAF_DIM - 1))) {
             // Voxels outside the region: air when the level set is closed,
@@ -359,7 +404,7 @@ public:
 
         // A tile with no active voxel is all one sign (the field cannot
         // change sign between neighbours without passing |d| < background),
-        // unless its Lipschitz bound is very loose: then keep it as a leaf.
+        // unless it is very steep: then keep it as a leaf.
         if (active.isOff() && !(anyInside && anyOutside)) {
             result.inside = anyInside;
             return result;
@@ -416,12 +461,14 @@ openvdb::FloatGrid::Ptr sampleLevelSet(const DensityField& field, const SampleOp
     });
 
     std::vector<Coord> tiles;
+    std::vector<char> tileInBand;
     std::vector<Uniform> uniforms;
-    std::uint64_t evaluated = 0;
+    std::uint64_t evaluated = 0, bounded = 0;
     for (const BlockResult& b : blockResults) {
         tiles.insert(tiles.end(), b.tiles.begin(), b.tiles.end());
+        tileInBand.insert(tileInBand.end(), b.tileInBand.begin(), b.tileInBand.end());
         uniforms.insert(uniforms.end(), b.uniforms.begin(), b.uniforms.end());
-        evaluated += b.evaluated;
+        bounded += b.bounds;
     }
     blockResults.clear();
     const std::uint64_t estimate = estimateBytes(tiles);
@@ -442,7 +489,7 @@ openvdb::FloatGrid::Ptr sampleLevelSet(const DensityField& field, const SampleOp
     for (std::size_t begin = 0; begin < tiles.size(); begin += chunk) {
         const std::size_t end = std::min(tiles.size(), begin + chunk);
         tbb::parallel_for(tbb::blocked_range<std::size_t>(begin, end), [&](const tbb::blocked_range<std::size_t>& r) {
-            for (std::size_t i = r.begin(); i != r.end(); ++i) results[i] = levelSet.evaluate(tiles[i]);
+            for (std::size_t i = r.begin(); i != r.end(); ++i) results[i] = levelSet.evaluate(tiles[i], tileInBand[i] != 0);
         });
         reportProgress(options, COARSE_SHARE + (1.0 - 2.0 * COARSE_SHARE) * double(end) / double(tiles.size()));
     }
@@ -456,6 +503,7 @@ openvdb::FloatGrid::Ptr sampleLevelSet(const DensityField& field, const SampleOp
     auto tree = std::make_shared<Tree>(float(background));
     for (std::size_t i : order) {
         evaluated += results[i].evaluated;
+        bounded += results[i].bounds;
         if (results[i].leaf) {
             tree->addLeaf(results[i].leaf.release());
         } else {
@@ -515,7 +563,8 @@ openvdb::FloatGrid::Ptr sampleLevelSet(const DensityField& field, const SampleOp
         const Coord tileMin = alignDown(box.min(), LEAF_DIM), tileMax = alignDown(box.max(), LEAF_DIM);
         std::uint64_t visited = 1;
         for (int a = 0; a < 3; ++a) visited *= std::uint64_t((tileMax[a] - tileMin[a]) / LEAF_DIM + 1);
-        stats->evaluatedPoints = evaluated;
+        stats->evaluatedPoints = evaluated + bounded;
+        stats->boundEvaluations = bounded;
         stats->activeVoxels = grid->activeVoxelCount();
         stats->tilesVisited = visited;
         stats->tilesSkipped = visited - tiles.size();

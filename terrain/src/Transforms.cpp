@@ -56,6 +56,21 @@ double WarpField::distanceBound(const glm::dvec3& p) const
     return mChild->distanceBound(warp(p)) / mStretch;
 }
 
+Interval WarpField::bounds(const WorldBox& box) const
+{
+    const glm::dvec3 qlo = box.min / mOptions.wavelength, qhi = box.max / mOptions.wavelength;
+    const double a = mOptions.amplitude; // >= 0
+    const Interval fx = mX.bounds(qlo, qhi), fz = mZ.bounds(qlo, qhi);
+    Interval fy{0.0, 0.0};
+    if (mOptions.vertical != 0.0) {
+        const Interval n = mY.bounds(qlo, qhi);
+        fy = {mOptions.vertical * n.lo, mOptions.vertical * n.hi}; // vertical >= 0
+    }
+    const glm::dvec3 lo(box.min.x + a * fx.lo, box.min.y + a * fy.lo, box.min.z + a * fz.lo);
+    const glm::dvec3 hi(box.max.x + a * fx.hi, box.max.y + a * fy.hi, box.max.z + a * fz.hi);
+    return mChild->bounds({lo, hi});
+}
+
 TerraceField::TerraceField(DensityFieldPtr child, double step, double sharpness)
     : mChild(std::move(child)), mStep(step), mSharpness(sharpness)
 {
@@ -79,6 +94,19 @@ double TerraceField::density(const glm::dvec3& p) const
 double TerraceField::distanceBound(const glm::dvec3& p) const
 {
     return mChild->distanceBound({p.x, terrace(p.y), p.z}) / std::max(1.0, mSharpness);
+}
+
+} // namespace strata::terrain
+
+namespace strata::terrain {
+
+Interval TerraceField::bounds(const WorldBox& box) const
+{
+    // A relative widening of 1e-12 plus 1e-12 m covers the rounding of the
+    // division, floor and pow (far below any voxel).
+    const double lo = terrace(box.min.y), hi = terrace(box.max.y);
+    const double slack = 1e-12 * (std::abs(lo) + std::abs(hi) + mStep);
+    return mChild->bounds({{box.min.x, lo - slack, box.min.z}, {box.max.x, hi + slack, box.max.z}});
 }
 
 } // namespace strata::terrain

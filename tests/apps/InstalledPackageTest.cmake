@@ -1,5 +1,7 @@
 # Installs the build tree into a scratch prefix, builds an example against it
-# with find_package(Strata), and runs the example.
+# with find_package(Strata), and runs the example. By default the generator
+# example; another one with -DEXAMPLE_PROGRAM=<target> -DEXAMPLE_ARGS=<a;b>
+# -DEXAMPLE_OUTPUT=<file it must write>.
 file(REMOVE_RECURSE ${WORK_DIR})
 set(prefix ${WORK_DIR}/prefix)
 
@@ -13,7 +15,7 @@ endfunction()
 
 run(${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${prefix})
 foreach(path include/strata/Error.h include/strata/terrain/TerrainField.h include/strata/meshing/GridToMesh.h
-        include/strata/render/GlRenderer.h lib/cmake/Strata/StrataConfig.cmake bin/strata)
+        include/strata/render/GlRenderer.h include/strata/world/World.h lib/cmake/Strata/StrataConfig.cmake bin/strata)
   if(NOT EXISTS ${prefix}/${path})
     message(FATAL_ERROR "install is missing ${path}")
   endif()
@@ -22,8 +24,13 @@ endforeach()
 run(${CMAKE_COMMAND} -S ${EXAMPLE_DIR} -B ${WORK_DIR}/build -G ${GENERATOR}
     -DCMAKE_BUILD_TYPE=Release -DCMAKE_PREFIX_PATH=${prefix})
 run(${CMAKE_COMMAND} --build ${WORK_DIR}/build)
-run(${WORK_DIR}/build/strata_generator_example ${WORK_DIR}/example.glb)
-if(NOT EXISTS ${WORK_DIR}/example.glb)
-  message(FATAL_ERROR "the example did not write its mesh")
+if(NOT DEFINED EXAMPLE_PROGRAM)
+  set(EXAMPLE_PROGRAM strata_generator_example)
+  set(EXAMPLE_ARGS ${WORK_DIR}/example.glb)
+  set(EXAMPLE_OUTPUT ${WORK_DIR}/example.glb)
+endif()
+run(${WORK_DIR}/build/${EXAMPLE_PROGRAM} ${EXAMPLE_ARGS})
+if(NOT EXISTS ${EXAMPLE_OUTPUT})
+  message(FATAL_ERROR "the example did not write ${EXAMPLE_OUTPUT}")
 endif()
 message("installed-package example OK")

@@ -17,17 +17,26 @@ struct CommandResult
     std::string output; // stdout and stderr
 };
 
-/// `strata ARGUMENTS`, with the output captured through a log file in `dir`.
-inline CommandResult runStrata(const std::string& arguments, const std::filesystem::path& dir)
+/// `strata ARGUMENTS` with `environment` ("NAME=VALUE ...", may be empty) set
+/// for the command only, the output captured through a log file in `dir`.
+inline CommandResult runStrataWithEnvironment(const std::string& environment, const std::string& arguments,
+                                              const std::filesystem::path& dir)
 {
     const std::filesystem::path log = dir / "command.log";
-    const std::string command = std::string(STRATA_EXECUTABLE) + " " + arguments + " > " + log.string() + " 2>&1";
+    const std::string command = (environment.empty() ? "" : "env " + environment + " ") +
+                                std::string(STRATA_EXECUTABLE) + " " + arguments + " > " + log.string() + " 2>&1";
     const int status = std::system(command.c_str());
     std::ifstream in(log);
     std::string output((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     in.close();
     std::filesystem::remove(log);
     return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
+}
+
+/// `strata ARGUMENTS`, with the output captured through a log file in `dir`.
+inline CommandResult runStrata(const std::string& arguments, const std::filesystem::path& dir)
+{
+    return runStrataWithEnvironment("", arguments, dir);
 }
 
 } // namespace strata::test

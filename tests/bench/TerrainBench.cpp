@@ -141,6 +141,48 @@ void BM_DefaultFieldDensity(benchmark::State& state)
         benchmark::Counter(double(state.iterations()) * double(pts.size()) / threads, benchmark::Counter::kIsRate);
 }
 
+/// bounds() of the default field over boxes of 2³ voxels (0.5 m voxels:
+/// 0.5 m between the first and last voxel centre) at the same points as
+/// BM_DefaultFieldDensity, one thread: the cost the sampler counts as one
+/// evaluated point per call.
+void BM_DefaultFieldBounds(benchmark::State& state)
+{
+    const auto field = defaultField();
+    const double size = 0.5 * double(state.range(0) - 1);
+    std::vector<glm::dvec3> pts;
+    for (const glm::dvec3& p : points()) pts.emplace_back(p.x, 0.25 * p.y, p.z);
+    double sink = 0.0;
+    for (auto _ : state) {
+        for (const glm::dvec3& p : pts) {
+            const Interval b = field->bounds({p, p + size});
+            sink += b.hi - b.lo;
+        }
+    }
+    benchmark::DoNotOptimize(sink);
+    state.SetItemsProcessed(std::int64_t(state.iterations()) * std::int64_t(pts.size()));
+    state.counters["mean_width"] = sink / double(state.iterations()) / double(pts.size());
+}
+
+/// The default scene's tree without its terrace node (warped hills minus
+/// worms), built by hand with the scene's values, for comparison.
+std::shared_ptr<const DensityField> warpedHillsField()
+{
+    DensityFieldPtr hills = std::make_shared<NoiseHeightfield>(1, NoiseHeightfieldOptions{});
+    WarpOptions warp;
+    warp.amplitude = 4.0;
+    warp.wavelength = 20.0;
+    warp.vertical = 0.0;
+    warp.noise.octaves = 1;
+    WormOptions worms;
+    worms.wormsPerCell = 3.0;
+    worms.minY = -24.0;
+    worms.maxY = 8.0;
+    worms.radius = 3.2;
+    return std::make_shared<CsgField>(
+        CsgOperation::SUBTRACT,
+        std::vector<DensityFieldPtr>{std::make_shared<WarpField>(hills, 2, warp), std::make_shared<WormCaves>(3, worms)});
+}
+
 SampleOptions defaultSampling()
 {
     SampleOptions o;
@@ -166,6 +208,7 @@ void BM_SampleDefaultScene(benchmark::State& state)
     }
     const SdfQuality q = measureSdfQuality(*grid);
     state.counters["evaluated"] = double(stats.evaluatedPoints);
+    state.counters["bounds"] = double(stats.boundEvaluations);
     state.counters["active"] = double(stats.activeVoxels);
     state.counters["eval/active"] = double(stats.evaluatedPoints) / double(stats.activeVoxelsBeforeRenormalize);
     state.counters["bytes/active"] = double(grid->memUsage()) / double(stats.activeVoxels);
@@ -174,6 +217,21 @@ void BM_SampleDefaultScene(benchmark::State& state)
         double(stats.evaluatedPoints) * double(state.iterations()) / threads, benchmark::Counter::kIsRate);
     state.counters["sdf_err_mean"] = q.meanError;
     state.counters["sdf_err_max"] = q.maxError;
+}
+
+/// The default scene without terraces (warpedHillsField), 2 threads.
+void BM_SampleWarpedHills(benchmark::State& state)
+{
+    const auto field = warpedHillsField();
+    const SampleOptions options = defaultSampling();
+    SampleStats stats;
+    openvdb::FloatGrid::Ptr grid;
+    for (auto _ : state) grid = sampleLevelSet(*field, options, &stats);
+    state.counters["evaluated"] = double(stats.evaluatedPoints);
+    state.counters["bounds"] = double(stats.boundEvaluations);
+    state.counters["active"] = double(stats.activeVoxels);
+    state.counters["eval/active"] = double(stats.evaluatedPoints) / double(stats.activeVoxels);
+    state.counters["bytes/active"] = double(grid->memUsage()) / double(stats.activeVoxels);
 }
 
 /// The old shorthand field (heightfield minus 1-Lipschitz spaghetti), for comparison.
@@ -212,7 +270,9 @@ BENCHMARK_CAPTURE(BM_Fractal, value_fbm5, NoiseType::VALUE, FractalType::FBM);
 BENCHMARK_CAPTURE(BM_Fractal, cellular_f1_fbm5, NoiseType::CELLULAR_F1, FractalType::FBM);
 BENCHMARK(BM_DomainWarp);
 BENCHMARK(BM_DefaultFieldDensity)->Arg(1)->Arg(2)->UseRealTime();
+BENCHMARK(BM_DefaultFieldBounds)->Arg(2)->Arg(4)->Arg(8);
 BENCHMARK(BM_SampleDefaultScene)->Args({1, 0})->Args({2, 0})->Args({2, 1})->Iterations(1)->UseRealTime()->Unit(benchmark::kSecond);
+BENCHMARK(BM_SampleWarpedHills)->Iterations(1)->UseRealTime()->Unit(benchmark::kSecond);
 BENCHMARK(BM_SampleShorthandScene)->Arg(0)->Arg(1)->Iterations(1)->UseRealTime()->Unit(benchmark::kSecond);
 
 BENCHMARK_MAIN();

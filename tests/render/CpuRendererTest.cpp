@@ -12,6 +12,7 @@
 #include <strata/render/GlRenderer.h>
 #include <strata/render/ProceduralTextures.h>
 
+#include "GoldenScenes.h"
 #include "TestDir.h"
 #include "TestMeshes.h"
 
@@ -31,73 +32,8 @@ namespace {
 
 using namespace strata::render;
 using strata::test::TestMesh;
-
-/// The circuitry set (and grass for the top maps) at 128², built once.
-const TextureSetImages& circuitry()
-{
-    static const TextureSetImages set = makeBuiltinSet(BuiltinSet::Circuitry, 128, 3);
-    return set;
-}
-
-const TextureSetImages& grass()
-{
-    static const TextureSetImages set = makeBuiltinSet(BuiltinSet::Grass, 128, 3);
-    return set;
-}
-
-/// The circuitry material with the maps of `features` (names as featureNames()).
-Material circuitryMaterial(const std::string& variant)
-{
-    const TextureSetImages& c = circuitry();
-    Material m;
-    m.mapScale = 0.5f;
-    m.blendOffset = 0.2f;
-    m.blendExponent = 8.0f;
-    m.albedo = makeTexture(c.albedo, MapKind::Albedo);
-    if (variant == "albedo") return m;
-    m.metallic = 1.0f;
-    m.smoothness = 1.0f;
-    m.mask = makeTexture(c.mohs, MapKind::Mask);
-    m.heightStrength = 0.9f;
-    if (variant == "mohs-height") return m;
-    m.normal = makeTexture(c.normal, MapKind::Normal);
-    if (variant == "normal-whiteout") return m;
-    if (variant == "normal-udn") {
-        m.normalBlend = NormalBlend::Udn;
-        return m;
-    }
-    if (variant == "normal-rnm") {
-        m.normalBlend = NormalBlend::Rnm;
-        return m;
-    }
-    m.detail = makeTexture(c.detail, MapKind::Detail);
-    m.detailNormal = makeTexture(c.normal, MapKind::DetailNormal);
-    m.emission = makeTexture(c.emission, MapKind::Emission);
-    m.emissionColor = glm::vec3(4.0f);
-    if (variant == "detail-emission") return m;
-    // "full": also grass top maps.
-    m.topAlbedo = makeTexture(grass().albedo, MapKind::Albedo);
-    m.topMask = makeTexture(grass().mohs, MapKind::Mask);
-    m.topNormal = makeTexture(grass().normal, MapKind::Normal);
-    return m;
-}
-
-SnapshotOptions goldenOptions(const TestMesh& mesh, const std::string& variant)
-{
-    SnapshotOptions options;
-    options.width = 256;
-    options.height = 256;
-    options.samples = 1;
-    glm::vec3 lo(1e30f), hi(-1e30f);
-    for (const glm::vec3& p : mesh.positions) {
-        lo = glm::min(lo, p);
-        hi = glm::max(hi, p);
-    }
-    options.camera = orbitCamera(glm::dvec3(lo), glm::dvec3(hi), 35.0, 30.0, 40.0, 1.0);
-    options.material = circuitryMaterial(variant);
-    options.lighting.extraLights.push_back({glm::vec3(-0.6f, 0.2f, -0.5f), glm::vec3(0.4f, 0.45f, 0.6f)});
-    return options;
-}
+using strata::test::circuitryMaterial;
+using strata::test::goldenOptions;
 
 struct Difference
 {
@@ -159,16 +95,9 @@ TEST_P(CpuRendererGolden, MatchesTheStoredImage)
 }
 
 INSTANTIATE_TEST_SUITE_P(CircuitryFeatureSets, CpuRendererGolden,
-                         ::testing::Combine(::testing::Values("sphere", "cube"),
-                                            ::testing::Values("albedo", "mohs-height", "normal-whiteout", "normal-udn",
-                                                              "normal-rnm", "detail-emission", "full")),
-                         [](const auto& info) {
-                             std::string name = std::get<0>(info.param) + "_" + std::get<1>(info.param);
-                             for (char& c : name) {
-                                 if (c == '-') c = '_';
-                             }
-                             return name;
-                         });
+                         ::testing::Combine(::testing::ValuesIn(strata::test::GOLDEN_SHAPES),
+                                            ::testing::ValuesIn(strata::test::GOLDEN_VARIANTS)),
+                         [](const auto& info) { return strata::test::goldenTestName(info.param); });
 
 TEST(CpuRenderer, FeatureSetsOfTheGoldenMaterials)
 {

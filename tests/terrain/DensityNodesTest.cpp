@@ -10,6 +10,7 @@
 
 #include <cmath>
 #include <functional>
+#include <iostream>
 #include <memory>
 #include <string>
 #include <vector>
@@ -255,4 +256,191 @@ TEST(DensityNodes, BadOptionsThrowNamingTheKey)
         o.amplitude = -3.0;
         WarpField(hills(), 1, o);
     }, "amplitude = -3");
+}
+
+namespace {
+
+/// The default scene's tree: terraced fBm hills warped sideways, minus worms.
+DensityFieldPtr terracedSceneTree()
+{
+    const DensityFieldPtr hills = std::make_shared<NoiseHeightfield>(1, NoiseHeightfieldOptions{});
+    const DensityFieldPtr steps = std::make_shared<TerraceField>(hills, 7.0, 4.0);
+    WarpOptions warp;
+    warp.amplitude = 4.0;
+    warp.wavelength = 20.0;
+    warp.vertical = 0.0;
+    warp.noise.octaves = 1;
+    const DensityFieldPtr land = std::make_shared<WarpField>(steps, 2, warp);
+    WormOptions worms;
+    worms.wormsPerCell = 3.0;
+    worms.minY = -24.0;
+    worms.maxY = 8.0;
+    worms.radius = 3.2;
+    return std::make_shared<CsgField>(CsgOperation::SUBTRACT,
+                                      std::vector<DensityFieldPtr>{land, std::make_shared<WormCaves>(3, worms)});
+}
+
+DensityFieldPtr heightfieldOf(NoiseType noise, FractalType fractal)
+{
+    NoiseHeightfieldOptions o;
+    o.noise = FractalOptions{noise, fractal, 4, 2.0, 0.5};
+    o.amplitude = 30.0;
+    return std::make_shared<NoiseHeightfield>(11, o);
+}
+
+/// Every node of allNodes() and more: the default scene's tree, smooth union,
+/// heightfields over every basis and shape, an image heightfield.
+std::vector<std::pair<std::string, DensityFieldPtr>> boundedNodes()
+{
+    auto nodes = allNodes();
+    nodes.emplace_back("default scene tree", terracedSceneTree());
+    nodes.emplace_back("smooth union",
+                       std::make_shared<CsgField>(CsgOperation::UNION,
+                                                  std::vector<DensityFieldPtr>{
+                                                      hills(), std::make_shared<SphereField>(glm::dvec3(0), 20.0),
+                                                      std::make_shared<CapsuleField>(glm::dvec3(-30, 0, 0),
+                                                                                     glm::dvec3(30, 5, 0), 4.0)},
+                                                  2.5));
+    nodes.emplace_back("ridged value heightfield", heightfieldOf(NoiseType::VALUE, FractalType::RIDGED));
+    nodes.emplace_back("billow cellular_f1 heightfield", heightfieldOf(NoiseType::CELLULAR_F1, FractalType::BILLOW));
+    nodes.emplace_back("ridged gradient heightfield", heightfieldOf(NoiseType::GRADIENT, FractalType::RIDGED));
+    nodes.emplace_back("simplex heightfield", heightfieldOf(NoiseType::SIMPLEX, FractalType::FBM));
+    nodes.emplace_back("cellular_f2 heightfield", heightfieldOf(NoiseType::CELLULAR_F2, FractalType::FBM));
+    HeightImage image;
+    image.width = 64;
+    image.height = 48;
+    Points values(21);
+    for (int i = 0; i < image.width * image.height; ++i) image.values.push_back(float(values.uniform(0.0, 1.0)));
+    ImageHeightfieldOptions imageOptions;
+    imageOptions.min = {-90.0, -80.0};
+    imageOptions.max = {90.0, 70.0};
+    imageOptions.heightScale = -12.0; // a negative scale flips the interval
+    nodes.emplace_back("image heightfield", std::make_shared<ImageHeightfield>(image, imageOptions));
+    WarpOptions lifted;
+    lifted.vertical = 1.5;
+    lifted.noise = FractalOptions{NoiseType::VALUE, FractalType::BILLOW, 3, 2.0, 0.5};
+    nodes.emplace_back("vertical billow warp", std::make_shared<WarpField>(terracedSceneTree(), 9, lifted));
+    return nodes;
+}
+
+} // namespace
+
+TEST(DensityNodes, IntervalBoundsHoldEveryDensityInTheBox)
+{
+    // Random boxes from 5 mm to 64 m a side (each axis on its own), near the
+    // origin and around (1e6, 0, −1e6); every corner, the centre and random
+    // points inside must lie within the interval.
+    for (const auto& [name, field] : boundedNodes()) {
+        for (const glm::dvec3 origin : {glm::dvec3(0.0), glm::dvec3(1e6, 0.0, -1e6)}) {
+            Points pts(31);
+            for (int i = 0; i < 250; ++i) {
+                const glm::dvec3 c = origin + pts.point3(glm::dvec3(-90, -40, -90), glm::dvec3(90, 40, 90));
+                glm::dvec3 half;
+                for (int a = 0; a < 3; ++a) half[a] = 0.5 * std::exp(pts.uniform(std::log(0.005), std::log(64.0)));
+                const WorldBox box{c - half, c + half};
+                const Interval bound = field->bounds(box);
+                ASSERT_LE(bound.lo, bound.hi) << name;
+                ASSERT_TRUE(std::isfinite(bound.hi)) << name;
+                for (int k = 0; k < 30; ++k) {
+                    glm::dvec3 p = k < 8 ? glm::dvec3((k & 1) ? box.max.x : box.min.x, (k & 2) ? box.max.y : box.min.y,
+                                                      (k & 4) ? box.max.z : box.min.z)
+                                         : (k == 8 ? c : pts.point3(box.min, box.max));
+                    const double d = field->density(p);
+                    const double tolerance = 1e-9 * (1.0 + std::abs(d));
+                    ASSERT_GE(d, bound.lo - tolerance) << name << ": box centre " << c.x << ", " << c.y << ", " << c.z
+                                                       << ", half size " << half.x << ", " << half.y << ", " << half.z;
+                    ASSERT_LE(d, bound.hi + tolerance) << name << ": box centre " << c.x << ", " << c.y << ", " << c.z
+                                                       << ", half size " << half.x << ", " << half.y << ", " << half.z;
+                }
+            }
+        }
+    }
+}
+
+TEST(DensityNodes, IntervalBoundsOfTheDefaultTreeAreTighterThanTheGradientBound)
+{
+    // The overrides must pay off where sampling uses them: 2³- and 4³-voxel
+    // blocks (0.5 m voxels) near the ground. The default bound is
+    // density(c) ± L·r; the tree's own interval should be several times narrower.
+    const DensityFieldPtr tree = terracedSceneTree();
+    for (const double size : {0.5, 1.5}) {
+        Points pts(5);
+        double own = 0.0, lipschitz = 0.0;
+        for (int i = 0; i < 2000; ++i) {
+            const glm::dvec3 c = pts.point3(glm::dvec3(-90, -12, -90), glm::dvec3(90, 12, 90));
+            const WorldBox box{c - 0.5 * size, c + 0.5 * size};
+            const Interval b = tree->bounds(box);
+            own += b.hi - b.lo;
+            lipschitz += 2.0 * tree->lipschitz() * box.radius();
+        }
+        std::cout << size << " m blocks: mean interval width " << own / 2000 << " (gradient bound "
+                  << lipschitz / 2000 << ")\n";
+        EXPECT_LT(own, 0.25 * lipschitz) << size;
+    }
+}
+
+TEST(DensityNodes, FractalBoundsHoldForEveryBasisAndShape)
+{
+    for (const NoiseType noise : {NoiseType::GRADIENT, NoiseType::SIMPLEX, NoiseType::VALUE, NoiseType::CELLULAR_F1,
+                                  NoiseType::CELLULAR_F2}) {
+        for (const FractalType fractal : {FractalType::FBM, FractalType::RIDGED, FractalType::BILLOW}) {
+            const FractalNoise f(4, FractalOptions{noise, fractal, 3, 2.0, 0.5});
+            Points pts(3);
+            for (int i = 0; i < 300; ++i) {
+                const glm::dvec3 c = pts.point3(glm::dvec3(-1e6), glm::dvec3(1e6));
+                glm::dvec3 half;
+                for (int a = 0; a < 3; ++a) half[a] = std::exp(pts.uniform(std::log(1e-3), std::log(4.0)));
+                const Interval b3 = f.bounds(c - half, c + half);
+                const glm::dvec2 c2(c.x, c.z), half2(half.x, half.z);
+                const Interval b2 = f.bounds(c2 - half2, c2 + half2);
+                for (int k = 0; k < 20; ++k) {
+                    const glm::dvec3 p = pts.point3(c - half, c + half);
+                    ASSERT_GE(f(p), b3.lo) << int(noise) << " " << int(fractal);
+                    ASSERT_LE(f(p), b3.hi) << int(noise) << " " << int(fractal);
+                    const glm::dvec2 q(p.x, p.z);
+                    ASSERT_GE(f(q), b2.lo) << int(noise) << " " << int(fractal) << " 2D";
+                    ASSERT_LE(f(q), b2.hi) << int(noise) << " " << int(fractal) << " 2D";
+                }
+            }
+            // Far from every sample, the range alone still bounds the sum.
+            const Interval wide = f.bounds(glm::dvec3(-1e9), glm::dvec3(1e9));
+            if (noise == NoiseType::VALUE) {
+                EXPECT_GE(wide.lo, -1.0 - 1e-5);
+                EXPECT_LE(wide.hi, 1.0 + 1e-5);
+            }
+        }
+    }
+}
+
+TEST(DensityNodes, WormCacheStaysBoundedAndEvictionChangesNothing)
+{
+    WormOptions o;
+    o.wormsPerCell = 2.0;
+    const WormCaves streamed(12, o), fresh(12, o);
+    // More 8 m buckets than the cache holds: a 96 × 96 grid of them at
+    // tunnel depth (9216 > BUCKET_CACHE_SLOTS), walked twice.
+    std::vector<double> first;
+    for (int pass = 0; pass < 2; ++pass) {
+        std::size_t n = 0;
+        for (int i = 0; i < 96; ++i)
+            for (int k = 0; k < 96; ++k) {
+                const glm::dvec3 p(8.0 * i + 3.1 - 380.0, -10.0 + 0.37 * (i % 7), 8.0 * k + 5.3 - 380.0);
+                const double d = streamed.density(p);
+                if (pass == 0) first.push_back(d);
+                else ASSERT_EQ(d, first[n]) << "after eviction";
+                ++n;
+            }
+        EXPECT_LE(streamed.cachedBuckets(), WormCaves::BUCKET_CACHE_SLOTS);
+        EXPECT_GT(streamed.cachedBuckets(), WormCaves::BUCKET_CACHE_SLOTS / 2);
+    }
+    // A fresh instance, walked backwards (a different cache history), agrees.
+    std::size_t n = first.size();
+    for (int i = 95; i >= 0; --i)
+        for (int k = 95; k >= 0; --k) {
+            const glm::dvec3 p(8.0 * i + 3.1 - 380.0, -10.0 + 0.37 * (i % 7), 8.0 * k + 5.3 - 380.0);
+            ASSERT_EQ(fresh.density(p), first[--n]);
+        }
+    int inside = 0;
+    for (const double d : first) inside += d < 0.0;
+    EXPECT_GT(inside, 0) << "the walk should cross some tunnels";
 }

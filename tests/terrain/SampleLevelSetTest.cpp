@@ -1,6 +1,10 @@
 #include <strata/Error.h>
+#include <strata/terrain/Caves.h>
+#include <strata/terrain/Csg.h>
+#include <strata/terrain/Heightfield.h>
 #include <strata/terrain/SampleLevelSet.h>
 #include <strata/terrain/TerrainField.h>
+#include <strata/terrain/Transforms.h>
 
 #include <tbb/global_control.h>
 
@@ -179,6 +183,42 @@ TEST(SampleLevelSet, TerrainMatchesDenseSamplingOpenAndClosed)
         expectMatchesDenseSampling(field, options, *grid);
         // Outside the region: background (air).
         EXPECT_EQ(grid->tree().getValue(openvdb::Coord(0, -200, 0)), 1.5f);
+    }
+}
+
+TEST(SampleLevelSet, TerracedWarpedSceneMatchesDenseSamplingOpenAndClosed)
+{
+    // The default scene's tree (terraced hills, warped sideways, minus worm
+    // tunnels): pruning 8³ tiles, 4³ and 2³ sub-blocks by interval bounds
+    // must give exactly the dense result, voxel by voxel, and evaluate
+    // little beyond the band (bounds() calls counted).
+    DensityFieldPtr hills = std::make_shared<NoiseHeightfield>(1, NoiseHeightfieldOptions{});
+    hills = std::make_shared<TerraceField>(hills, 7.0, 4.0);
+    WarpOptions warp;
+    warp.amplitude = 4.0;
+    warp.wavelength = 20.0;
+    warp.vertical = 0.0;
+    warp.noise.octaves = 1;
+    WormOptions worms;
+    worms.wormsPerCell = 3.0;
+    worms.minY = -24.0;
+    worms.maxY = 8.0;
+    worms.radius = 3.2;
+    const CsgField field(CsgOperation::SUBTRACT,
+                         {std::make_shared<WarpField>(hills, 2, warp), std::make_shared<WormCaves>(3, worms)});
+    for (const bool closed : {false, true}) {
+        SampleOptions options = regionOptions({-22.3, -25.1, -18.7}, {21.9, 19.2, 23.6}, 0.5);
+        options.closed = closed;
+        SampleStats stats;
+        const openvdb::FloatGrid::Ptr grid = sampleLevelSet(field, options, &stats);
+        SCOPED_TRACE(closed ? "closed" : "open");
+        expectMatchesDenseSampling(field, options, *grid);
+        const double ratio = double(stats.evaluatedPoints) / double(stats.activeVoxels);
+        std::cout << (closed ? "closed" : "open") << ": " << stats.activeVoxels << " active, "
+                  << stats.evaluatedPoints << " evaluated (" << stats.boundEvaluations << " bounds), ratio " << ratio
+                  << "\n";
+        EXPECT_GT(stats.activeVoxels, 50000u);
+        EXPECT_LT(ratio, 2.5);
     }
 }
 

@@ -20,14 +20,22 @@ using namespace strata::terrain;
 
 namespace {
 
-/// The default scene's kind of tree: warped hills minus worm tunnels.
-DensityFieldPtr sceneTree(std::uint64_t seed, const glm::dvec3& offset = glm::dvec3(0.0))
+/// The default scene's kind of tree: warped hills minus worm tunnels; with
+/// `terraced`, the hills cut into 7 m terraces and the warp as in the
+/// default scene (4 m, 20 m wavelength, one octave).
+DensityFieldPtr sceneTree(std::uint64_t seed, const glm::dvec3& offset = glm::dvec3(0.0), bool terraced = false)
 {
     DensityFieldPtr hills = std::make_shared<NoiseHeightfield>(deriveSeed(seed, 1), NoiseHeightfieldOptions{});
     WarpOptions warp;
     warp.amplitude = 7.0;
     warp.wavelength = 32.0;
     warp.vertical = 0.0;
+    if (terraced) {
+        hills = std::make_shared<TerraceField>(hills, 7.0, 4.0);
+        warp.amplitude = 4.0;
+        warp.wavelength = 20.0;
+        warp.noise.octaves = 1;
+    }
     DensityFieldPtr land = std::make_shared<WarpField>(hills, deriveSeed(seed, 2), warp);
     WormOptions worms;
     worms.wormsPerCell = 3.0;
@@ -106,6 +114,44 @@ TEST(SampleRegions, WorldOffsetFarFromTheOriginGivesTheSameGrid)
     EXPECT_EQ(here->activeVoxelCount(), there->activeVoxelCount());
     const openvdb::Coord shift(2000000, 0, -2000000);
     EXPECT_EQ(compareIn(*here, *there, openvdb::CoordBBox({-50, -62, -50}, {50, 62, 50}), 1e-4 * 0.5, shift), 0u);
+}
+
+TEST(SampleRegions, TerracedSceneIsTheSameOnAnyThreadInAnyBoxAndFarOut)
+{
+    // The default scene's tree prunes 4³ and 2³ sub-blocks by interval
+    // bounds through terraces and the warp: still the same bits on any
+    // thread count, the same shared voxels in adjacent open boxes, and the
+    // same grid 1e6 m out.
+    const DensityFieldPtr field = sceneTree(7, glm::dvec3(0.0), true);
+    const SampleOptions options = box({-30, -25, -30}, {30, 25, 30}, 0.5);
+    openvdb::FloatGrid::Ptr one, many;
+    SampleStats oneStats, manyStats;
+    {
+        tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
+        one = sampleLevelSet(*field, options, &oneStats);
+    }
+    many = sampleLevelSet(*field, options, &manyStats);
+    ASSERT_GT(one->activeVoxelCount(), 50000u);
+    ASSERT_EQ(one->activeVoxelCount(), many->activeVoxelCount());
+    EXPECT_EQ(compareIn(*one, *many, openvdb::CoordBBox({-60, -50, -60}, {59, 49, 59})), 0u);
+    EXPECT_EQ(oneStats.evaluatedPoints, manyStats.evaluatedPoints);
+    EXPECT_EQ(oneStats.boundEvaluations, manyStats.boundEvaluations);
+    EXPECT_GT(oneStats.boundEvaluations, 0u);
+    EXPECT_LT(oneStats.boundEvaluations, oneStats.evaluatedPoints);
+
+    const auto left = sampleLevelSet(*field, box({-30, -25, -20}, {4.5, 25, 20}, 0.5, false));
+    const auto right = sampleLevelSet(*field, box({-3, -25, -20}, {30, 25, 20}, 0.5, false));
+    EXPECT_EQ(compareIn(*left, *right, openvdb::CoordBBox({-6, -50, -40}, {8, 49, 39})), 0u);
+    EXPECT_GT(left->activeVoxelCount(), 1000u);
+
+    const glm::dvec3 offset(1e6, 0.0, -1e6);
+    const auto here = sampleLevelSet(*field, box({-16, -25, -16}, {16, 25, 16}, 0.5));
+    const auto there = sampleLevelSet(*sceneTree(7, offset, true),
+                                      box(glm::dvec3(-16, -25, -16) + offset, glm::dvec3(16, 25, 16) + offset, 0.5));
+    EXPECT_EQ(here->activeVoxelCount(), there->activeVoxelCount());
+    EXPECT_EQ(compareIn(*here, *there, openvdb::CoordBBox({-34, -52, -34}, {34, 52, 34}), 1e-4 * 0.5,
+                        openvdb::Coord(2000000, 0, -2000000)),
+              0u);
 }
 
 TEST(SampleRegions, MemoryBudgetRefusesWithAnEstimate)

@@ -25,11 +25,19 @@ namespace strata::render {
 ///    (helper pixels extrapolate, as on a GPU), so the mip level is GL's;
 ///  - visibility is resolved first (one triangle per pixel), then each
 ///    visible pixel is shaded once;
+///  - sun shadows (options.shadows, on by default): the mesh is first
+///    rasterized by the same rasterizer, without culling, into a depth map
+///    seen from the sun (orthographic, fitted to the mesh bounds), then each
+///    pixel looks it up with shaders/Shadow.h's normal-offset bias (along the
+///    interpolated normal) and 4×4 PCF, exactly as the GL renderer does;
+///    the result scales the sun's light only;
+///  - options.debugView and options.featureMask are honoured as on GL (a
+///    debug view is unlit and unshadowed);
 ///  - the image is split into 32×32 tiles processed in parallel with TBB;
 ///    each tile depends on nothing but the input, so the bytes are identical
 ///    for any thread count;
 ///  - throws strata::Error for invalid options or mesh indices out of range.
-/// Complexity O(triangles + pixels · maps).
+/// Complexity O(triangles + pixels · maps + shadow resolution²).
 Image renderSnapshotCpu(const MeshView& mesh, const SnapshotOptions& options);
 
 } // namespace strata::render

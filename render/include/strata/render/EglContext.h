@@ -4,12 +4,14 @@
 /// EGL device enumeration first (the NVIDIA path, also Mesa), then Mesa's
 /// surfaceless platform.
 
+#include <strata/render/GlContext.h>
+
 #include <memory>
 #include <string>
 
 namespace strata::render {
 
-class EglContext
+class EglContext final : public GlContext
 {
 public:
     /// Creates the context and makes it current on the calling thread.
@@ -28,16 +30,14 @@ public:
     /// initialised: EGL hands the same display to the whole process, and
     /// terminating it would break other users (the embedding application,
     /// another EglContext); creating a context again reuses it.
-    ~EglContext();
-    EglContext(const EglContext&) = delete;
-    EglContext& operator=(const EglContext&) = delete;
+    ~EglContext() override;
 
     /// Makes the context current on the calling thread (a no-op if it is).
     /// Throws strata::Error if EGL refuses (e.g. it is current on another thread).
-    void makeCurrent();
+    void makeCurrent() override;
 
-    /// "GL_RENDERER (GL_VERSION) via <platform>", for logs and reports.
-    const std::string& description() const { return mDescription; }
+    /// "GL_RENDERER (GL_VERSION) via EGL device|surfaceless", for logs and reports.
+    const std::string& description() const override { return mDescription; }
 
 private:
     EglContext() = default;

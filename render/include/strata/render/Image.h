@@ -21,7 +21,7 @@ struct Image
 };
 
 /// Writes PNG, TGA, TIFF, JPEG or EXR (from the extension) through
-/// OpenImageIO. Written to a temporary file beside `path` and renamed, so a
+/// OpenImageIO; EXR holds 32-bit float linear RGBA (the sRGB bytes decoded). Written to a temporary file beside `path` and renamed, so a
 /// failure leaves no partial file. Throws strata::Error naming the path.
 void writeImage(const Image& image, const std::filesystem::path& path);
 
@@ -29,5 +29,15 @@ void writeImage(const Image& image, const std::filesystem::path& path);
 /// missing channels filled: grey → RGB, no alpha → 255).
 /// Throws strata::Error naming the path.
 Image readImage(const std::filesystem::path& path);
+
+/// Peak signal-to-noise ratio between `a` and `b` over the R, G and B
+/// channels, in dB: 10·log10(255² / MSE); +infinity for identical images.
+/// Throws strata::Error when the sizes differ. O(pixels).
+double psnr(const Image& a, const Image& b);
+
+/// Fraction (0..1) of the pixels whose R, G and B each differ by at most
+/// `tolerance` (in 8-bit steps) between `a` and `b`; 1 for empty images.
+/// Throws strata::Error when the sizes differ. O(pixels).
+double fractionWithin(const Image& a, const Image& b, int tolerance);
 
 } // namespace strata::render

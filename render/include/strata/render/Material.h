@@ -87,6 +87,20 @@ struct Material
 /// normal blend bits when a normal map is present.
 std::uint32_t materialFeatures(const Material& material);
 
+/// The feature set that bits `features` can really compile to: MODS and
+/// HEIGHT_BLEND are dropped without MASK_MAP (and HEIGHT_BLEND with MODS),
+/// UDN and RNM without a normal or detail-normal map, UDN when RNM is set.
+/// Idempotent; materialFeatures() results are already normalised.
+std::uint32_t normalizeFeatures(std::uint32_t features);
+
+/// normalizeFeatures(materialFeatures(material) & mask): what a renderer
+/// compiles for `material` with the features outside `mask` switched off.
+std::uint32_t effectiveFeatures(const Material& material, std::uint32_t mask);
+
+/// Every distinct normalised feature set (320), in increasing order: the
+/// program variants a renderer may have to compile.
+std::vector<std::uint32_t> allFeatureSets();
+
 /// Throws strata::Error "material: KEY = VALUE outside RANGE" for a
 /// parameter out of range or a texture without levels.
 void checkMaterial(const Material& material);

@@ -7,6 +7,40 @@
 
 namespace strata::render {
 
+/// Shadows from the sun (Lighting::sunDirection), the same algorithm on the
+/// GL and the CPU renderer (shaders/Shadow.h): an orthographic shadow map
+/// fitted to the mesh bounds, looked up with a normal-offset bias along the
+/// interpolated surface normal and a fixed 4×4-texel PCF kernel.
+struct ShadowOptions
+{
+    bool enabled = true;
+    int resolution = 2048;   ///< shadow-map texels per side, 16..16384 (memory: 4 bytes per texel)
+    /// Lookup offset along the interpolated normal, in texels × sin(normal,
+    /// sun), 0..16; >= 2 (the PCF kernel's reach) avoids acne at any angle.
+    float normalBias = 2.5f;
+    float depthBias = 1.0f;  ///< lookup offset towards the sun, in texels, 0..16
+};
+
+/// What the renderer shows: the lit material, or one of the debug views
+/// (the same values as DEBUG_VIEW_* in shaders/TriplanarMaterial.h). The data
+/// views store value v as the byte round(255·v).
+enum class DebugView
+{
+    Shaded = 0,           ///< the lit, tone-mapped material
+    TriplanarWeights = 1, ///< blend weights X, Y, Z as red, green, blue
+    WorldNormals = 2,     ///< the mapped world normal as n·½ + ½
+    Metallic = 3,         ///< grey
+    Occlusion = 4,        ///< grey, after occlusionStrength
+    Height = 5,           ///< mask B (height; the detail mask with MODS), grey
+    Smoothness = 6,       ///< grey, after detail
+    Albedo = 7,           ///< albedo with tint and detail, unlit
+};
+inline constexpr int DEBUG_VIEW_COUNT = 8;
+
+/// "shaded", "weights", "normals", "metallic", "occlusion", "height",
+/// "smoothness", "albedo".
+const char* debugViewName(DebugView view);
+
 struct SnapshotOptions
 {
     int width = 1280; ///< pixels, 1..16384
@@ -21,10 +55,15 @@ struct SnapshotOptions
     Camera camera;
     Lighting lighting;
     Material material;
+    DebugView debugView = DebugView::Shaded; ///< a debug view instead of the lit material
+    /// ANDed with the material's feature set (materialFeatures()): a bit
+    /// cleared here switches that feature off (see effectiveFeatures()).
+    std::uint32_t featureMask = feature::ALL;
+    ShadowOptions shadows;
 };
 
 /// Throws strata::Error "snapshot: ..." for invalid options (size, samples,
-/// material ranges, camera planes).
+/// material ranges, camera planes, shadow resolution and biases).
 void checkSnapshotOptions(const SnapshotOptions& options);
 
 } // namespace strata::render

@@ -10,10 +10,9 @@
 #include <strata/terrain/FractalNoise.h>
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
-#include <map>
 #include <memory>
-#include <mutex>
 #include <vector>
 
 namespace strata::terrain {
@@ -91,10 +90,13 @@ private:
 /// varying radius), and density is the exact signed distance to their union,
 /// capped at CAP metres (so it is 1-Lipschitz and its own distance bound).
 ///
-/// Segments are gathered lazily into 8 m buckets (thread-safe cache; the
-/// contents of a bucket depend only on its position, so results are the same
-/// on any thread count). Any region can be evaluated; memory grows with the
-/// number of buckets touched.
+/// Segments are gathered lazily into 8 m buckets, kept in a bounded
+/// thread-safe cache (at most BUCKET_CACHE_SLOTS buckets and
+/// CELL_CACHE_SLOTS spawn cells; when full, the oldest entries of a shard
+/// are dropped). The contents of a bucket depend only on its position, so
+/// eviction costs only a rebuild and results are the same on any thread
+/// count and in any order of evaluation. Any region can be evaluated; memory
+/// stays below that many buckets' worth however large it is.
 struct WormOptions
 {
     double cellSize = 64.0;       ///< metres, > 0: one spawn cell
@@ -123,6 +125,16 @@ public:
     double distanceBound(const glm::dvec3& p) const override { return density(p); }
     double minDensity() const override { return -mOptions.radius * (1.0 + mOptions.radiusVariation); }
     double minDistanceBound() const override { return minDensity(); }
+    /// density(c) ± radius, within [minDensity(), CAP]: density is the exact
+    /// signed distance capped at CAP, hence 1-Lipschitz.
+    Interval bounds(const WorldBox& box) const override;
+
+    /// Capacity of the bucket and cell caches (entries).
+    static constexpr std::size_t BUCKET_CACHE_SLOTS = 4096;
+    static constexpr std::size_t CELL_CACHE_SLOTS = 512;
+    /// How many buckets the cache holds now (<= BUCKET_CACHE_SLOTS), for
+    /// tests and diagnostics. Locks the cache.
+    std::size_t cachedBuckets() const;
 
     struct Segment
     {
@@ -148,9 +160,8 @@ private:
     WormOptions mOptions;
     double mReach = 0.0; ///< farthest any worm surface gets from its start, metres
     std::uint64_t mId;   ///< tells instances apart in the per-thread bucket cache
-    mutable std::mutex mMutex;
-    mutable std::map<Key, std::shared_ptr<const Bucket>> mBuckets;
-    mutable std::map<std::array<std::int64_t, 2>, std::shared_ptr<const std::vector<Segment>>> mCells;
+    struct Cache;        ///< the bounded bucket and cell caches (Caves.cpp)
+    std::unique_ptr<Cache> mCache;
 };
 
 /// Signed distance to a round cone: the union of spheres centred on segment

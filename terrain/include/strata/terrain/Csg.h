@@ -38,6 +38,14 @@ public:
     double density(const glm::dvec3& p) const override;
     double lipschitz() const override { return mLipschitz; }
     double distanceBound(const glm::dvec3& p) const override;
+    /// The children's intervals combined by the same operation applied to
+    /// their ends: min, max and the smooth-min/max are non-decreasing in each
+    /// argument (the smooth-min's partial derivatives are h and 1 − h, both in
+    /// [0, 1]), so op([a0, a1], [b0, b1]) lies in [op(a0, b0), op(a1, b1)]
+    /// (subtraction takes −b, i.e. [−b1, −b0]). A child that density() would
+    /// skip at every point of the box (its minDensity() cannot change the
+    /// result) is skipped here too.
+    Interval bounds(const WorldBox& box) const override;
 
 private:
     CsgOperation mOperation;

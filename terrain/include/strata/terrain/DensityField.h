@@ -9,6 +9,26 @@
 
 namespace strata::terrain {
 
+/// A closed interval [lo, hi] of density values.
+struct Interval
+{
+    double lo = 0.0;
+    double hi = 0.0;
+};
+
+/// An axis-aligned box of world positions, metres, both faces included
+/// (min <= max per axis; a point is a box with min == max).
+struct WorldBox
+{
+    glm::dvec3 min{0.0};
+    glm::dvec3 max{0.0};
+
+    glm::dvec3 centre() const { return 0.5 * (min + max); }
+    /// Half the length of the diagonal: every point of the box lies within
+    /// this distance of centre().
+    double radius() const;
+};
+
 class DensityField
 {
 public:
@@ -20,17 +40,17 @@ public:
     virtual double density(const glm::dvec3& p) const = 0;
 
     /// Upper bound of |∇density| over all space (Lipschitz constant). A true
-    /// signed distance has 1. Sampling relies on it to skip whole tiles:
-    /// |density(p)| > L·r means no surface within r of p.
+    /// signed distance has 1. The default bounds() relies on it:
+    /// |density(p) − density(c)| <= L·|p − c|.
     virtual double lipschitz() const = 0;
 
     /// A lower bound of the distance (metres) from `p` to the surface (the
     /// zero set of density()), signed like density(p): no surface point lies
-    /// within |distanceBound(p)| of p. Sampling prunes with it, while the
-    /// values it stores come from density(), so a field may return a close
-    /// estimate of the true distance from density() (with a Lipschitz bound
-    /// above 1) and still prune with a conservative bound here. The default,
-    /// density(p) / lipschitz(), is right for every field.
+    /// within |distanceBound(p)| of p. For callers that step through space
+    /// (sphere tracing, probes); sampling prunes with bounds() instead. A
+    /// field may return a close estimate of the true distance from density()
+    /// (with a Lipschitz bound above 1) and a conservative bound here. The
+    /// default, density(p) / lipschitz(), is right for every field.
     virtual double distanceBound(const glm::dvec3& p) const;
 
     /// Lower bounds of density() and of distanceBound() over all space
@@ -39,6 +59,26 @@ public:
     /// already decided (e.g. in the air above the ground).
     virtual double minDensity() const { return -HUGE_VAL; }
     virtual double minDistanceBound() const { return -HUGE_VAL; }
+
+    /// An interval that holds density(p) for every p in `box`: sampling
+    /// prunes a block of voxels when the interval of its box lies outside
+    /// the narrow band (and takes the block's sign from it), so it must be
+    /// conservative; the tighter, the fewer voxels are evaluated. Must be a
+    /// pure function of the box (thread-safe, deterministic).
+    ///
+    /// The default, density(c) ± lipschitz()·radius (c the box centre), raised
+    /// to minDensity(), is right for every field (Lipschitz: |d(p) − d(c)| <=
+    /// L·|p − c| <= L·radius). Nodes override it where the math allows a
+    /// tighter one (terraces map intervals monotonically, a warp moves the box
+    /// by the bounds of its noise, CSG combines intervals, a heightfield bounds
+    /// y − h over the box's xz footprint, primitives are exact or convex).
+    /// Cost: the node's noise sums once, at the box centre, plus interval
+    /// arithmetic: one to about two and a half density() calls for the
+    /// library's nodes (the sampler counts each call as one evaluated point
+    /// and reports them separately, SampleStats::boundEvaluations). Values are rigorous
+    /// for exact arithmetic; float noise adds rounding of about 1e-7 relative,
+    /// which the sampler's pruning slack covers.
+    virtual Interval bounds(const WorldBox& box) const;
 };
 
 /// An exact sphere signed distance: |p − center| − radius.
@@ -52,6 +92,9 @@ public:
     double density(const glm::dvec3& p) const override;
     double lipschitz() const override { return 1.0; }
     double distanceBound(const glm::dvec3& p) const override { return density(p); }
+    /// Exact: the distances from the centre to the box's nearest point and
+    /// farthest corner, minus the radius.
+    Interval bounds(const WorldBox& box) const override;
 
 private:
     glm::dvec3 mCenter;

@@ -23,9 +23,17 @@ public:
     double density(const glm::dvec3& p) const final { return (p.y - height(p.x, p.z)) * mScale; }
     double lipschitz() const final { return mLipschitz; }
     double distanceBound(const glm::dvec3& p) const final { return (p.y - height(p.x, p.z)) * mBoundScale; }
+    /// (y − h)·s is increasing in y and decreasing in h, so over the box it
+    /// lies within [(y0 − h1)·s, (y1 − h0)·s] with [h0, h1] =
+    /// heightBounds() of the box's xz footprint: exact up to that interval.
+    Interval bounds(const WorldBox& box) const final;
 
     /// Surface height at (x, z), metres.
     virtual double height(double x, double z) const = 0;
+    /// An interval holding height() over the rectangle [min.x, max.x] ×
+    /// [min.y, max.y] (world x and z, metres). The default is h(c) ± S·r
+    /// (S = slopeBound(), r the rectangle's half diagonal: h is S-Lipschitz).
+    virtual Interval heightBounds(const glm::dvec2& min, const glm::dvec2& max) const;
     /// Bound of |∇h| (metres per metre).
     double slopeBound() const { return mSlope; }
 
@@ -51,6 +59,9 @@ public:
     /// Throws strata::Error naming the option ("amplitude = -1 ...").
     NoiseHeightfield(std::uint64_t seed, const NoiseHeightfieldOptions& options);
     double height(double x, double z) const override;
+    /// base + amplitude·FractalNoise::bounds() over the rectangle in noise
+    /// units (amplitude >= 0, so the map is increasing).
+    Interval heightBounds(const glm::dvec2& min, const glm::dvec2& max) const override;
 
 private:
     NoiseHeightfieldOptions mOptions;
@@ -85,10 +96,17 @@ public:
     /// number of values or a non-finite one, or the rectangle is empty.
     ImageHeightfield(HeightImage image, const ImageHeightfieldOptions& options);
     double height(double x, double z) const override;
+    /// Bilinear interpolation stays within the values of the 4 pixels around
+    /// it, and clamping maps the rectangle onto a block of pixels: their
+    /// smallest and largest value bound h over it (exact at pixel centres).
+    /// Rectangles over more than 4096 pixels use the image's overall range
+    /// intersected with the Lipschitz default instead (bounded cost).
+    Interval heightBounds(const glm::dvec2& min, const glm::dvec2& max) const override;
 
 private:
     HeightImage mImage;
     ImageHeightfieldOptions mOptions;
+    float mMinValue = 0.0f, mMaxValue = 0.0f; ///< over the whole image
 };
 
 } // namespace strata::terrain

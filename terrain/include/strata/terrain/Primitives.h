@@ -9,6 +9,12 @@
 
 namespace strata::terrain {
 
+/// Box bounds of the convex primitives (box, capsule): the exact signed
+/// distance to a convex solid is a convex function, so its largest value over
+/// a box is at one of the box's 8 corners (hi is exact); the smallest is at
+/// least density(centre) − radius, since it is 1-Lipschitz.
+Interval convexBounds(const DensityField& field, const WorldBox& box);
+
 /// An axis-aligned box, optionally with rounded edges.
 class BoxField final : public DensityField
 {
@@ -18,6 +24,8 @@ public:
     double density(const glm::dvec3& p) const override;
     double lipschitz() const override { return 1.0; }
     double distanceBound(const glm::dvec3& p) const override { return density(p); }
+    /// convexBounds().
+    Interval bounds(const WorldBox& box) const override { return convexBounds(*this, box); }
 
 private:
     glm::dvec3 mCenter, mHalf;
@@ -32,6 +40,8 @@ public:
     double density(const glm::dvec3& p) const override;
     double lipschitz() const override { return 1.0; }
     double distanceBound(const glm::dvec3& p) const override { return density(p); }
+    /// convexBounds().
+    Interval bounds(const WorldBox& box) const override { return convexBounds(*this, box); }
 
 private:
     glm::dvec3 mA, mB;
@@ -47,6 +57,8 @@ public:
     double density(const glm::dvec3& p) const override;
     double lipschitz() const override { return 1.0; }
     double distanceBound(const glm::dvec3& p) const override { return density(p); }
+    /// Exact: a linear function over a box ranges over n·c ± Σ|n_a|·half_a.
+    Interval bounds(const WorldBox& box) const override;
 
 private:
     glm::dvec3 mNormal;

@@ -34,6 +34,12 @@ public:
     double distanceBound(const glm::dvec3& p) const override;
     double minDensity() const override { return mChild->minDensity(); }
     double minDistanceBound() const override { return std::min(0.0, mChild->minDistanceBound()); }
+    /// For p in the box, each warp component a·f_a(p/λ) lies in a·F_a with
+    /// F_a = FractalNoise::bounds() over the box in noise units (within the
+    /// noise's range), so w(p) lies in the box moved by those
+    /// intervals (min + a·F.lo, max + a·F.hi per axis): the child's bounds
+    /// over that box hold density(p). Costs the two or three noise sums.
+    Interval bounds(const WorldBox& box) const override;
 
 private:
     glm::dvec3 warp(const glm::dvec3& p) const;
@@ -60,6 +66,11 @@ public:
     double distanceBound(const glm::dvec3& p) const override;
     double minDensity() const override { return mChild->minDensity(); }
     double minDistanceBound() const override { return std::min(0.0, mChild->minDistanceBound()); }
+    /// T is continuous and non-decreasing (t^sharpness grows with t within a
+    /// step and reaches k + 1 where the next step starts), so for y in
+    /// [y0, y1], T(y) lies in [T(y0), T(y1)]: the child's bounds over the box
+    /// with that y range hold density(). Widened by a few ulps for rounding.
+    Interval bounds(const WorldBox& box) const override;
 
     /// The height map T(y), metres.
     double terrace(double y) const;
@@ -79,6 +90,11 @@ public:
     double distanceBound(const glm::dvec3& p) const override { return mChild->distanceBound(p - mOffset); }
     double minDensity() const override { return mChild->minDensity(); }
     double minDistanceBound() const override { return std::min(0.0, mChild->minDistanceBound()); }
+    /// The child's bounds over the moved box (exactly the points it sees).
+    Interval bounds(const WorldBox& box) const override
+    {
+        return mChild->bounds({box.min - mOffset, box.max - mOffset});
+    }
 
 private:
     DensityFieldPtr mChild;

@@ -1,0 +1,66 @@
+#pragma once
+// The snapshot flags of `strata generate` and `strata render` (see
+// Snapshot.h), registered the same way on both.
+
+#include "Snapshot.h"
+
+#include <strata/Error.h>
+
+#include <CLI/CLI.hpp>
+
+#include <optional>
+#include <string>
+
+namespace strata::app {
+
+struct SnapshotFlags
+{
+    std::string backend = "auto";
+    std::string view;
+    std::string cameraPosition;
+    std::string cameraTarget;
+    std::optional<double> fov;
+    int turntable = 0;
+    std::string format;
+
+    void add(CLI::App* command)
+    {
+        command->add_option("--backend", backend,
+                            "Renderer: auto (OpenGL through EGL, else the CPU renderer with a notice; default), "
+                            "gl (OpenGL, an error without it) or cpu (the reference renderer)");
+        command->add_option(
+            "--view", view,
+            "Camera preset: orbit (the scene's orbit angles), top (straight down), cave (from "
+            "inside the largest cave, looking towards its nearest opening); default: the scene's camera");
+        command->add_option("--camera-position", cameraPosition,
+                            "Camera position X,Y,Z in world metres (overrides the view's)");
+        command->add_option("--camera-target", cameraTarget, "Point the camera looks at, X,Y,Z in world metres");
+        command->add_option("--fov", fov, "Vertical field of view in degrees, (0, 180)");
+        turntableOption = command->add_option(
+            "--turntable", turntable,
+            "Render N frames around the vertical axis through the target: NAME_000.EXT, NAME_001.EXT, ...");
+        command->add_option("--snapshot-format", format, "png (8-bit sRGB) or exr (linear float through OpenImageIO)");
+    }
+
+    /// The request; throws strata::Error naming the flag and value.
+    SnapshotRequest request() const
+    {
+        SnapshotRequest r;
+        r.backend = backend;
+        r.view = view;
+        if (!cameraPosition.empty()) r.cameraPosition = parseVec3Flag("--camera-position", cameraPosition);
+        if (!cameraTarget.empty()) r.cameraTarget = parseVec3Flag("--camera-target", cameraTarget);
+        r.fov = fov;
+        r.turntable = turntable;
+        if (turntableOption && turntableOption->count() > 0 && !(turntable >= 1 && turntable <= 3600)) {
+            throw Error("--turntable '" + std::to_string(turntable) + "' must be a frame count in [1, 3600]");
+        }
+        r.format = format;
+        checkSnapshotRequest(r);
+        return r;
+    }
+
+    CLI::Option* turntableOption = nullptr;
+};
+
+} // namespace strata::app

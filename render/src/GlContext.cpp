@@ -1,0 +1,7 @@
+#include <strata/render/GlContext.h>
+
+namespace strata::render {
+
+GlContext::~GlContext() = default;
+
+} // namespace strata::render

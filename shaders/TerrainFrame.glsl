@@ -1,0 +1,17 @@
+// The per-frame uniform block shared by the terrain vertex and fragment
+// stages. std140, mirrored by strata::render::detail::FrameBlock
+// (render/src/UniformBlocks.h, which checks every offset); binding points:
+//   0 FrameBlock, 1 MaterialBlock, 2 LightingBlock (terrain.frag).
+// Texture units 0..8 hold the material's maps (MAP_* slots).
+
+layout(std140, binding = 0) uniform FrameBlock
+{
+    mat4 viewProjection;  // projection · view(origin)
+    vec4 cameraPosition;  // xyz: metres, relative to the mesh origin
+    vec4 textureOffset;   // xyz: fract(origin · mapScale), computed in double
+    vec4 wireColor;       // linear RGBA of the wireframe overlay
+    float mapScale;       // texture repeats per metre
+    int debugView;        // DEBUG_VIEW_* (TriplanarMaterial.h); 0 = shaded
+    int wireframePass;    // 1 while drawing the wireframe overlay
+    int reserved;
+} uFrame;
