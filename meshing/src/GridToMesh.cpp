@@ -38,16 +38,20 @@ TriangleMesh gridToMesh(const openvdb::FloatGrid& grid, const GridToMeshOptions&
     std::vector<openvdb::Vec3s> points;
     std::vector<openvdb::Vec3I> triangles;
     std::vector<openvdb::Vec4I> quads;
-    openvdb::tools::volumeToMesh(grid, points, triangles, quads, options.isovalue, options.adaptivity);
+    // volumeToMesh returns float points in the grid's world space: far from
+    // the world origin (1e7 m) that rounds them to a metre. Mesh a shallow
+    // copy (shared tree) whose transform is moved by −origin instead, so the
+    // points come out relative to the origin, subtracted in double.
+    openvdb::math::Transform::Ptr relative = grid.transform().copy();
+    relative->postTranslate(openvdb::Vec3d(-options.origin.x, -options.origin.y, -options.origin.z));
+    const openvdb::FloatGrid::ConstPtr local = grid.copyReplacingTransform(relative);
+    openvdb::tools::volumeToMesh(*local, points, triangles, quads, options.isovalue, options.adaptivity);
 
     TriangleMesh mesh;
     mesh.origin = options.origin;
     mesh.positions.resize(points.size());
     for (std::size_t i = 0; i < points.size(); ++i) {
-        // Subtract the origin in double so far-out meshes keep their precision.
-        mesh.positions[i] = glm::vec3(double(points[i].x()) - options.origin.x,
-                                      double(points[i].y()) - options.origin.y,
-                                      double(points[i].z()) - options.origin.z);
+        mesh.positions[i] = glm::vec3(points[i].x(), points[i].y(), points[i].z());
     }
 
     // volumeToMesh winds level-set polygons clockwise seen from outside:
