@@ -8,10 +8,11 @@ layout(std140, binding = 0) uniform FrameBlock
 {
     mat4 viewProjection;  // projection · view(origin)
     vec4 cameraPosition;  // xyz: metres, relative to the mesh origin
-    vec4 textureOffset;   // xyz: fract(origin · mapScale), computed in double
+    vec4 textureOffset;   // xyz: fract(origin · mapScale), computed in double (a tile-aligned rebasing)
     vec4 wireColor;       // linear RGBA of the wireframe overlay
     float mapScale;       // texture repeats per metre
     int debugView;        // DEBUG_VIEW_* (TriplanarMaterial.h); 0 = shaded
     int wireframePass;    // 1 while drawing the wireframe overlay
     int reserved;
+    vec4 detailOffset;    // xyz: fract(floor(origin · mapScale) · detailScale), computed in double
 } uFrame;

@@ -83,6 +83,11 @@ struct LightingParams
 struct SurfaceInput
 {
     vec3 p;       ///< texture-space position (world × mapScale + offset)
+    /// Added to p × detailScale for the detail maps: the fraction of the
+    /// rebasing origin's tile count × detailScale (computed in double), so
+    /// detail maps follow the world whatever the mesh origin, also when
+    /// detailScale is not a whole number.
+    vec3 detailOffset;
     vec3 dpdx;    ///< its screen-space derivatives
     vec3 dpdy;
     vec3 n;       ///< unit interpolated surface normal
@@ -197,7 +202,7 @@ STRATA_FEATURE_FUNCTION SurfaceOutput evaluateSurface(STRATA_MAPS_PARAM SurfaceI
     TriplanarUV detailDdy = ddy;
     STRATA_IF_FEATURE(FEATURE_DETAIL | FEATURE_DETAIL_NORMAL)
     {
-        detailUV = triplanarUV(s.p * m.detailScale, n);
+        detailUV = triplanarUV(s.p * m.detailScale + s.detailOffset, n);
         detailDdx = triplanarUVDerivative(s.dpdx * m.detailScale, n);
         detailDdy = triplanarUVDerivative(s.dpdy * m.detailScale, n);
     }

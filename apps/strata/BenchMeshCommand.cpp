@@ -309,16 +309,14 @@ int runBench(const BenchArguments& args)
 
 } // namespace
 
-Command registerBenchMeshCommand(CLI::App& app)
+Command registerBenchMeshCommand(CLI::App& bench)
 {
     auto args = std::make_shared<BenchArguments>();
-    CLI::App* bench = app.add_subcommand("bench", "Benchmarks");
-    bench->require_subcommand(1);
-    CLI::App* mesh = bench->add_subcommand(
+    CLI::App* mesh = bench.add_subcommand(
         "mesh", "Measure the meshers on analytic shapes; writes DIR/mesh-bench.md and DIR/mesh-bench.csv");
     mesh->add_option("-o,--output", args->outputDir, "Output directory (created if missing)")->required();
     mesh->add_flag("--quick", args->quick, "Two shapes at two resolutions (a smoke test, seconds)");
-    return {bench, [args]() { return runBench(*args); }};
+    return {mesh, [args]() { return runBench(*args); }};
 }
 
 } // namespace strata::app

@@ -29,6 +29,7 @@ Command registerSceneCommand(CLI::App& app);
 Command registerRenderCommand(CLI::App& app);    // RenderCommand.cpp
 Command registerMeshCommand(CLI::App& app);      // MeshCommand.cpp
 Command registerInfoCommand(CLI::App& app);      // InfoCommand.cpp
-Command registerBenchMeshCommand(CLI::App& app); // BenchMeshCommand.cpp
+Command registerBenchCommand(CLI::App& app);      // BenchCommand.cpp: `bench`, with `bench mesh` under it
+Command registerBenchMeshCommand(CLI::App& bench); // BenchMeshCommand.cpp: `bench mesh`, added to `bench`
 
 } // namespace strata::app

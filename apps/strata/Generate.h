@@ -2,9 +2,11 @@
 /// \file
 /// `strata generate`: scene → grid → mesh → files and snapshot.
 
+#include "Quality.h"
 #include "Scene.h"
 #include "Snapshot.h"
 
+#include <strata/meshing/GridNormals.h>
 #include <strata/meshing/TriangleMesh.h>
 #include <strata/render/MeshView.h>
 #include <strata/render/SnapshotOptions.h>
@@ -33,6 +35,12 @@ struct GenerateOptions
     /// Refuse to sample a grid whose estimated memory exceeds this (bytes;
     /// 0 = no limit): strata::Error with the estimate, before the long stages.
     std::uint64_t maxMemoryBytes = 8ull << 30;
+    /// Quality (Quality.h): `--preset` (else the scene's [quality] preset,
+    /// else balanced) and `--quality KEY=VALUE` overrides, which win over
+    /// the scene. A request.backend other than "auto" counts as a
+    /// backend override.
+    std::optional<std::string> preset;
+    QualityOverrides quality;
 };
 
 struct GenerateResult
@@ -46,6 +54,14 @@ struct GenerateResult
     std::uint64_t vertices = 0;
     std::uint64_t triangles = 0;
     std::string renderer;                  ///< GL renderer description, empty without snapshot
+    QualitySettings quality;               ///< the effective quality settings
+    std::string mesher;                    ///< what meshed it, e.g. "volume (adaptivity 0)"
+    /// GL: shader variants compiled for this run against the distinct
+    /// feature sets possible (0/0 on the CPU renderer or without snapshot).
+    int programsCompiled = 0, programsPossible = 0;
+    /// CPU renderer: map fetches done and a naive 3-projection shader's
+    /// (render::CpuRenderStats, summed over frames); all 0 on GL.
+    std::uint64_t shadedPixels = 0, textureFetches = 0, naiveFetches = 0;
     std::map<std::string, double> timings; ///< seconds per stage, and "total"
 };
 
@@ -66,6 +82,16 @@ render::SnapshotOptions makeSnapshotOptions(const Scene& scene, const meshing::T
                                             std::optional<int> width, std::optional<int> height,
                                             const SnapshotRequest& request,
                                             const std::optional<render::Camera>& cave = std::nullopt);
+
+/// Meshes `grid` as `quality` says: its mesher (volume with adaptivity, or
+/// the chunk meshers in 32³ chunks), normals (grid, face, or `gradient`
+/// for "field"), projection steps and simplification (meshoptimizer,
+/// borders locked, error bound half a voxel; face normals recomputed).
+/// Positions relative to `origin`. `what` receives a short description.
+/// Throws strata::Error for "field" normals without a gradient.
+meshing::TriangleMesh meshWithQuality(const openvdb::FloatGrid& grid, const QualitySettings& quality,
+                                      const meshing::GradientFunction& gradient, const glm::dvec3& origin,
+                                      std::string* what = nullptr);
 
 /// Runs the whole pipeline and writes DIR/terrain.vdb, DIR/terrain.glb,
 /// (DIR/terrain.ply), DIR/snapshot.png (or .exr; or snapshot_000.png …

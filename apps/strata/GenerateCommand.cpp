@@ -2,13 +2,16 @@
 
 #include "Commands.h"
 #include "Generate.h"
+#include "Quality.h"
 #include "Scene.h"
+#include "SceneOffset.h"
 #include "SnapshotFlags.h"
 
 #include <strata/Error.h>
 
 #include <tbb/global_control.h>
 
+#include <algorithm>
 #include <cctype>
 #include <iostream>
 #include <memory>
@@ -62,9 +65,12 @@ struct GenerateArguments
     std::string maxMemory = "8GiB";
     std::string size;
     bool noSnapshot = false;
+    std::string offset; ///< --offset X,Y,Z
     SnapshotFlags snapshot;
     bool writePly = false;
     bool quiet = false;
+    std::optional<std::string> preset;  ///< --preset
+    std::vector<std::string> quality;   ///< --quality KEY=VALUE, repeatable
 };
 
 } // namespace
@@ -78,24 +84,45 @@ Command registerGenerateCommand(CLI::App& app)
     generate->add_option("scene", args->scenePath, "Scene file (TOML); without one, the embedded default scene")
         ->check(CLI::ExistingFile);
     generate->add_option("-o,--output", args->outputDir, "Output directory (created if missing)")->required();
-    generate->add_option("--seed", args->seed, "Override the scene's seed");
+    generate->add_option("--seed", args->seed, "Override the scene's seed")
+        ->check(CLI::NonNegativeNumber); // CLI11 would wrap -1 to 2^64 - 1
     generate->add_option("--max-memory", args->maxMemory,
                          "Refuse scenes whose grid would need more memory than this, e.g. 8GiB (default), 512MiB")
         ->capture_default_str();
     generate->add_option("--threads", args->threads, "Worker threads (0 = all cores); output is identical for any count")
         ->check(CLI::Range(0, 1024));
     generate->add_option("--size", args->size, "Snapshot size WIDTHxHEIGHT (default from the scene, 1280x720)");
+    generate->add_option("--offset", args->offset,
+                         "Move the whole scene (terrain, region, camera; camera flags included) by X,Y,Z world "
+                         "metres, |value| <= 1e9");
     args->snapshot.add(generate);
+    generate->add_option("--preset", args->preset,
+                         "Quality preset: fast, balanced (default: the scene as written) or accurate; "
+                         "overrides the scene's [quality] preset");
+    generate->add_option("--quality", args->quality,
+                         "Override one quality knob, KEY=VALUE (repeatable; wins over the preset and [quality]): "
+                         "voxel_size, voxel_scale, half_width, mesher, adaptivity, normals, projection, simplify, "
+                         "filtering, normal_blend, shadow_resolution, backend");
     generate->add_flag("--no-snapshot", args->noSnapshot, "Skip the snapshot (no OpenGL/EGL needed)");
     generate->add_flag("--ply", args->writePly, "Also write DIR/terrain.ply (binary PLY)");
     generate->add_flag("-q,--quiet", args->quiet, "Print nothing but errors");
 
-    return {generate, [args]() {
+    return {generate, [args, generate]() {
                 GenerateOptions options;
                 options.outputDir = args->outputDir;
                 options.seed = args->seed;
                 options.snapshot = !args->noSnapshot;
                 options.request = args->snapshot.request(); // bad values: exit 2 before anything is written
+                options.preset = args->preset;
+                if (args->preset && std::find(presetNames().begin(), presetNames().end(), *args->preset) ==
+                                        presetNames().end()) { // an unknown preset: exit 2, nothing written
+                    throw Error("--preset '" + *args->preset + "' is not a preset (use fast, balanced or accurate)");
+                }
+                for (const std::string& text : args->quality) addQualityFlag(text, options.quality);
+                // --backend is the backend knob's flag: it wins over [quality] and the preset.
+                if (generate->get_option("--backend")->count() > 0) {
+                    options.quality["backend"] = checkKnob("backend", options.request.backend);
+                }
                 options.writePly = args->writePly;
                 options.quiet = args->quiet;
                 options.threads = args->threads;
@@ -105,8 +132,13 @@ Command registerGenerateCommand(CLI::App& app)
                     options.width = width;
                     options.height = height;
                 }
-                const Scene scene = args->scenePath.empty() ? parseScene(defaultSceneText(), "<default scene>")
-                                                            : loadScene(args->scenePath);
+                const glm::dvec3 offset =
+                    args->offset.empty() ? glm::dvec3(0.0) : parseVec3Flag("--offset", args->offset);
+                offsetRequest(options.request, offset);
+                const Scene scene = offsetScene(args->scenePath.empty()
+                                                    ? parseScene(defaultSceneText(), "<default scene>")
+                                                    : loadScene(args->scenePath),
+                                                offset);
 
                 std::unique_ptr<tbb::global_control> threadLimit;
                 if (args->threads > 0) {

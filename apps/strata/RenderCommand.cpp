@@ -6,6 +6,7 @@
 #include "Generate.h"
 #include "CaveView.h"
 #include "Scene.h"
+#include "SceneOffset.h"
 #include "SnapshotFlags.h"
 
 #include <strata/Error.h>
@@ -40,6 +41,7 @@ struct RenderArguments
     std::string meshPath;
     std::string output;
     SnapshotFlags snapshot;
+    std::string offset; ///< --offset X,Y,Z
     std::string size;
     std::optional<std::uint64_t> seed;
     int threads = 0;
@@ -121,9 +123,13 @@ Command registerRenderCommand(CLI::App& app)
                      "Render this mesh (.glb, .gltf, .ply, .obj, .stl) instead of the scene's terrain")
         ->check(CLI::ExistingFile);
     render->add_option("-o,--output", args->output, "Output image (.png, .exr, .tif, .jpg, by extension)")->required();
+    render->add_option("--offset", args->offset,
+                       "Move the whole scene (terrain or --mesh, region, camera; camera flags included) by X,Y,Z "
+                       "world metres, |value| <= 1e9");
     args->snapshot.add(render);
     render->add_option("--size", args->size, "Image size WIDTHxHEIGHT (default from the scene, 1280x720)");
-    render->add_option("--seed", args->seed, "Override the scene's seed");
+    render->add_option("--seed", args->seed, "Override the scene's seed")
+        ->check(CLI::NonNegativeNumber); // CLI11 would wrap -1 to 2^64 - 1
     render
         ->add_option("--threads", args->threads, "Worker threads (0 = all cores); the image is identical for any count")
         ->check(CLI::Range(0, 1024));
@@ -132,7 +138,10 @@ Command registerRenderCommand(CLI::App& app)
     return {render, [args]() {
                 using Clock = std::chrono::steady_clock;
                 // Every flag checked before any work: bad values exit 2 with nothing written.
-                const SnapshotRequest request = args->snapshot.request();
+                SnapshotRequest request = args->snapshot.request();
+                const glm::dvec3 offset =
+                    args->offset.empty() ? glm::dvec3(0.0) : parseVec3Flag("--offset", args->offset);
+                offsetRequest(request, offset);
                 std::filesystem::path output = args->output;
                 std::string ext = output.extension().string();
                 for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
@@ -144,8 +153,10 @@ Command registerRenderCommand(CLI::App& app)
                     throw Error("--view cave needs the scene's terrain grid: it cannot be used with --mesh '" +
                                 args->meshPath + "'");
                 }
-                const Scene scene = args->scenePath.empty() ? parseScene(defaultSceneText(), "<default scene>")
-                                                            : loadScene(args->scenePath);
+                const Scene scene = offsetScene(args->scenePath.empty()
+                                                    ? parseScene(defaultSceneText(), "<default scene>")
+                                                    : loadScene(args->scenePath),
+                                                offset);
                 std::optional<int> width, height;
                 if (!args->size.empty()) {
                     static const std::regex pattern(R"((\d{1,5})[xX](\d{1,5}))");
@@ -170,10 +181,11 @@ Command registerRenderCommand(CLI::App& app)
 
                 auto t0 = Clock::now();
                 std::optional<render::Camera> cave;
-                const meshing::TriangleMesh mesh =
+                meshing::TriangleMesh mesh =
                     args->meshPath.empty()
                         ? terrainMesh(scene, args->seed, args->output, request.view == "cave" ? &cave : nullptr)
                         : readMesh(args->meshPath);
+                if (!args->meshPath.empty()) mesh.origin += offset; // the mesh file moves with the scene
                 auto t1 = Clock::now();
                 const render::SnapshotOptions snapshot = makeSnapshotOptions(scene, mesh, width, height, request, cave);
                 auto t2 = Clock::now();

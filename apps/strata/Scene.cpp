@@ -195,6 +195,8 @@ Scene parseScene(std::string_view text, const std::string& source)
     shadows.depthBias = float(snapshot.number("shadow_depth_bias", shadows.depthBias, 0.0, 16.0));
     snapshot.finish();
 
+    scene.quality = readQuality(root);
+
     root.finish();
     return scene;
 }

@@ -2,6 +2,7 @@
 /// \file
 /// The scene file: everything `strata generate` needs, read from TOML.
 
+#include "Quality.h"
 #include "SceneMaterial.h"
 
 #include <strata/render/Material.h>
@@ -38,6 +39,7 @@ struct SnapshotSettings
     int samples = 4; ///< MSAA samples
     float anisotropy = 1.0f; ///< 1 = trilinear; up to 16
     render::ShadowOptions shadows; ///< [snapshot] shadows, shadow_resolution, shadow_normal_bias, shadow_depth_bias
+    render::TextureFilter filtering = render::TextureFilter::Trilinear; ///< [quality] filtering
 };
 
 
@@ -61,6 +63,7 @@ struct Scene
     SnapshotSettings snapshot;
     MaterialSettings material; ///< see SceneMaterial.h
     render::Lighting lighting;
+    QualityTable quality; ///< [quality]: preset and knob overrides (Quality.h)
 };
 
 /// The scene compiled into the executable.

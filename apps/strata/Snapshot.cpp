@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <ostream>
 #include <regex>
 
@@ -47,7 +48,7 @@ glm::dvec3 parseVec3Flag(const std::string& flag, const std::string& text)
             (i == 2 && text.find(',', start) != std::string::npos)) {
             throw Error(flag + " '" + text + "' must look like X,Y,Z (three numbers in metres, e.g. 10,40,-25)");
         }
-        v[i] = std::stod(match[1]);
+        v[i] = std::strtod(match[1].str().c_str(), nullptr); // ±HUGE_VAL on overflow, caught below
         if (!std::isfinite(v[i]) || std::abs(v[i]) > 1e9) {
             throw Error(flag + " '" + text + "' is out of range (|value| <= 1e9 metres)");
         }

@@ -21,7 +21,7 @@ int main(int argc, char** argv)
         registerRenderCommand(app),
         registerMeshCommand(app),
         registerInfoCommand(app),
-        registerBenchMeshCommand(app),
+        registerBenchCommand(app),
     };
 
     try {

@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -27,15 +28,23 @@ constexpr int SUBPIXEL_BITS = 8; // vertices snap to 1/256 pixel
 constexpr float SUBPIXEL = float(1 << SUBPIXEL_BITS);
 constexpr float GUARD = 4.0f; // guard band, in multiples of the viewport half-size
 
-/// The CPU side of SAMPLE_MAP: trilinear sampling of the nine slots.
+/// The CPU side of SAMPLE_MAP: filtered sampling of the nine slots. Each
+/// tile shades with its own copy, which counts its fetches (CpuRenderStats).
 struct CpuMaps
 {
     std::array<const Texture*, 9> maps{};
     std::uint32_t features = 0;
+    TextureFilter filter = TextureFilter::Trilinear;
+    mutable std::uint64_t fetches = 0; ///< SAMPLE_MAP calls
+    mutable std::uint32_t groups = 0;  ///< bit per map group sampled at the current fragment
 
     glm::vec4 sample(int map, glm::vec2 uv, glm::vec2 dUVdx, glm::vec2 dUVdy) const
     {
-        return sampleTrilinear(*maps[std::size_t(map)], uv, dUVdx, dUVdy);
+        // Map groups: albedo (side or top), mask, normal, detail, detail normal, emission.
+        static constexpr std::uint32_t GROUP[9] = {0, 1, 2, 0, 1, 2, 3, 4, 5};
+        ++fetches;
+        groups |= 1u << GROUP[std::size_t(map)];
+        return sampleFiltered(*maps[std::size_t(map)], filter, uv, dUVdx, dUVdy);
     }
 };
 
@@ -128,18 +137,21 @@ struct Frame
     int width, height;
     float mapScale;
     glm::vec3 textureOffset;
+    glm::vec3 detailOffset;   // fract(floor(origin · mapScale) · detailScale), as GlRenderer.cpp
     glm::vec3 cameraPosition; // relative to the mesh origin
     shading::MaterialParams material;
     shading::LightingParams lighting;
     CpuMaps maps;
 };
 
-using ShadeFunction = glm::vec3 (*)(const Frame&, const shading::SurfaceInput&, const shading::LightingParams&);
+using ShadeFunction = glm::vec3 (*)(const Frame&, const CpuMaps&, const shading::SurfaceInput&,
+                                    const shading::LightingParams&);
 
 template <unsigned FEATURES>
-glm::vec3 shadeWith(const Frame& frame, const shading::SurfaceInput& s, const shading::LightingParams& lighting)
+glm::vec3 shadeWith(const Frame& frame, const CpuMaps& maps, const shading::SurfaceInput& s,
+                    const shading::LightingParams& lighting)
 {
-    return shading::shadeFragment<FEATURES, CpuMaps>(frame.maps, s, frame.material, lighting);
+    return shading::shadeFragment<FEATURES, CpuMaps>(maps, s, frame.material, lighting);
 }
 
 /// The CPU side of SHADOW_FETCH: a square depth map, stored rows top to
@@ -385,7 +397,7 @@ CpuShadowMap renderShadowMap(const MeshView& mesh, const shading::ShadowParams& 
 
 } // namespace
 
-Image renderSnapshotCpu(const MeshView& mesh, const SnapshotOptions& options)
+Image renderSnapshotCpu(const MeshView& mesh, const SnapshotOptions& options, CpuRenderStats* stats)
 {
     checkSnapshotOptions(options);
     for (std::size_t i = 0; i < mesh.indexCount; ++i) {
@@ -405,11 +417,14 @@ Image renderSnapshotCpu(const MeshView& mesh, const SnapshotOptions& options)
     frame.mapScale = material.mapScale;
     const glm::dvec3 originScaled = mesh.origin * double(material.mapScale);
     frame.textureOffset = glm::vec3(originScaled - glm::floor(originScaled));
+    const glm::dvec3 detailShift = glm::floor(originScaled) * double(material.detailScale);
+    frame.detailOffset = glm::vec3(detailShift - glm::floor(detailShift));
     frame.cameraPosition = glm::vec3(options.camera.position - mesh.origin);
     frame.material = detail::toShading(material);
     frame.lighting = detail::toShading(options.lighting);
     for (std::size_t i = 0; i < 9; ++i) frame.maps.maps[i] = textures[i].get();
     frame.maps.features = effectiveFeatures(material, options.featureMask);
+    frame.maps.filter = options.filtering;
     const ShadeFunction shade = shadeFunctionFor(frame.maps.features);
     const int debugView = int(options.debugView);
 
@@ -441,11 +456,14 @@ Image renderSnapshotCpu(const MeshView& mesh, const SnapshotOptions& options)
     const glm::vec3 sky = options.lighting.skyColor;
     const std::uint8_t skyBytes[4] = {encode(sky.r), encode(sky.g), encode(sky.b), 255};
 
+    std::vector<CpuRenderStats> tileStats(std::size_t(bins.tilesX) * std::size_t(bins.tilesY));
     tbb::parallel_for(0, bins.tilesX * bins.tilesY, [&](int tileIndex) {
         const int x0 = (tileIndex % bins.tilesX) * TILE;
         const int y0 = (tileIndex / bins.tilesX) * TILE;
         const int x1 = std::min(width, x0 + TILE);
         const int y1 = std::min(height, y0 + TILE);
+        CpuMaps maps = frame.maps; // this tile's fetch counters
+        CpuRenderStats& counted = tileStats[std::size_t(tileIndex)];
         float depth[TILE * TILE];
         std::uint32_t id[TILE * TILE];
         resolveTile(triangles, bins.tiles[std::size_t(tileIndex)], x0, y0, x1, y1, depth, id);
@@ -476,6 +494,7 @@ Image renderSnapshotCpu(const MeshView& mesh, const SnapshotOptions& options)
                 }
                 shading::SurfaceInput s;
                 s.p = self.position * frame.mapScale + frame.textureOffset;
+                s.detailOffset = frame.detailOffset;
                 const glm::vec3 dx = nx.valid ? (nx.position - self.position) * frame.mapScale : glm::vec3(0.0f);
                 const glm::vec3 dy = ny.valid ? (ny.position - self.position) * frame.mapScale : glm::vec3(0.0f);
                 s.dpdx = px == qx ? dx : -dx;
@@ -484,19 +503,32 @@ Image renderSnapshotCpu(const MeshView& mesh, const SnapshotOptions& options)
                 s.viewDir = shading::safeNormalize(frame.cameraPosition - self.position, s.n);
                 glm::vec3 c;
                 if (debugView != shading::DEBUG_VIEW_SHADED) {
-                    c = shading::shadeDebugFragment<feature::ALL, CpuMaps>(frame.maps, s, frame.material, debugView);
+                    c = shading::shadeDebugFragment<feature::ALL, CpuMaps>(maps, s, frame.material, debugView);
                 } else {
                     // The interpolated (not the normal-mapped) normal biases the lookup.
                     const float visibility = shading::sunVisibility(shadowMap, shadow, self.position, self.normal);
-                    c = shade(frame, s, shading::shadowedLighting(frame.lighting, visibility));
+                    c = shade(frame, maps, s, shading::shadowedLighting(frame.lighting, visibility));
                 }
+                // A naive triplanar shader fetches all three projections of every map group it reads.
+                ++counted.shadedPixels;
+                counted.naiveFetches += 3u * std::uint64_t(std::popcount(maps.groups));
+                maps.groups = 0;
                 out[0] = encode(c.r);
                 out[1] = encode(c.g);
                 out[2] = encode(c.b);
                 out[3] = 255;
             }
         }
+        counted.textureFetches = maps.fetches;
     });
+    if (stats) {
+        *stats = {};
+        for (const CpuRenderStats& t : tileStats) { // in tile order: the same sums on any thread count
+            stats->shadedPixels += t.shadedPixels;
+            stats->textureFetches += t.textureFetches;
+            stats->naiveFetches += t.naiveFetches;
+        }
+    }
     return image;
 }
 

@@ -419,7 +419,7 @@ void GlRenderer::setMesh(const MeshView& mesh)
     r.indexCount = GLsizei(mesh.indexCount);
 }
 
-void GlRenderer::setMaterial(const Material& material, float anisotropy)
+void GlRenderer::setMaterial(const Material& material, float anisotropy, TextureFilter filtering)
 {
     Impl& r = *mImpl;
     checkMaterial(material);
@@ -454,6 +454,9 @@ void GlRenderer::setMaterial(const Material& material, float anisotropy)
             if (applied > 1.0f || r.maxAnisotropy > 1.0f) {
                 glTextureParameterf(found->object.id(), GL_TEXTURE_MAX_ANISOTROPY_EXT, applied);
             }
+            glTextureParameteri(found->object.id(), GL_TEXTURE_MIN_FILTER,
+                                filtering == TextureFilter::Bilinear ? GL_LINEAR_MIPMAP_NEAREST
+                                                                     : GL_LINEAR_MIPMAP_LINEAR);
         }
         r.units[slot] = found->object.id();
     }
@@ -517,6 +520,11 @@ void GlRenderer::draw(const Camera& camera, const Lighting& lighting, unsigned f
     // share is dropped in double precision (textures repeat every unit).
     const glm::dvec3 originScaled = r.origin * double(r.material.mapScale);
     frame.textureOffset = glm::vec4(glm::vec3(originScaled - glm::floor(originScaled)), 0.0f);
+    // Detail maps repeat detailScale times per unit: the dropped whole tiles
+    // times detailScale leave this fraction (not zero unless detailScale is
+    // a whole number).
+    const glm::dvec3 detailShift = glm::floor(originScaled) * double(r.material.detailScale);
+    frame.detailOffset = glm::vec4(glm::vec3(detailShift - glm::floor(detailShift)), 0.0f);
     frame.wireColor = options.wireColor;
     frame.mapScale = r.material.mapScale;
     frame.debugView = int(options.debugView);
@@ -655,7 +663,7 @@ Image GlRenderer::readFrame()
 Image GlRenderer::renderImage(const SnapshotOptions& options)
 {
     checkSnapshotOptions(options);
-    setMaterial(options.material, options.anisotropy);
+    setMaterial(options.material, options.anisotropy, options.filtering);
     DrawOptions draw;
     draw.debugView = options.debugView;
     draw.featureMask = options.featureMask;

@@ -357,4 +357,23 @@ glm::vec4 sampleTrilinear(const Texture& texture, glm::vec2 uv, glm::vec2 dUVdx,
     return a * (1.0f - t) + b * t;
 }
 
+glm::vec4 sampleBilinearNearestMip(const Texture& texture, glm::vec2 uv, glm::vec2 dUVdx, glm::vec2 dUVdy)
+{
+    const float lambda = textureLod(texture, dUVdx, dUVdy);
+    const int last = int(texture.levels.size()) - 1;
+    if (!(lambda > 0.5f) || last == 0) {
+        return sampleBilinear(texture, 0, uv);
+    }
+    if (lambda > float(last) + 0.5f) {
+        return sampleBilinear(texture, last, uv);
+    }
+    return sampleBilinear(texture, int(std::ceil(lambda + 0.5f)) - 1, uv);
+}
+
+glm::vec4 sampleFiltered(const Texture& texture, TextureFilter filter, glm::vec2 uv, glm::vec2 dUVdx, glm::vec2 dUVdy)
+{
+    return filter == TextureFilter::Bilinear ? sampleBilinearNearestMip(texture, uv, dUVdx, dUVdy)
+                                             : sampleTrilinear(texture, uv, dUVdx, dUVdy);
+}
+
 } // namespace strata::render

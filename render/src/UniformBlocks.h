@@ -37,6 +37,7 @@ struct FrameBlock
     std::int32_t debugView;    // 116
     std::int32_t wireframePass; // 120
     std::int32_t reserved;     // 124
+    glm::vec4 detailOffset;    // 128, xyz
 };
 static_assert(offsetof(FrameBlock, viewProjection) == 0);
 static_assert(offsetof(FrameBlock, cameraPosition) == 64);
@@ -45,7 +46,8 @@ static_assert(offsetof(FrameBlock, wireColor) == 96);
 static_assert(offsetof(FrameBlock, mapScale) == 112);
 static_assert(offsetof(FrameBlock, debugView) == 116);
 static_assert(offsetof(FrameBlock, wireframePass) == 120);
-static_assert(sizeof(FrameBlock) == 128);
+static_assert(offsetof(FrameBlock, detailOffset) == 128);
+static_assert(sizeof(FrameBlock) == 144);
 
 /// MaterialBlock { MaterialParams uMaterial; } (terrain.frag).
 struct MaterialBlock

@@ -4,7 +4,8 @@
 // triangles and time per LOD level. The terrain is the default TerrainField
 // (fBm hills and cave tunnels, seed 1), 0.5 m voxels, 32³ chunks.
 //
-//   world_bench [--quick|--lod]   (--quick: fewer repetitions, shorter runs; --lod: LOD levels only)
+//   world_bench [--quick|--lod|--stream]   (--quick: fewer repetitions, shorter runs; --lod: LOD levels
+//                                           only; --stream: streaming only)
 
 #include <strata/terrain/TerrainField.h>
 #include <strata/world/World.h>
@@ -14,6 +15,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <ctime>
 #include <memory>
 #include <thread>
 #include <vector>
@@ -26,6 +28,15 @@ namespace {
 double seconds(Clock::duration d)
 {
     return std::chrono::duration<double>(d).count();
+}
+
+/// CPU time of the calling thread (seconds): what poll() itself costs, without
+/// the time the thread waits for a core on a loaded machine.
+double threadCpuSeconds()
+{
+    timespec t{};
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+    return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
 }
 
 double percentile(std::vector<double> v, double q)
@@ -126,14 +137,18 @@ void streaming(const std::shared_ptr<terrain::TerrainField>& field, bool quick)
         const double duration = quick ? 2.0 : 6.0;
         const world::WorldStats before = w.stats();
         const Clock::time_point start = Clock::now();
-        std::vector<double> pollMs;
+        std::vector<double> pollMs, pollCpuMs;
+        std::size_t retained = 0;
         int frames = 0;
         while (seconds(Clock::now() - start) < duration) {
             const Clock::time_point f0 = Clock::now();
+            const double c0 = threadCpuSeconds();
             x += speed * frame;
             w.setPointsOfInterest({glm::dvec3(x, 10.0, 0.0)});
             w.poll();
+            pollCpuMs.push_back(1e3 * (threadCpuSeconds() - c0));
             pollMs.push_back(1e3 * seconds(Clock::now() - f0));
+            retained = std::max(retained, w.stats().retained);
             ++frames;
             std::this_thread::sleep_until(f0 + std::chrono::duration_cast<Clock::duration>(
                                                    std::chrono::duration<double>(frame)));
@@ -141,11 +156,14 @@ void streaming(const std::shared_ptr<terrain::TerrainField>& field, bool quick)
         const double elapsed = seconds(Clock::now() - start);
         const world::WorldStats after = w.stats();
         std::printf("POI at %3.0f m/s for %.1f s: %.0f chunks generated/s, %.0f re-meshed/s (LOD changes), "
-                    "%.0f evicted/s, %zu pending at the end, poll() median %.2f ms, p99 %.2f ms over %d frames\n",
+                    "%.0f evicted/s, %zu pending at the end, poll() median %.2f ms, p99 %.2f ms, max %.2f ms over %d "
+                    "frames (CPU time of the polling thread: median %.2f ms, p99 %.2f ms, max %.2f ms); at most %zu "
+                    "chunks retained until replaced\n",
                     speed, elapsed, double(after.generated - before.generated) / elapsed,
                     double(after.remeshed - before.remeshed) / elapsed,
                     double(after.evicted - before.evicted) / elapsed, after.pending, percentile(pollMs, 0.5),
-                    percentile(pollMs, 0.99), frames);
+                    percentile(pollMs, 0.99), percentile(pollMs, 1.0), frames, percentile(pollCpuMs, 0.5),
+                    percentile(pollCpuMs, 0.99), percentile(pollCpuMs, 1.0), retained);
     }
 }
 
@@ -192,7 +210,13 @@ int main(int argc, char** argv)
 {
     const bool quick = argc > 1 && std::strcmp(argv[1], "--quick") == 0;
     const bool lodOnly = argc > 1 && std::strcmp(argv[1], "--lod") == 0;
+    const bool streamOnly = argc > 1 && std::strcmp(argv[1], "--stream") == 0;
     const auto field = terrainField();
+    if (streamOnly) {
+        std::printf("== streaming ==\n");
+        streaming(field, false);
+        return 0;
+    }
     std::printf("== LOD levels ==\n");
     lodLevels(field);
     if (lodOnly) return 0;

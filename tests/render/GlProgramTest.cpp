@@ -197,6 +197,7 @@ TEST(GlProgram, UniformBlocksMatchTheStd140MirrorsInCpp)
     STRATA_EXPECT_OFFSET("FrameBlock.mapScale", FrameBlock, mapScale);
     STRATA_EXPECT_OFFSET("FrameBlock.debugView", FrameBlock, debugView);
     STRATA_EXPECT_OFFSET("FrameBlock.wireframePass", FrameBlock, wireframePass);
+    STRATA_EXPECT_OFFSET("FrameBlock.detailOffset", FrameBlock, detailOffset);
 
     STRATA_EXPECT_OFFSET("uMaterial.albedoTint", MaterialBlock, albedoTint);
     STRATA_EXPECT_OFFSET("uMaterial.blendOffset", MaterialBlock, blendOffset);

@@ -8,8 +8,10 @@
 
 #include <glm/geometric.hpp>
 
+#include <chrono>
 #include <cmath>
 #include <set>
+#include <thread>
 
 namespace strata::test {
 namespace {
@@ -168,19 +170,220 @@ TEST(World, PollReportsEveryMeshOnceAndEvictions)
     for (const auto& [key, n] : held) EXPECT_EQ(n, 1);
     EXPECT_TRUE(w.poll().empty());
 
-    // Move far away: every chunk with a surface comes back as a removal.
+    // Move far away: every chunk with a surface comes back as a removal (the
+    // new resident set is computed off the polling thread: wait for it).
     w.setPointsOfInterest({glm::dvec3(1000.0, 0.0, 0.0)});
+    w.waitIdle();
     std::size_t removed = 0;
     for (const world::ChunkUpdate& u : w.poll())
         if (!u.mesh && held.count(u.key)) ++removed;
     EXPECT_EQ(removed, held.size());
     EXPECT_GE(w.stats().evicted, stats.resident);
-    w.waitIdle();
+    EXPECT_EQ(w.stats().retained, 0u); // evicted at once, not kept for a replacement
     for (const ChunkKey& key : w.residentChunks()) {
         glm::dvec3 lo, hi;
         w.chunkBounds(key, lo, hi);
         EXPECT_GT(hi.x, 1000.0 - 96.0 - 1e-9);
     }
+}
+
+bool containsChunk(const ChunkKey& a, const ChunkKey& b)
+{
+    if (a.level < b.level) return false;
+    const int shift = a.level - b.level;
+    return (b.x >> shift) == a.x && (b.y >> shift) == a.y && (b.z >> shift) == a.z;
+}
+
+// While a point of interest moves so that chunks split and merge, the meshes
+// the caller holds cover the surface after EVERY poll(): a chunk replaced by
+// an LOD change stays until all chunks replacing it are meshed, then the
+// removals and the new meshes come in the same poll().
+//
+// Old and new meshes do not weld exactly while they are mixed (a chunk's seam
+// follows the levels of its lower neighbours when it was meshed), so during
+// the transition the check is coverage, not closedness: every sample point of
+// the sphere lies in the box of a held chunk. The sample points are those
+// whose cell at every level is crossed by the surface (some corners in, some
+// out) and lies well inside every chunk holding it (at least a cell diagonal
+// from the chunk borders of each level), so any chunk holding one has
+// triangles, whatever its level and its neighbours: the check is exact, with
+// no tolerance. After the motion the union is closed again.
+TEST(World, NoHolesWhileChunksSplitAndMerge)
+{
+    const glm::dvec3 centre(0.3, 0.2, 0.1);
+    const double radius = 20.0;
+    auto field = std::make_shared<terrain::SphereField>(centre, radius);
+    WorldOptions o = smallOptions();
+    o.threads = 1;
+    o.maxInFlight = 2; // meshes trickle in: many polls see a transition half done
+    World w(field, o);
+
+    std::vector<glm::dvec3> samples;
+    const int count = 20000;
+    for (int i = 0; i < count; ++i) {
+        const double y = 1.0 - 2.0 * (i + 0.5) / count, r = std::sqrt(1.0 - y * y), phi = i * 2.399963229728653;
+        const glm::dvec3 p = centre + radius * glm::dvec3(r * std::cos(phi), y, r * std::sin(phi));
+        bool robust = true;
+        for (int level = 0; level < o.levels && robust; ++level) {
+            const double cell = o.voxelSize * (1 << level), width = cell * o.chunkSize;
+            for (int a = 0; a < 3 && robust; ++a) {
+                const double m = p[a] - std::floor(p[a] / width) * width;
+                robust = m > std::sqrt(3.0) * cell && m < width - std::sqrt(3.0) * cell;
+            }
+            int inside = 0;
+            const glm::dvec3 lo = glm::floor(p / cell) * cell;
+            for (int c = 0; c < 8; ++c)
+                inside += field->density(lo + cell * glm::dvec3(c & 1, (c >> 1) & 1, (c >> 2) & 1)) < 0.0;
+            robust = robust && inside > 0 && inside < 8;
+        }
+        if (robust) samples.push_back(p);
+    }
+    ASSERT_GT(samples.size(), 2000u);
+
+    MeshMap held;
+    auto uncovered = [&](const MeshMap& set) {
+        std::size_t n = 0;
+        for (const glm::dvec3& p : samples) {
+            bool in = false;
+            for (const auto& [key, mesh] : set) {
+                glm::dvec3 lo, hi;
+                w.chunkBounds(key, lo, hi);
+                if (glm::all(glm::greaterThanEqual(p, lo)) && glm::all(glm::lessThan(p, hi))) {
+                    in = true;
+                    break;
+                }
+            }
+            n += !in;
+        }
+        return n;
+    };
+    int splits = 0, merges = 0, polls = 0, midTransition = 0;
+    auto pollAndCheck = [&](std::size_t maxUpdates) {
+        const std::vector<world::ChunkUpdate> updates = w.poll(maxUpdates);
+        std::vector<ChunkKey> added, removed;
+        for (const world::ChunkUpdate& u : updates) {
+            if (u.mesh) {
+                held[u.key] = u.mesh;
+                added.push_back(u.key);
+            } else {
+                ASSERT_EQ(held.erase(u.key), 1u) << "removal of a chunk the caller does not hold";
+                removed.push_back(u.key);
+            }
+        }
+        for (const ChunkKey& r : removed)
+            for (const ChunkKey& a : added) {
+                splits += containsChunk(r, a) && r != a;
+                merges += containsChunk(a, r) && r != a;
+            }
+        for (auto i = held.begin(); i != held.end(); ++i)
+            for (auto j = std::next(i); j != held.end(); ++j)
+                ASSERT_FALSE(containsChunk(i->first, j->first) || containsChunk(j->first, i->first))
+                    << "the caller holds overlapping chunks";
+        ASSERT_EQ(uncovered(held), 0u) << "a hole after poll " << polls;
+        midTransition += w.stats().retained > 0;
+        ++polls;
+    };
+
+    w.setPointsOfInterest({centre + glm::dvec3(44.0, 0.0, 0.0)});
+    w.waitIdle();
+    pollAndCheck(SIZE_MAX);
+    // Across the sphere and back: chunks near the path split, those behind merge.
+    for (int step = 0; step <= 60; ++step) {
+        const double x = 44.0 - 3.0 * double(step <= 30 ? step : 60 - step);
+        w.setPointsOfInterest({centre + glm::dvec3(x, 3.0, -2.0)});
+        for (int i = 0; i < 3; ++i) {
+            std::this_thread::sleep_for(std::chrono::milliseconds(2));
+            pollAndCheck(i == 1 ? 2 : SIZE_MAX); // a replacement is never split by maxUpdates
+            if (HasFatalFailure()) return;
+        }
+    }
+    while (!w.idle()) {
+        std::this_thread::sleep_for(std::chrono::milliseconds(2));
+        pollAndCheck(SIZE_MAX);
+        if (HasFatalFailure()) return;
+    }
+    pollAndCheck(SIZE_MAX);
+    EXPECT_GT(splits, 0);
+    EXPECT_GT(merges, 0);
+    EXPECT_GT(midTransition, 0); // some polls did see a replacement waiting
+    EXPECT_EQ(w.stats().retained, 0u);
+
+    // At rest the caller holds exactly the resident chunks with surface, and
+    // their union is closed.
+    MeshMap withSurface;
+    for (const auto& [key, mesh] : currentMeshes(w))
+        if (mesh && !mesh->mesh.indices.empty()) withSurface[key] = mesh;
+    EXPECT_EQ(held.size(), withSurface.size());
+    EXPECT_TRUE(differingChunks(held, withSurface).empty());
+    const meshing::MeshTopology topology = meshing::analyzeTopology(weld(held));
+    EXPECT_EQ(topology.boundaryEdges, 0u);
+
+    // The check does find a hole: drop each held chunk that holds a sample.
+    std::set<ChunkKey> holding;
+    for (const auto& [key, mesh] : held) {
+        glm::dvec3 lo, hi;
+        w.chunkBounds(key, lo, hi);
+        for (const glm::dvec3& p : samples)
+            if (glm::all(glm::greaterThanEqual(p, lo)) && glm::all(glm::lessThan(p, hi))) holding.insert(key);
+    }
+    std::set<int> holdingLevels;
+    for (const ChunkKey& key : holding) {
+        holdingLevels.insert(key.level);
+        MeshMap holed = held;
+        holed.erase(key);
+        EXPECT_GT(uncovered(holed), 0u);
+    }
+    EXPECT_GE(holdingLevels.size(), 2u); // holes at several levels are seen
+}
+
+// Points of interest jumping back and forth (chunks split, merge, come back
+// before their replacement is handed out, leave the view) never leave the
+// caller with overlapping chunks, a removal of a chunk it does not hold, or,
+// once at rest, a stale mesh.
+TEST(World, JumpingPointsKeepTheHeldSetConsistent)
+{
+    const glm::dvec3 centre(0.3, 0.2, 0.1);
+    WorldOptions o = smallOptions();
+    o.threads = 2;
+    o.maxInFlight = 3;
+    o.viewRadius = 60.0;
+    World w(std::make_shared<terrain::SphereField>(centre, 20.0), o);
+    const std::vector<std::vector<glm::dvec3>> stops = {
+        {glm::dvec3(30.0, 0.0, 0.0)},
+        {glm::dvec3(-25.0, 5.0, 3.0)},
+        {glm::dvec3(30.0, 0.0, 0.0), glm::dvec3(0.0, 0.0, -28.0)},
+        {glm::dvec3(200.0, 0.0, 0.0)}, // everything leaves the view
+        {glm::dvec3(10.0, 20.0, 0.0)},
+    };
+    MeshMap held;
+    std::uint64_t state = 12345;
+    for (int step = 0; step < 60; ++step) {
+        state = state * 6364136223846793005ull + 1442695040888963407ull;
+        w.setPointsOfInterest(stops[(state >> 33) % stops.size()]);
+        for (int i = 0; i < 2; ++i) {
+            std::this_thread::sleep_for(std::chrono::microseconds((state >> 40) % 4000));
+            for (const world::ChunkUpdate& u : w.poll()) {
+                if (u.mesh) held[u.key] = u.mesh;
+                else ASSERT_EQ(held.erase(u.key), 1u);
+            }
+            for (auto a = held.begin(); a != held.end(); ++a)
+                for (auto b = std::next(a); b != held.end(); ++b)
+                    ASSERT_FALSE(containsChunk(a->first, b->first) || containsChunk(b->first, a->first));
+        }
+    }
+    w.setPointsOfInterest(stops[1]);
+    w.waitIdle();
+    for (const world::ChunkUpdate& u : w.poll()) {
+        if (u.mesh) held[u.key] = u.mesh;
+        else ASSERT_EQ(held.erase(u.key), 1u);
+    }
+    EXPECT_EQ(w.stats().retained, 0u);
+    MeshMap withSurface;
+    for (const auto& [key, mesh] : currentMeshes(w))
+        if (mesh && !mesh->mesh.indices.empty()) withSurface[key] = mesh;
+    EXPECT_FALSE(withSurface.empty());
+    EXPECT_TRUE(differingChunks(held, withSurface).empty());
+    EXPECT_EQ(meshing::analyzeTopology(weld(held)).boundaryEdges, 0u);
 }
 
 MeshMap meshesFor(int threads, std::uint64_t orderSeed, bool withEdit, int cacheLevels = 1)

@@ -23,6 +23,27 @@ double boxDistance(const LodParams& params, const ChunkKey& key, const glm::dvec
     return glm::length(d);
 }
 
+std::vector<ChunkKey> interestChunks(const std::vector<glm::dvec3>& points, const LodParams& params)
+{
+    const double w = chunkWidth(params, 0);
+    std::vector<ChunkKey> out;
+    out.reserve(points.size());
+    for (const glm::dvec3& p : points) {
+        const glm::dvec3 k = glm::floor(p / w);
+        out.push_back(ChunkKey{0, std::int32_t(k.x), std::int32_t(k.y), std::int32_t(k.z)});
+    }
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
+    return out;
+}
+
+bool contains(const ChunkKey& a, const ChunkKey& b)
+{
+    if (a.level < b.level) return false;
+    const int shift = a.level - b.level; // >> of a negative int32 floors (C++20)
+    return (b.x >> shift) == a.x && (b.y >> shift) == a.y && (b.z >> shift) == a.z;
+}
+
 namespace {
 
 double nearest(const LodParams& params, const ChunkKey& key, const std::vector<glm::dvec3>& points)
@@ -32,14 +53,14 @@ double nearest(const LodParams& params, const ChunkKey& key, const std::vector<g
     return d;
 }
 
-void refine(const LodParams& params, const std::vector<glm::dvec3>& points, const ChunkKey& key, double distance,
+void refine(const LodParams& params, const std::vector<glm::dvec3>& interest, const ChunkKey& key, double distance,
             std::map<ChunkKey, PartitionEntry>& out)
 {
     if (key.level > 0 && distance < params.lodDistance * double(std::int64_t(1) << (key.level - 1))) {
         for (int c = 0; c < 8; ++c) {
             const ChunkKey child{key.level - 1, 2 * key.x + (c & 1), 2 * key.y + ((c >> 1) & 1),
                                  2 * key.z + ((c >> 2) & 1)};
-            refine(params, points, child, nearest(params, child, points), out);
+            refine(params, interest, child, nearest(params, child, interest), out);
         }
         return;
     }
@@ -48,24 +69,27 @@ void refine(const LodParams& params, const std::vector<glm::dvec3>& points, cons
 
 } // namespace
 
-std::map<ChunkKey, PartitionEntry> computePartition(const std::vector<glm::dvec3>& points, const LodParams& params)
+std::map<ChunkKey, PartitionEntry> computePartition(const std::vector<ChunkKey>& interestKeys, const LodParams& params)
 {
     std::map<ChunkKey, PartitionEntry> out;
-    if (points.empty()) return out;
+    if (interestKeys.empty()) return out;
     const int top = params.levels - 1;
     const double w = chunkWidth(params, top);
+    const double w0 = chunkWidth(params, 0);
+    std::vector<glm::dvec3> interest; // the centres of the interest chunks
+    for (const ChunkKey& k : interestKeys) interest.push_back((glm::dvec3(k.x, k.y, k.z) + 0.5) * w0);
     std::set<ChunkKey> tops;
-    for (const glm::dvec3& p : points) {
-        const glm::dvec3 lo = glm::floor((p - params.viewRadius) / w);
-        const glm::dvec3 hi = glm::floor((p + params.viewRadius) / w);
+    for (const glm::dvec3& i : interest) {
+        const glm::dvec3 lo = glm::floor((i - params.viewRadius) / w);
+        const glm::dvec3 hi = glm::floor((i + params.viewRadius) / w);
         for (double z = lo.z; z <= hi.z; ++z)
             for (double y = lo.y; y <= hi.y; ++y)
                 for (double x = lo.x; x <= hi.x; ++x) {
                     const ChunkKey key{top, std::int32_t(x), std::int32_t(y), std::int32_t(z)};
-                    if (boxDistance(params, key, p) < params.viewRadius) tops.insert(key);
+                    if (boxDistance(params, key, i) < params.viewRadius) tops.insert(key);
                 }
     }
-    for (const ChunkKey& key : tops) refine(params, points, key, nearest(params, key, points), out);
+    for (const ChunkKey& key : tops) refine(params, interest, key, nearest(params, key, interest), out);
 
     // Signatures: the level of each lower neighbour region relative to the chunk.
     for (auto& [key, entry] : out) {

@@ -19,6 +19,7 @@
 #include <exception>
 #include <map>
 #include <mutex>
+#include <set>
 #include <string>
 #include <thread>
 
@@ -38,11 +39,21 @@ struct ChunkState
     std::uint64_t meshedGeneration = 0;
     bool inFlight = false;
     bool delivered = false; ///< the caller holds a non-empty mesh for it
+    bool withheld = false;  ///< `mesh` is newer than what the caller holds: it waits for a replacement group
     bool everMeshed = false;
     std::shared_ptr<const ChunkMeshData> mesh;
     std::shared_ptr<detail::SampleCache> cache; ///< null for levels without one
 
     bool dirty() const { return meshedGeneration != generation; }
+};
+
+/// An entry of the update queue: `groupSize` > 0 starts a group of that many
+/// updates that poll() hands out together (the replacement of chunks after an
+/// LOD change); 0 continues the group.
+struct QueuedUpdate
+{
+    ChunkUpdate update;
+    std::size_t groupSize = 1;
 };
 
 struct Finished
@@ -91,10 +102,34 @@ struct World::Impl
 
     mutable std::mutex mutex;
     std::condition_variable finishedSignal;
-    std::vector<glm::dvec3> points;
-    bool pointsChanged = false;
+    std::condition_variable partitionSignal;
+    /// The level-0 chunks holding the points of interest (the partition's
+    /// input) and a version bumped when they change.
+    std::vector<ChunkKey> interest;
+    std::uint64_t interestVersion = 0;
+    std::uint64_t appliedVersion = 0; ///< the version `chunks` follows
+    /// A partition computed by the partition thread, not yet applied.
+    std::optional<std::pair<std::uint64_t, std::map<ChunkKey, detail::PartitionEntry>>> partitionResult;
+    std::thread partitionThread;
     std::map<ChunkKey, ChunkState> chunks;
-    std::deque<ChunkUpdate> updates;
+    /// Chunks that left the resident set by a split or merge while the caller
+    /// holds their meshes: kept until every chunk covering them is meshed.
+    std::map<ChunkKey, ChunkState> retired;
+    std::set<ChunkKey> withheldKeys; ///< resident chunks with `withheld` set
+    /// A replacement: retired chunks and the resident chunks covering them
+    /// (a split: one retired chunk and its resident descendants; a merge: the
+    /// retired descendants of one resident chunk). Keyed by the coarsest
+    /// chunk of the group; rebuilt whenever the partition changes, so the
+    /// state pointers stay valid (`chunks` erases only in rebuild()).
+    struct Group
+    {
+        std::vector<ChunkKey> retired;
+        std::vector<std::pair<ChunkKey, ChunkState*>> covers;
+    };
+    std::map<ChunkKey, Group> groups;
+    std::map<ChunkKey, ChunkKey> groupOf; ///< covering resident chunk -> its group's key
+    bool releaseDue = false;              ///< a group may have become ready
+    std::deque<QueuedUpdate> updates;
     std::vector<Finished> finished;
     std::size_t inFlight = 0;
     std::uint64_t generations = 0; ///< a world-wide counter, so a chunk evicted and reloaded never reuses one
@@ -115,34 +150,152 @@ struct World::Impl
 
     // --- with `mutex` held -------------------------------------------------
 
-    void rebuild()
+    /// Moves `chunks` to a new partition. Chunks the caller holds that leave
+    /// it go to `retired` when the new partition still covers them (an LOD
+    /// change), else they are reported removed at once (eviction).
+    void rebuild(const std::map<ChunkKey, detail::PartitionEntry>& target)
     {
-        pointsChanged = false;
-        const std::map<ChunkKey, detail::PartitionEntry> target = detail::computePartition(points, lod);
-        for (auto it = chunks.begin(); it != chunks.end();) {
-            const auto t = target.find(it->first);
-            if (t == target.end()) {
-                if (it->second.delivered) updates.push_back(ChunkUpdate{it->first, nullptr});
+        releaseDue = true;
+        // One merge walk over the two sorted maps: O(resident chunks).
+        auto it = chunks.begin();
+        auto t = target.begin();
+        while (it != chunks.end() || t != target.end()) {
+            if (t == target.end() || (it != chunks.end() && it->first < t->first)) {
+                // Leaves the set.
                 ++counters.evicted;
+                withheldKeys.erase(it->first);
+                if (it->second.delivered) {
+                    ChunkState& state = retired[it->first];
+                    state = std::move(it->second);
+                    state.cache.reset();
+                    state.withheld = false;
+                }
                 it = chunks.erase(it);
+            } else if (it == chunks.end() || t->first < it->first) {
+                // Joins the set.
+                ChunkState state;
+                if (const auto r = retired.find(t->first); r != retired.end()) {
+                    // Back before it was replaced: the caller still holds its
+                    // mesh. Edits may have passed it by: mesh it again.
+                    state = std::move(r->second);
+                    retired.erase(r);
+                }
+                state.signature = t->second.signature;
+                state.distance = t->second.distance;
+                state.generation = ++generations;
+                if (t->first.level < options.sampleCacheLevels) state.cache = std::make_shared<detail::SampleCache>();
+                chunks.emplace_hint(it, t->first, std::move(state));
+                ++t;
+            } else {
+                ChunkState& state = it->second;
+                state.distance = t->second.distance;
+                if (state.signature != t->second.signature) {
+                    state.signature = t->second.signature;
+                    state.generation = ++generations;
+                }
+                ++it;
+                ++t;
+            }
+        }
+        groups.clear();
+        groupOf.clear();
+        for (auto it = retired.begin(); it != retired.end();) {
+            const std::vector<ChunkKey> c = cover(it->first);
+            if (c.empty()) { // left the view: evicted at once
+                push(ChunkUpdate{it->first, nullptr});
+                it = retired.erase(it);
                 continue;
             }
-            ChunkState& state = it->second;
-            state.distance = t->second.distance;
-            if (state.signature != t->second.signature) {
-                state.signature = t->second.signature;
-                state.generation = ++generations;
-            }
+            const ChunkKey g = c.front().level > it->first.level ? c.front() : it->first;
+            Group& group = groups[g];
+            group.retired.push_back(it->first);
+            if (group.covers.empty())
+                for (const ChunkKey& k : c) {
+                    group.covers.emplace_back(k, &chunks.at(k));
+                    groupOf[k] = g;
+                }
             ++it;
         }
-        for (const auto& [key, entry] : target) {
-            if (chunks.count(key)) continue;
-            ChunkState state;
-            state.signature = entry.signature;
-            state.distance = entry.distance;
-            state.generation = ++generations;
-            if (key.level < options.sampleCacheLevels) state.cache = std::make_shared<detail::SampleCache>();
-            chunks.emplace(key, std::move(state));
+        // Withheld meshes that no longer replace anything go out alone.
+        for (auto it = withheldKeys.begin(); it != withheldKeys.end();) {
+            if (groupOf.count(*it)) {
+                ++it;
+                continue;
+            }
+            ChunkState& state = chunks.at(*it);
+            state.withheld = false;
+            if (!state.mesh->mesh.indices.empty()) {
+                push(ChunkUpdate{*it, state.mesh});
+                state.delivered = true;
+            }
+            it = withheldKeys.erase(it);
+        }
+    }
+
+    void push(ChunkUpdate update) { updates.push_back(QueuedUpdate{std::move(update), 1}); }
+
+    /// The resident chunks covering a retired chunk's box: its resident
+    /// ancestor, or the resident descendants that tile it; empty when the
+    /// resident set does not cover it (its top-level chunk was evicted).
+    std::vector<ChunkKey> cover(const ChunkKey& key) const
+    {
+        std::vector<ChunkKey> out;
+        for (int level = key.level + 1; level < options.levels; ++level) {
+            const int shift = level - key.level;
+            const ChunkKey up{level, key.x >> shift, key.y >> shift, key.z >> shift};
+            if (chunks.count(up)) {
+                out.push_back(up);
+                return out;
+            }
+        }
+        if (!tile(key, out)) out.clear();
+        return out;
+    }
+
+    bool tile(const ChunkKey& key, std::vector<ChunkKey>& out) const
+    {
+        if (key.level == 0) return false;
+        for (int c = 0; c < 8; ++c) {
+            const ChunkKey child{key.level - 1, 2 * key.x + (c & 1), 2 * key.y + ((c >> 1) & 1),
+                                 2 * key.z + ((c >> 2) & 1)};
+            if (chunks.count(child)) out.push_back(child);
+            else if (!tile(child, out)) return false;
+        }
+        return true;
+    }
+
+    /// Hands out every group whose covering chunks are all meshed: their
+    /// withheld meshes, then the removals of the retired chunks, as one group
+    /// of updates. O(groups · covering chunks).
+    void release()
+    {
+        if (!releaseDue) return;
+        releaseDue = false;
+        for (auto g = groups.begin(); g != groups.end();) {
+            bool ready = true;
+            for (const auto& [key, state] : g->second.covers) ready = ready && state->mesh != nullptr;
+            if (!ready) {
+                ++g;
+                continue;
+            }
+            std::vector<ChunkUpdate> group;
+            for (const auto& [key, state] : g->second.covers) {
+                groupOf.erase(key);
+                if (!state->withheld) continue;
+                state->withheld = false;
+                withheldKeys.erase(key);
+                if (!state->mesh->mesh.indices.empty()) {
+                    group.push_back(ChunkUpdate{key, state->mesh});
+                    state->delivered = true;
+                }
+            }
+            for (const ChunkKey& key : g->second.retired) {
+                group.push_back(ChunkUpdate{key, nullptr});
+                retired.erase(key);
+            }
+            for (std::size_t i = 0; i < group.size(); ++i)
+                updates.push_back(QueuedUpdate{std::move(group[i]), i == 0 ? group.size() : 0});
+            g = groups.erase(g);
         }
     }
 
@@ -150,6 +303,7 @@ struct World::Impl
     {
         const auto it = chunks.find(f.key);
         if (it == chunks.end()) {
+            if (const auto r = retired.find(f.key); r != retired.end()) r->second.inFlight = false;
             ++counters.discarded;
             return;
         }
@@ -166,11 +320,16 @@ struct World::Impl
         else ++counters.generated;
         state.everMeshed = true;
         state.mesh = std::move(f.mesh);
-        if (!state.mesh->mesh.indices.empty()) {
-            updates.push_back(ChunkUpdate{f.key, state.mesh});
+        if (state.withheld || groupOf.count(f.key)) {
+            // Part of a replacement after an LOD change: release() hands it out.
+            state.withheld = true;
+            withheldKeys.insert(f.key);
+            releaseDue = true;
+        } else if (!state.mesh->mesh.indices.empty()) {
+            push(ChunkUpdate{f.key, state.mesh});
             state.delivered = true;
         } else if (state.delivered) {
-            updates.push_back(ChunkUpdate{f.key, nullptr});
+            push(ChunkUpdate{f.key, nullptr});
             state.delivered = false;
         }
     }
@@ -264,6 +423,7 @@ struct World::Impl
         std::lock_guard<std::mutex> lock(mutex);
         if (result.mesh) finished.push_back(std::move(result));
         else if (auto it = chunks.find(job.key); it != chunks.end()) it->second.inFlight = false;
+        else if (auto r = retired.find(job.key); r != retired.end()) r->second.inFlight = false;
         if (error && !failure) failure = error;
         --inFlight;
         finishedSignal.notify_all();
@@ -276,11 +436,49 @@ struct World::Impl
             failure = nullptr;
             std::rethrow_exception(e);
         }
-        if (pointsChanged) rebuild();
+        if (partitionResult) {
+            rebuild(partitionResult->second);
+            appliedVersion = partitionResult->first;
+            partitionResult.reset();
+        }
         for (Finished& f : finished) accept(f);
         finished.clear();
+        release();
         schedule();
     }
+
+    /// The partition thread: computes the resident set for each new version
+    /// of `interest` off the callers' threads; pump() applies it.
+    void partitionLoop()
+    {
+        std::unique_lock<std::mutex> lock(mutex);
+        std::uint64_t computed = 0;
+        for (;;) {
+            partitionSignal.wait(lock, [&] { return stopping || interestVersion != computed; });
+            if (stopping) return;
+            const std::uint64_t version = interestVersion;
+            const std::vector<ChunkKey> input = interest;
+            lock.unlock();
+            std::map<ChunkKey, detail::PartitionEntry> target;
+            std::exception_ptr error;
+            try {
+                target = detail::computePartition(input, lod);
+            } catch (...) {
+                error = std::current_exception();
+            }
+            lock.lock();
+            computed = version;
+            if (error) {
+                if (!failure) failure = error;
+            } else {
+                partitionResult.emplace(version, std::move(target));
+            }
+            finishedSignal.notify_all();
+        }
+    }
+
+    /// Has `chunks` caught up with the latest points of interest?
+    bool partitionCurrent() const { return appliedVersion == interestVersion && !partitionResult; }
 
     bool anyDirty() const
     {
@@ -381,12 +579,18 @@ World::World(std::shared_ptr<const terrain::DensityField> field, const WorldOpti
     mImpl = std::make_unique<Impl>(std::move(field), o);
     mImpl->lod = detail::LodParams{o.voxelSize, o.chunkSize, o.levels, o.lodDistance, o.viewRadius};
     mImpl->mesher = detail::MesherParams{o.voxelSize, o.chunkSize};
+    mImpl->partitionThread = std::thread([impl = mImpl.get()] { impl->partitionLoop(); });
 }
 
 World::~World()
 {
+    {
+        std::lock_guard<std::mutex> lock(mImpl->mutex);
+        mImpl->stopping = true;
+        mImpl->partitionSignal.notify_all();
+    }
+    mImpl->partitionThread.join();
     std::unique_lock<std::mutex> lock(mImpl->mutex);
-    mImpl->stopping = true;
     mImpl->finishedSignal.wait(lock, [&] { return mImpl->inFlight == 0; });
 }
 
@@ -406,9 +610,12 @@ void World::setPointsOfInterest(std::vector<glm::dvec3> points)
             throw Error("World: point of interest (" + num(p.x) + ", " + num(p.y) + ", " + num(p.z) +
                         ") is farther than " + num(limit) + " m from the origin");
     }
+    std::vector<ChunkKey> interest = detail::interestChunks(points, mImpl->lod);
     std::lock_guard<std::mutex> lock(mImpl->mutex);
-    mImpl->points = std::move(points);
-    mImpl->pointsChanged = true;
+    if (interest == mImpl->interest) return; // the same level-0 chunks: the same partition
+    mImpl->interest = std::move(interest);
+    ++mImpl->interestVersion;
+    mImpl->partitionSignal.notify_all();
 }
 
 std::vector<ChunkUpdate> World::poll(std::size_t maxUpdates)
@@ -416,11 +623,14 @@ std::vector<ChunkUpdate> World::poll(std::size_t maxUpdates)
     std::lock_guard<std::mutex> lock(mImpl->mutex);
     mImpl->pump();
     std::vector<ChunkUpdate> out;
-    const std::size_t n = std::min(maxUpdates, mImpl->updates.size());
-    out.reserve(n);
-    for (std::size_t i = 0; i < n; ++i) {
-        out.push_back(std::move(mImpl->updates.front()));
-        mImpl->updates.pop_front();
+    std::deque<QueuedUpdate>& queue = mImpl->updates;
+    while (!queue.empty() && maxUpdates > 0) {
+        const std::size_t group = queue.front().groupSize;
+        if (!out.empty() && out.size() + group > maxUpdates) break;
+        for (std::size_t i = 0; i < group; ++i) {
+            out.push_back(std::move(queue.front().update));
+            queue.pop_front();
+        }
     }
     return out;
 }
@@ -428,7 +638,8 @@ std::vector<ChunkUpdate> World::poll(std::size_t maxUpdates)
 bool World::idle() const
 {
     std::lock_guard<std::mutex> lock(mImpl->mutex);
-    return !mImpl->pointsChanged && mImpl->inFlight == 0 && mImpl->finished.empty() && !mImpl->anyDirty();
+    return mImpl->partitionCurrent() && mImpl->inFlight == 0 && mImpl->finished.empty() && mImpl->retired.empty() &&
+           mImpl->withheldKeys.empty() && !mImpl->anyDirty();
 }
 
 void World::waitIdle()
@@ -436,8 +647,12 @@ void World::waitIdle()
     std::unique_lock<std::mutex> lock(mImpl->mutex);
     for (;;) {
         mImpl->pump();
-        if (mImpl->inFlight == 0 && !mImpl->anyDirty()) return;
-        mImpl->finishedSignal.wait(lock, [&] { return !mImpl->finished.empty() || mImpl->inFlight == 0 || mImpl->failure; });
+        const bool partitionDone = mImpl->partitionCurrent();
+        if (partitionDone && mImpl->inFlight == 0 && !mImpl->anyDirty()) return;
+        mImpl->finishedSignal.wait(lock, [&] {
+            return !mImpl->finished.empty() || mImpl->failure || mImpl->partitionResult ||
+                   (mImpl->inFlight == 0 && partitionDone);
+        });
     }
 }
 
@@ -576,6 +791,7 @@ WorldStats World::stats() const
         s = mImpl->counters;
         s.resident = mImpl->chunks.size();
         s.inFlight = mImpl->inFlight;
+        s.retained = mImpl->retired.size();
         for (const auto& [key, state] : mImpl->chunks) {
             if (state.dirty()) ++s.pending;
             if (state.cache) {

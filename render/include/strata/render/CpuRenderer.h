@@ -8,7 +8,22 @@
 #include <strata/render/MeshView.h>
 #include <strata/render/SnapshotOptions.h>
 
+#include <cstdint>
+
 namespace strata::render {
+
+/// What one CPU render did: material map fetches (SAMPLE_MAP calls of the
+/// shared shading header; each is one bilinear or trilinear lookup) against
+/// those of a naive triplanar shader that samples all three projections of
+/// every map it reads at every shaded pixel. The header skips a projection
+/// whose blend weight is zero, so fetches <= naiveFetches; the difference
+/// is the saving. Shadow-map lookups are not counted.
+struct CpuRenderStats
+{
+    std::uint64_t shadedPixels = 0;   ///< visible pixels shaded (sky pixels are not)
+    std::uint64_t textureFetches = 0; ///< map fetches done
+    std::uint64_t naiveFetches = 0;   ///< 3 × map groups read, summed over shaded pixels
+};
 
 /// Renders `mesh` on the CPU: RGBA8, sRGB-encoded, rows top to bottom, the
 /// background lighting.skyColor, alpha 255 — the same image as
@@ -38,6 +53,9 @@ namespace strata::render {
 ///    for any thread count;
 ///  - throws strata::Error for invalid options or mesh indices out of range.
 /// Complexity O(triangles + pixels · maps + shadow resolution²).
-Image renderSnapshotCpu(const MeshView& mesh, const SnapshotOptions& options);
+///
+/// `stats`, when not null, receives the fetch counters (the same on any
+/// thread count).
+Image renderSnapshotCpu(const MeshView& mesh, const SnapshotOptions& options, CpuRenderStats* stats = nullptr);
 
 } // namespace strata::render

@@ -57,8 +57,9 @@ struct ProgramStats
 ///  - each texture of the material (and the neutral stand-ins of absent
 ///    maps) is uploaded once with its own mip chain (the texels the CPU
 ///    sampler filters), SRGB8_ALPHA8 for colour maps and RGBA8 for data,
-///    trilinear, REPEAT, and kept while a later setMaterial() still uses the
-///    same Texture object;
+///    trilinear (bilinear in the nearest mip level with
+///    TextureFilter::Bilinear), REPEAT, and kept while a later setMaterial()
+///    still uses the same Texture object;
 ///  - the terrain program is compiled per feature set on first use and
 ///    cached for the renderer's lifetime (see stats()).
 ///  - the sun's shadow map is kept while the mesh, the light and the
@@ -91,8 +92,10 @@ public:
     /// and drops the ones it no longer uses; writes the material block.
     /// `anisotropy` (1..16, clamped to the driver's maximum) is the textures'
     /// maximum anisotropy. Throws strata::Error for an invalid material or a
-    /// texture larger than GL_MAX_TEXTURE_SIZE.
-    void setMaterial(const Material& material, float anisotropy = 1.0f);
+    /// texture larger than GL_MAX_TEXTURE_SIZE. `filtering` is the maps'
+    /// minification filter (GL_LINEAR_MIPMAP_LINEAR or _NEAREST).
+    void setMaterial(const Material& material, float anisotropy = 1.0f,
+                     TextureFilter filtering = TextureFilter::Trilinear);
 
     /// Draws the mesh into `framebuffer` (0 = the default framebuffer)
     /// over the viewport `width` × `height`: clears to lighting.skyColor,

@@ -4,6 +4,7 @@
 
 #include <strata/render/Camera.h>
 #include <strata/render/Material.h>
+#include <strata/render/Texture.h>
 
 namespace strata::render {
 
@@ -52,6 +53,9 @@ struct SnapshotOptions
     /// about 6× the render time on Mesa llvmpipe (measured: 0.64 s → 4.4 s
     /// at 1280×720). Ignored by the CPU renderer.
     float anisotropy = 1.0f;
+    /// Minification filter of the maps, the same on both renderers
+    /// (Texture.h): trilinear (default) or bilinear in the nearest mip level.
+    TextureFilter filtering = TextureFilter::Trilinear;
     Camera camera;
     Lighting lighting;
     Material material;

@@ -135,4 +135,19 @@ float textureLod(const Texture& texture, glm::vec2 dUVdx, glm::vec2 dUVdy);
 /// λ <= 0) sampling with λ from textureLod(), clamped to the last level.
 glm::vec4 sampleTrilinear(const Texture& texture, glm::vec2 uv, glm::vec2 dUVdx, glm::vec2 dUVdy);
 
+/// How the renderers filter minified maps (SnapshotOptions::filtering).
+enum class TextureFilter
+{
+    Trilinear, ///< GL_LINEAR_MIPMAP_LINEAR: two mip levels blended (default)
+    Bilinear,  ///< GL_LINEAR_MIPMAP_NEAREST: the nearest mip level only (half the texel reads, visible mip seams)
+};
+
+/// GL_LINEAR_MIPMAP_NEAREST (minification) / GL_LINEAR (magnification,
+/// λ <= 0): bilinear in level d = ⌈λ + ½⌉ − 1 (GL's nearest-level rule),
+/// clamped to the last level, with λ from textureLod().
+glm::vec4 sampleBilinearNearestMip(const Texture& texture, glm::vec2 uv, glm::vec2 dUVdx, glm::vec2 dUVdy);
+
+/// sampleTrilinear() or sampleBilinearNearestMip() by `filter`.
+glm::vec4 sampleFiltered(const Texture& texture, TextureFilter filter, glm::vec2 uv, glm::vec2 dUVdx, glm::vec2 dUVdy);
+
 } // namespace strata::render

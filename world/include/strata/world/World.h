@@ -9,11 +9,36 @@
 /// read the same values where their lattices meet.
 ///
 /// **Chunks.** A chunk of level l is chunkSize³ cells of 2^l voxels. Around
-/// the points of interest the resident chunks form an octree partition: a
-/// top-level chunk (level levels−1) is resident when its box is within
-/// viewRadius of a point of interest; a chunk of level l > 0 is split into its
-/// 8 children when its box is closer than lodDistance·2^(l−1) to one. Chunks
-/// leaving that set are evicted (their meshes dropped; edits stay).
+/// the points of interest the resident chunks form an octree partition,
+/// computed from the *interest chunks*, the level-0 chunks that hold the
+/// points: a top-level chunk (level levels−1) is resident when its box is
+/// within viewRadius of an interest chunk's centre; a chunk of level l > 0 is
+/// split into its 8 children when its box is closer than lodDistance·2^(l−1)
+/// to one (distances off by at most half a level-0 chunk diagonal from those
+/// to the points themselves). So the set changes only when a point crosses a
+/// level-0 chunk border: setPointsOfInterest() then wakes the
+/// world's partition thread, which computes the new set off the callers'
+/// threads, and the next poll() after it is ready applies it (O(resident
+/// chunks) map walk, no field evaluation). Chunks leaving the set either
+/// left the view (evicted: reported removed by that poll(), edits stay) or
+/// were split or merged (replaced, below).
+///
+/// **LOD changes without holes ("keep until replaced").** A chunk the caller
+/// holds a mesh for that is split into its children or merged into its parent
+/// is not reported removed at once: it is *retained* (WorldStats::retained)
+/// until every resident chunk covering its box has been meshed. Then one
+/// group of updates hands out the new meshes of those chunks followed by the
+/// removals of the chunks they replace, all in the same poll() (poll() never
+/// splits a group, see its maxUpdates). Meshes of chunks that overlap a
+/// retained chunk are withheld until then. So after every poll() the chunks
+/// the caller holds never overlap and cover every surface the resident set
+/// covers; while old and new chunks are mixed their seams may not weld
+/// exactly (each seam follows the neighbour levels it was meshed with), and
+/// they are re-meshed to weld once the neighbours settle. A chunk that comes
+/// back into the set before its replacement was handed out keeps its mesh
+/// with the caller and is meshed again. Evictions beyond viewRadius are
+/// reported at once. Retained meshes are never edited: an edit shows on the
+/// replacements.
 ///
 /// **Meshing and LOD without cracks.** Each chunk is meshed by dual contouring
 /// on the octree of cells, with surface-nets vertices (the mean of the cell's
@@ -55,7 +80,9 @@
 /// from any thread, concurrently with the others and with the chunk tasks
 /// (internal mutexes; the edit grid is read under a shared lock). poll(),
 /// the edits and setPointsOfInterest() never wait for chunk tasks: poll()
-/// only collects finished meshes and schedules more; an edit costs the
+/// only collects finished meshes, applies a finished partition and schedules
+/// more (O(resident chunks) walks, no partition computation: that runs on
+/// the world's partition thread); an edit costs the
 /// evaluation of its band of samples on the calling thread and the pool
 /// (measured on the default terrain: 0.4 ms for a 2 m sphere, 7.5 ms for a
 /// 10 m one); queries evaluate the field directly and never wait for meshes. waitIdle() is the one blocking call (for tests and
@@ -64,7 +91,10 @@
 ///
 /// **Determinism.** A chunk mesh is a pure function of the field, the edits,
 /// its key and its signature: the same bytes whatever the thread count and
-/// the order in which tasks run or finish.
+/// the order in which tasks run or finish. The resident set is a pure
+/// function of the interest chunks; which intermediate sets a moving point
+/// passes through, and when replacements are handed out, depend on timing,
+/// but once the points stop and waitIdle() returns the meshes do not.
 
 #include <strata/terrain/DensityField.h>
 #include <strata/world/WorldTypes.h>
@@ -82,12 +112,14 @@ struct WorldOptions
     int chunkSize = 32;     ///< cells per chunk edge: a power of two in [8, 128]
     int levels = 4;         ///< LOD levels 1..8: cells of 1, 2, 4, ... 2^(levels−1) voxels
     /// Level 0 is used within about this distance (metres) of a point of
-    /// interest, level l within lodDistance·2^l. 0 = 4 chunk widths of level
+    /// interest (measured from the centre of its level-0 chunk), level l within
+    /// lodDistance·2^l. 0 = 4 chunk widths of level
     /// 0. Must be at least 2·sqrt(3) level-0 chunk widths (keeps neighbours
     /// within one level), checked.
     double lodDistance = 0.0;
-    /// Chunks farther than this from every point of interest are evicted
-    /// (metres, > 0). 0 = 3 chunk widths of the top level.
+    /// Top-level chunks farther than this from the centre of the level-0
+    /// chunk of every point of interest are evicted (metres, > 0). 0 = 3 chunk widths of the
+    /// top level.
     double viewRadius = 0.0;
     int threads = 0; ///< task arena concurrency; 0 = all cores
     /// Half width (in voxels, 1..16) of the band of lattice samples an edit
@@ -122,17 +154,28 @@ public:
     /// The options in effect (defaults resolved).
     const WorldOptions& options() const;
 
-    /// Replaces the points of interest (world metres). The resident set
-    /// follows at the next poll(). Throws strata::Error on a non-finite point.
+    /// Replaces the points of interest (world metres). When the level-0
+    /// chunks holding them change, the partition thread computes the new
+    /// resident set and the first poll() after it is ready applies it (about
+    /// 1 ms later for 1500 chunks); otherwise nothing changes. O(points) on
+    /// the calling thread. Throws strata::Error on a non-finite point.
     void setPointsOfInterest(std::vector<glm::dvec3> points);
 
-    /// Collects finished chunk meshes and evictions since the last call
-    /// (at most `maxUpdates`; the rest stay for the next call), and queues
-    /// more chunk tasks. Never waits for a task. Updates for one key come in
-    /// the order they happened.
+    /// Collects finished chunk meshes and evictions since the last call, and
+    /// queues more chunk tasks. Never waits for a task. Updates for one key
+    /// come in the order they happened. A replacement after an LOD change
+    /// (the new meshes, then the removals of the chunks they replace: see the
+    /// file comment) is one group that is never split: at most `maxUpdates`
+    /// updates are returned, except that a first group larger than that is
+    /// returned whole; the rest stay for the next call. Apply all updates of
+    /// one call before drawing, and the chunks you hold cover the surface.
+    /// Cost: O(resident chunks) walks, plus O(retained chunks · the chunks
+    /// covering them) map look-ups while LOD changes are pending.
     std::vector<ChunkUpdate> poll(std::size_t maxUpdates = SIZE_MAX);
 
-    /// True when every resident chunk has its current mesh and no task is queued.
+    /// True when the resident set follows the latest points of interest,
+    /// every resident chunk has its current mesh, no task is queued and no
+    /// replacement waits to be handed out by poll().
     bool idle() const;
     /// Blocks until idle() (keeps scheduling meanwhile); the updates wait for
     /// poll(). For tests, tools and benchmarks.

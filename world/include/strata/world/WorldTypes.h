@@ -138,6 +138,9 @@ struct WorldStats
     std::size_t resident = 0;    ///< chunks in the resident set now (empty ones included)
     std::size_t withSurface = 0; ///< resident chunks whose current mesh has triangles
     std::size_t pending = 0;     ///< resident chunks waiting for a (re)mesh
+    /// Chunks split or merged away whose meshes the caller still holds until
+    /// every chunk replacing them is meshed (see World::poll()).
+    std::size_t retained = 0;
     std::size_t inFlight = 0;    ///< chunk tasks running or queued on the task pool
     std::size_t meshBytes = 0;   ///< heap bytes of all resident chunk meshes
     std::size_t cacheBytes = 0;  ///< heap bytes of the kept samples (WorldOptions::sampleCacheLevels)
