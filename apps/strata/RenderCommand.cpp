@@ -4,6 +4,7 @@
 
 #include "Commands.h"
 #include "Generate.h"
+#include "Quality.h"
 #include "CaveView.h"
 #include "Scene.h"
 #include "SceneOffset.h"
@@ -157,6 +158,12 @@ Command registerRenderCommand(CLI::App& app)
                                                     ? parseScene(defaultSceneText(), "<default scene>")
                                                     : loadScene(args->scenePath),
                                                 offset);
+                // The scene's [quality] render knobs (filtering, normal blend,
+                // shadow resolution, backend) apply here too; the geometry
+                // knobs apply inside generate(), which gets the scene as written.
+                const QualitySettings quality = resolveQuality(scene, std::nullopt, {});
+                const Scene shading = applyQuality(scene, quality);
+                if (request.backend == "auto") request.backend = quality.backend;
                 std::optional<int> width, height;
                 if (!args->size.empty()) {
                     static const std::regex pattern(R"((\d{1,5})[xX](\d{1,5}))");
@@ -187,7 +194,7 @@ Command registerRenderCommand(CLI::App& app)
                         : readMesh(args->meshPath);
                 if (!args->meshPath.empty()) mesh.origin += offset; // the mesh file moves with the scene
                 auto t1 = Clock::now();
-                const render::SnapshotOptions snapshot = makeSnapshotOptions(scene, mesh, width, height, request, cave);
+                const render::SnapshotOptions snapshot = makeSnapshotOptions(shading, mesh, width, height, request, cave);
                 auto t2 = Clock::now();
                 const render::MeshView view = meshView(mesh);
                 const std::vector<std::filesystem::path> paths = snapshotPaths(output, request.turntable);

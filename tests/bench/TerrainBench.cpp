@@ -14,6 +14,7 @@
 
 #ifdef STRATA_BENCH_DEFAULT_SCENE
 #include "Scene.h"
+#include "../terrain/DefaultSceneTree.h"
 #endif
 
 #include <benchmark/benchmark.h>
@@ -165,23 +166,7 @@ void BM_DefaultFieldBounds(benchmark::State& state)
 
 /// The default scene's tree without its terrace node (warped hills minus
 /// worms), built by hand with the scene's values, for comparison.
-std::shared_ptr<const DensityField> warpedHillsField()
-{
-    DensityFieldPtr hills = std::make_shared<NoiseHeightfield>(1, NoiseHeightfieldOptions{});
-    WarpOptions warp;
-    warp.amplitude = 4.0;
-    warp.wavelength = 20.0;
-    warp.vertical = 0.0;
-    warp.noise.octaves = 1;
-    WormOptions worms;
-    worms.wormsPerCell = 3.0;
-    worms.minY = -24.0;
-    worms.maxY = 8.0;
-    worms.radius = 3.2;
-    return std::make_shared<CsgField>(
-        CsgOperation::SUBTRACT,
-        std::vector<DensityFieldPtr>{std::make_shared<WarpField>(hills, 2, warp), std::make_shared<WormCaves>(3, worms)});
-}
+std::shared_ptr<const DensityField> warpedHillsField() { return strata::test::defaultSceneTree(false); }
 
 SampleOptions defaultSampling()
 {

@@ -6,6 +6,8 @@
 #include <strata/terrain/TerrainField.h>
 #include <strata/terrain/Transforms.h>
 
+#include "DefaultSceneTree.h"
+
 #include <tbb/global_control.h>
 
 #include <glm/common.hpp>
@@ -192,20 +194,8 @@ TEST(SampleLevelSet, TerracedWarpedSceneMatchesDenseSamplingOpenAndClosed)
     // tunnels): pruning 8³ tiles, 4³ and 2³ sub-blocks by interval bounds
     // must give exactly the dense result, voxel by voxel, and evaluate
     // little beyond the band (bounds() calls counted).
-    DensityFieldPtr hills = std::make_shared<NoiseHeightfield>(1, NoiseHeightfieldOptions{});
-    hills = std::make_shared<TerraceField>(hills, 7.0, 4.0);
-    WarpOptions warp;
-    warp.amplitude = 4.0;
-    warp.wavelength = 20.0;
-    warp.vertical = 0.0;
-    warp.noise.octaves = 1;
-    WormOptions worms;
-    worms.wormsPerCell = 3.0;
-    worms.minY = -24.0;
-    worms.maxY = 8.0;
-    worms.radius = 3.2;
-    const CsgField field(CsgOperation::SUBTRACT,
-                         {std::make_shared<WarpField>(hills, 2, warp), std::make_shared<WormCaves>(3, worms)});
+    const DensityFieldPtr tree = strata::test::defaultSceneTree(true);
+    const DensityField& field = *tree;
     for (const bool closed : {false, true}) {
         SampleOptions options = regionOptions({-22.3, -25.1, -18.7}, {21.9, 19.2, 23.6}, 0.5);
         options.closed = closed;
