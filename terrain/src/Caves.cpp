@@ -1,5 +1,7 @@
 #include <strata/terrain/Caves.h>
 
+#include "ShowValue.h"
+
 #include <strata/Error.h>
 
 #include "NoiseHash.h"
@@ -12,20 +14,12 @@
 #include <deque>
 #include <map>
 #include <mutex>
-#include <sstream>
 
 namespace strata::terrain {
 
 namespace {
 
 using namespace detail;
-
-std::string show(double v)
-{
-    std::ostringstream out;
-    out << v;
-    return out.str();
-}
 
 void requirePositive(const char* key, double v)
 {

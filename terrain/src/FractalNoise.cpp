@@ -1,5 +1,7 @@
 #include <strata/terrain/FractalNoise.h>
 
+#include "ShowValue.h"
+
 #include <strata/Error.h>
 
 #include "NoiseHash.h"
@@ -8,7 +10,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <sstream>
 
 namespace strata::terrain {
 
@@ -219,12 +220,7 @@ CellularDistances cellular2(std::uint64_t s, const glm::dvec2& p)
     return {std::sqrt(f1), std::sqrt(f2)};
 }
 
-std::string show(double v)
-{
-    std::ostringstream out;
-    out << v;
-    return out.str();
-}
+using detail::show;
 
 } // namespace
 

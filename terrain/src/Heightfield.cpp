@@ -1,25 +1,17 @@
 #include <strata/terrain/Heightfield.h>
 
+#include "ShowValue.h"
+
 #include <strata/Error.h>
 
 #include <glm/geometric.hpp>
 
 #include <algorithm>
 #include <cmath>
-#include <sstream>
 
 namespace strata::terrain {
 
-namespace {
-
-std::string show(double v)
-{
-    std::ostringstream out;
-    out << v;
-    return out.str();
-}
-
-} // namespace
+using detail::show;
 
 void HeightfieldBase::setSlopeBound(double slope)
 {

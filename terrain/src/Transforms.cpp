@@ -1,22 +1,14 @@
 #include <strata/terrain/Transforms.h>
 
+#include "ShowValue.h"
+
 #include <strata/Error.h>
 
 #include <cmath>
-#include <sstream>
 
 namespace strata::terrain {
 
-namespace {
-
-std::string show(double v)
-{
-    std::ostringstream out;
-    out << v;
-    return out.str();
-}
-
-} // namespace
+using detail::show;
 
 WarpField::WarpField(DensityFieldPtr child, std::uint64_t seed, const WarpOptions& options)
     : mChild(std::move(child))
