@@ -45,3 +45,8 @@ find_package(PkgConfig REQUIRED)
 pkg_check_modules(EPOXY REQUIRED IMPORTED_TARGET epoxy)
 # Windows with an OpenGL context (strata::render's GlfwContext, strata-view).
 find_package(glfw3 CONFIG REQUIRED)
+
+# strata::scene reads TOML scene files and writes JSON reports (header-only
+# libraries, but its exported static target names them).
+find_package(tomlplusplus CONFIG REQUIRED)
+find_package(nlohmann_json CONFIG REQUIRED)

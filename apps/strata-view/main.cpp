@@ -4,8 +4,8 @@
 // the file changes. `--frames N --screenshot FILE` renders N frames, saves
 // the last and exits (used under `xvfb-run -a` in the tests).
 
-#include "Generate.h"
-#include "Scene.h"
+#include <strata/scene/Pipeline.h>
+#include <strata/scene/Scene.h>
 #include "ViewerCamera.h"
 
 #include <strata/Error.h>
@@ -68,7 +68,7 @@ struct Args
 /// The scene's mesh and render settings.
 struct Loaded
 {
-    app::Scene scene;
+    scene::Scene scene;
     meshing::TriangleMesh mesh;
     render::SnapshotOptions snapshot;
     std::filesystem::file_time_type mtime{};
@@ -89,27 +89,16 @@ Loaded load(const Args& args, int width, int height)
     const auto t0 = Clock::now();
     Loaded loaded;
     loaded.mtime = args.scenePath.empty() ? std::filesystem::file_time_type{} : modificationTime(args.scenePath);
-    loaded.scene = args.scenePath.empty() ? app::parseScene(app::defaultSceneText(), "<default scene>")
-                                          : app::loadScene(args.scenePath);
-    const app::Scene& scene = loaded.scene;
-    const auto field = args.seed && *args.seed != scene.terrain.seed && scene.buildField ? scene.buildField(*args.seed)
-                                                                                        : scene.field;
-    if (!field) {
-        throw Error(scene.source + ": the scene has no terrain");
-    }
-    terrain::SampleOptions sampling;
-    sampling.voxelSize = scene.voxelSize;
-    sampling.halfWidth = scene.halfWidth;
-    sampling.region = scene.region;
-    sampling.renormalize = scene.renormalize;
-    const openvdb::FloatGrid::Ptr grid = terrain::sampleLevelSet(*field, sampling);
-    meshing::GridToMeshOptions meshOptions;
-    meshOptions.adaptivity = scene.adaptivity;
-    loaded.mesh = meshing::gridToMesh(*grid, meshOptions);
-    if (loaded.mesh.triangleCount() == 0) {
-        throw Error(scene.source + ": the terrain has no surface inside the region");
-    }
-    loaded.snapshot = app::makeSnapshotOptions(scene, loaded.mesh, width, height);
+    loaded.scene = args.scenePath.empty() ? scene::parseScene(scene::defaultSceneText(), "<default scene>")
+                                          : scene::loadScene(args.scenePath);
+    const scene::Scene& scene = loaded.scene;
+    // The same stages as `strata generate`, the grid and mesh in memory.
+    // The scene's [quality] table applies as in `strata generate`.
+    const scene::QualitySettings quality = scene::resolveQuality(scene, std::nullopt, {});
+    const scene::Scene effective = scene::applyQuality(scene, quality);
+    const scene::SampledTerrain terrain = scene::sampleTerrain(effective, args.seed);
+    loaded.mesh = scene::meshTerrain(effective, quality, terrain);
+    loaded.snapshot = scene::makeSnapshotOptions(scene, loaded.mesh, width, height);
     loaded.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
     return loaded;
 }
@@ -219,7 +208,7 @@ int run(const Args& args)
         std::cout << "strata-view: " << context->description() << std::endl;
     }
     render::GlRenderer renderer(*context);
-    renderer.setMesh(app::meshView(loaded.mesh));
+    renderer.setMesh(scene::meshView(loaded.mesh));
     renderer.setMaterial(loaded.snapshot.material, loaded.snapshot.anisotropy);
 
     Input input;
@@ -271,7 +260,7 @@ int run(const Args& args)
             context->framebufferSize(width, height);
             try {
                 Loaded fresh = load(args, std::max(width, 1), std::max(height, 1));
-                renderer.setMesh(app::meshView(fresh.mesh));
+                renderer.setMesh(scene::meshView(fresh.mesh));
                 renderer.setMaterial(fresh.snapshot.material, fresh.snapshot.anisotropy);
                 loaded = std::move(fresh);
                 status = "reloaded";

@@ -5,11 +5,11 @@
 // (BenchMeshCommand.cpp) is registered under it.
 
 #include "Commands.h"
-#include "Generate.h"
+#include <strata/scene/Pipeline.h>
 #include "ParetoPlot.h"
-#include "Quality.h"
-#include "Scene.h"
-#include "Snapshot.h"
+#include <strata/scene/Quality.h>
+#include <strata/scene/Scene.h>
+#include <strata/scene/Snapshot.h>
 
 #include <strata/AtomicFile.h>
 #include <strata/Error.h>

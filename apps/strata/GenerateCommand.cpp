@@ -1,41 +1,30 @@
-// `strata generate`: the command-line front of Generate.h.
+// `strata generate`: the command-line front of strata/scene/Pipeline.h.
 
 #include "Commands.h"
-#include "Generate.h"
-#include "Quality.h"
-#include "Scene.h"
-#include "SceneOffset.h"
+#include <strata/scene/Pipeline.h>
+#include <strata/scene/Quality.h>
+#include <strata/scene/Scene.h>
+#include <strata/scene/SceneOffset.h>
 #include "SnapshotFlags.h"
 
 #include <strata/Error.h>
+#include <strata/Format.h>
+#include "Progress.h"
 
 #include <tbb/global_control.h>
 
 #include <algorithm>
 #include <cctype>
+#include <iomanip>
 #include <iostream>
 #include <memory>
 #include <optional>
+#include <sstream>
 #include <regex>
 
 namespace strata::app {
 
 namespace {
-
-// "1280x720" → {1280, 720}; throws strata::Error otherwise.
-std::pair<int, int> parseSize(const std::string& text)
-{
-    static const std::regex pattern(R"((\d{1,5})[xX](\d{1,5}))");
-    std::smatch match;
-    if (!std::regex_match(text, match, pattern)) {
-        throw Error("--size '" + text + "' must look like WIDTHxHEIGHT, e.g. 1280x720");
-    }
-    const int width = std::stoi(match[1]), height = std::stoi(match[2]);
-    if (width < 1 || height < 1 || width > 16384 || height > 16384) {
-        throw Error("--size '" + text + "': width and height must be in [1, 16384]");
-    }
-    return {width, height};
-}
 
 // "8GiB", "512MiB", "2G", "1.5GB", "1000000" → bytes (binary units: K, M, G,
 // T with or without "iB"/"B"); throws strata::Error otherwise.
@@ -72,6 +61,29 @@ struct GenerateArguments
     std::optional<std::string> preset;  ///< --preset
     std::vector<std::string> quality;   ///< --quality KEY=VALUE, repeatable
 };
+
+/// The closing lines of `strata generate`: what the model saved, the
+/// quality settings and the total time.
+void printSummary(const GenerateResult& result, const std::filesystem::path& outputDir)
+{
+    std::ostringstream model;
+    model << std::fixed << std::setprecision(2) << "  model     " << withThousands(result.evaluatedPoints)
+          << " points evaluated for " << withThousands(result.activeVoxels) << " active voxels ("
+          << (result.activeVoxels ? double(result.evaluatedPoints) / double(result.activeVoxels) : 0.0)
+          << " per voxel)";
+    if (result.programsPossible > 0) {
+        model << "; " << result.programsCompiled << " of " << result.programsPossible << " shader variants compiled";
+    }
+    if (result.naiveFetches > 0) {
+        model << "; " << withThousands(result.textureFetches) << " texture fetches of "
+              << withThousands(result.naiveFetches) << " naive ("
+              << 100.0 * double(result.naiveFetches - result.textureFetches) / double(result.naiveFetches)
+              << "% skipped)";
+    }
+    std::cout << model.str() << "\n  quality   " << describeQuality(result.quality) << '\n';
+    std::cout << "  total     " << std::fixed << std::setprecision(3) << std::setw(8) << result.timings.at("total")
+              << " s   wrote " << outputDir.string() << "/" << std::defaultfloat << std::endl;
+}
 
 } // namespace
 
@@ -124,11 +136,10 @@ Command registerGenerateCommand(CLI::App& app)
                     options.quality["backend"] = checkKnob("backend", options.request.backend);
                 }
                 options.writePly = args->writePly;
-                options.quiet = args->quiet;
                 options.threads = args->threads;
                 options.maxMemoryBytes = parseMemory(args->maxMemory);
                 if (!args->size.empty()) {
-                    const auto [width, height] = parseSize(args->size);
+                    const auto [width, height] = parseSizeFlag(args->size);
                     options.width = width;
                     options.height = height;
                 }
@@ -148,7 +159,9 @@ Command registerGenerateCommand(CLI::App& app)
                 if (!args->quiet) {
                     std::cout << "strata generate: " << scene.source << " → " << args->outputDir << "/" << std::endl;
                 }
-                strata::app::generate(scene, options, std::cout);
+                TerminalProgress progress(std::cout, stdoutIsTerminal(), args->quiet);
+                const GenerateResult result = scene::generate(scene, options, &progress);
+                if (!args->quiet) printSummary(result, options.outputDir);
                 return 0;
             }};
 }

@@ -1,43 +1,61 @@
 #include "Progress.h"
 
 #include <algorithm>
-#include <cstdio>
+#include <atomic>
+#include <csignal>
 #include <iomanip>
+#include <iostream>
 #include <unistd.h>
 
 namespace strata::app {
 
-StageLog::StageLog(std::ostream& out, bool interactive, bool quiet)
-    : mOut(out), mInteractive(interactive && !quiet), mQuiet(quiet), mCreated(Clock::now())
+namespace {
+
+std::atomic<bool> gInterrupted{false};
+
+extern "C" void onInterrupt(int)
 {
+    // A second Ctrl-C while the first is being honoured ends the process at once.
+    if (gInterrupted.exchange(true)) {
+        std::signal(SIGINT, SIG_DFL);
+        std::raise(SIGINT);
+    }
 }
 
-void StageLog::begin(const std::string& stage)
+} // namespace
+
+TerminalProgress::TerminalProgress(std::ostream& out, bool interactive, bool quiet)
+    : mOut(out), mInteractive(interactive && !quiet), mQuiet(quiet)
 {
-    if (!mStage.empty()) end();
+    gInterrupted = false;
+    std::signal(SIGINT, onInterrupt);
+}
+
+TerminalProgress::~TerminalProgress() { std::signal(SIGINT, SIG_DFL); }
+
+void TerminalProgress::beginStage(const std::string& stage)
+{
     mStage = stage;
     mShownPercent = -1;
-    mStageStart = Clock::now();
 }
 
-void StageLog::progress(double fraction)
+bool TerminalProgress::progress(double fraction)
 {
-    if (!mInteractive || mStage.empty()) return;
+    if (gInterrupted) return false;
+    if (!mInteractive || mStage.empty()) return true;
     const int percent = int(std::clamp(fraction, 0.0, 1.0) * 100.0);
-    if (percent == mShownPercent) return;
+    if (percent == mShownPercent) return true;
     mShownPercent = percent;
     mOut << "\r  " << std::left << std::setw(10) << mStage << std::right << std::setw(3) << percent << "%"
          << std::flush;
+    return true;
 }
 
-void StageLog::end(const std::string& detail)
+void TerminalProgress::endStage(const std::string& stage, double seconds, const std::string& detail)
 {
-    if (mStage.empty()) return;
-    const double seconds = std::chrono::duration<double>(Clock::now() - mStageStart).count();
-    mSeconds[mStage] = seconds;
     if (!mQuiet) {
         if (mInteractive) mOut << "\r\033[K"; // clear the progress line
-        mOut << "  " << std::left << std::setw(10) << mStage << std::right << std::fixed << std::setprecision(3)
+        mOut << "  " << std::left << std::setw(10) << stage << std::right << std::fixed << std::setprecision(3)
              << std::setw(8) << seconds << " s";
         if (!detail.empty()) mOut << "   " << detail;
         mOut << std::defaultfloat << std::endl;
@@ -45,8 +63,10 @@ void StageLog::end(const std::string& detail)
     mStage.clear();
 }
 
-double StageLog::elapsed() const { return std::chrono::duration<double>(Clock::now() - mCreated).count(); }
+void TerminalProgress::notice(const std::string& line) { std::cerr << line << std::endl; }
 
 bool stdoutIsTerminal() { return ::isatty(STDOUT_FILENO) == 1; }
+
+bool interruptRequested() { return gInterrupted; }
 
 } // namespace strata::app

@@ -1,50 +1,44 @@
 #pragma once
 /// \file
-/// Terminal output of the CLI: one line per finished stage with its time,
-/// and a live percentage while a long stage runs (only when stdout is a TTY).
+/// Terminal output of the CLI: one line per finished stage with its time, a
+/// live percentage while a long stage runs (only when stdout is a TTY), and
+/// Ctrl-C: the first SIGINT asks the running stage to stop (the pipeline
+/// throws an Interrupted error and writes nothing more).
 
-#include <chrono>
-#include <map>
+#include <strata/scene/Pipeline.h>
+
 #include <ostream>
 #include <string>
 
 namespace strata::app {
 
-class StageLog
+class TerminalProgress final : public scene::PipelineObserver
 {
 public:
     /// `out` receives the lines; live progress is shown only if `interactive`.
-    StageLog(std::ostream& out, bool interactive, bool quiet);
+    TerminalProgress(std::ostream& out, bool interactive, bool quiet);
+    ~TerminalProgress() override;
 
-    /// Starts timing a stage (ends the previous one, if any).
-    void begin(const std::string& stage);
-
-    /// Shows "stage  NN%" in place; cheap to call often (redraws at most
-    /// once per percent).
-    void progress(double fraction);
-
-    /// Ends the current stage, prints "stage  1.234 s  detail", records the time.
-    void end(const std::string& detail = "");
-
-    /// Seconds per finished stage, by name.
-    const std::map<std::string, double>& seconds() const { return mSeconds; }
-
-    /// Seconds since construction.
-    double elapsed() const;
+    void beginStage(const std::string& stage) override;
+    /// Shows "stage  NN%" in place (redraws at most once per percent);
+    /// false once SIGINT arrived.
+    bool progress(double fraction) override;
+    void endStage(const std::string& stage, double seconds, const std::string& detail) override;
+    /// Notices go to stderr, even when quiet.
+    void notice(const std::string& line) override;
 
 private:
-    using Clock = std::chrono::steady_clock;
     std::ostream& mOut;
     bool mInteractive;
     bool mQuiet;
     std::string mStage;
-    Clock::time_point mCreated;
-    Clock::time_point mStageStart;
     int mShownPercent = -1;
-    std::map<std::string, double> mSeconds;
 };
 
 /// True when file descriptor 1 is a terminal.
 bool stdoutIsTerminal();
+
+/// True once SIGINT arrived while a TerminalProgress was alive.
+bool interruptRequested();
 
 } // namespace strata::app

@@ -2,16 +2,36 @@
 // The snapshot flags of `strata generate` and `strata render` (see
 // Snapshot.h), registered the same way on both.
 
-#include "Snapshot.h"
+#include <strata/scene/Snapshot.h>
 
 #include <strata/Error.h>
 
 #include <CLI/CLI.hpp>
 
 #include <optional>
+#include <regex>
 #include <string>
+#include <utility>
 
 namespace strata::app {
+
+/// "--size 1280x720" → {1280, 720}; throws strata::Error naming the flag
+/// and its value otherwise.
+inline std::pair<int, int> parseSizeFlag(const std::string& text)
+{
+    static const std::regex pattern(R"((\d{1,5})[xX](\d{1,5}))");
+    std::smatch match;
+    if (!std::regex_match(text, match, pattern)) {
+        throw Error(ErrorKind::BadInput, "--size '" + text + "' must look like WIDTHxHEIGHT, e.g. 1280x720",
+                    {"", 0, "--size", text});
+    }
+    const int width = std::stoi(match[1]), height = std::stoi(match[2]);
+    if (width < 1 || height < 1 || width > 16384 || height > 16384) {
+        throw Error(ErrorKind::BadInput, "--size '" + text + "': width and height must be in [1, 16384]",
+                    {"", 0, "--size", text});
+    }
+    return {width, height};
+}
 
 struct SnapshotFlags
 {

@@ -18,6 +18,7 @@ int main(int argc, char** argv)
     const std::vector<Command> commands = {
         registerGenerateCommand(app),
         registerSceneCommand(app),
+        registerNodesCommand(app),
         registerRenderCommand(app),
         registerMeshCommand(app),
         registerInfoCommand(app),
@@ -38,7 +39,11 @@ int main(int argc, char** argv)
         return EXIT_BAD_INPUT; // unreachable: require_subcommand(1)
     } catch (const strata::Error& e) {
         std::cerr << "strata: error: " << e.what() << std::endl;
-        return EXIT_BAD_INPUT;
+        return exitCode(e.kind());
+    } catch (const std::bad_alloc&) {
+        std::cerr << "strata: error: out of memory (lower the voxel size or the region, or set --max-memory)"
+                  << std::endl;
+        return 1;
     } catch (const std::exception& e) {
         std::cerr << "strata: internal error: " << e.what() << std::endl;
         return 1;

@@ -1,5 +1,9 @@
 #include <strata/terrain/Caves.h>
 
+#include "NodeRegistrations.h"
+#include <strata/Format.h>
+#include <strata/terrain/NodeRegistry.h>
+
 #include "ShowValue.h"
 
 #include <strata/Error.h>
@@ -346,6 +350,82 @@ Interval WormCaves::bounds(const WorldBox& box) const
 {
     const double d = density(box.centre()), r = box.radius();
     return {std::max(d - r, minDensity()), std::min(d + r, CAP)};
+}
+
+} // namespace strata::terrain
+
+namespace strata::terrain {
+
+void registerCaveNodes(NodeRegistry& registry)
+{
+    const WormOptions w;
+    NodeType worms{"worms", "tunnel networks: noise-steered worms of round cones; an exact distance (to subtract)", {},
+                   {}};
+    worms.keys = {numberKey("cell_size", w.cellSize, 1.0, 1e5, "m", "side of one spawn cell"),
+                  numberKey("worms_per_cell", w.wormsPerCell, 0.0, 16.0, "", "expected worms per cell"),
+                  numberKey("min_y", w.minY, -HUGE_LENGTH, HUGE_LENGTH, "m", "lowest start height"),
+                  numberKey("max_y", w.maxY, -HUGE_LENGTH, HUGE_LENGTH, "m", "highest start height"),
+                  integerKey("segments", w.segments, 1, 256, "", "segments per worm"),
+                  numberKey("segment_length", w.segmentLength, 1e-3, 1e4, "m", "length of one segment"),
+                  numberKey("radius", w.radius, 1e-3, 1e4, "m", "mean tunnel radius"),
+                  numberKey("radius_variation", w.radiusVariation, 0.0, 0.9, "", "radius varies within this fraction"),
+                  numberKey("turn", w.turn, 0.0, 10.0, "rad", "how far the heading wanders"),
+                  numberKey("max_pitch", w.maxPitch, 0.0, 1.4, "rad", "steepest tunnel slope"),
+                  seedKey()};
+    worms.build = [](const NodeArgs& a) -> DensityFieldPtr {
+        WormOptions o;
+        o.cellSize = a.number("cell_size");
+        o.wormsPerCell = a.number("worms_per_cell");
+        o.minY = a.number("min_y");
+        o.maxY = a.number("max_y");
+        if (o.maxY < o.minY) a.fail("max_y", "= " + formatNumber(o.maxY) + " is below min_y = " + formatNumber(o.minY));
+        o.segments = int(a.integer("segments"));
+        o.segmentLength = a.number("segment_length");
+        o.radius = a.number("radius");
+        o.radiusVariation = a.number("radius_variation");
+        o.turn = a.number("turn");
+        o.maxPitch = a.number("max_pitch");
+        return std::make_shared<WormCaves>(a.seed(), o);
+    };
+    registry.add(std::move(worms));
+
+    const CheeseOptions c;
+    NodeType cheese{"cheese", "caverns where 3D noise exceeds the threshold (below it with invert)", {}, {}};
+    cheese.keys = {numberKey("wavelength", c.wavelength, 1e-3, MAX_LENGTH, "m", "size of the caverns' noise"),
+                   numberKey("threshold", c.threshold, -2.0, 2.0, "noise units", "higher: fewer, smaller caverns"),
+                   numberKey("vertical_squash", c.verticalSquash, 0.1, 10.0, "", "> 1 flattens caverns"),
+                   booleanKey("invert", c.invert, "caverns where the noise is below the threshold"),
+                   numberKey("max_height", c.maxHeight, -HUGE_LENGTH, 1e30, "m", "no caverns above this height")};
+    addFractalKeys(cheese.keys, c.noise);
+    cheese.build = [](const NodeArgs& a) -> DensityFieldPtr {
+        CheeseOptions o;
+        o.wavelength = a.number("wavelength");
+        o.threshold = a.number("threshold");
+        o.verticalSquash = a.number("vertical_squash");
+        o.invert = a.boolean("invert");
+        o.maxHeight = a.number("max_height");
+        o.noise = fractalOptions(a);
+        return std::make_shared<CheeseCaves>(a.seed(), o);
+    };
+    registry.add(std::move(cheese));
+
+    const SpaghettiOptions s;
+    NodeType spaghetti{"spaghetti", "long winding tubes where two 3D noise fields are both near zero", {}, {}};
+    spaghetti.keys = {numberKey("wavelength", s.wavelength, 1e-3, MAX_LENGTH, "m", "size of the meanders"),
+                      numberKey("radius", s.radius, 1e-4, 1e6, "m", "mean horizontal tunnel radius"),
+                      numberKey("vertical_squash", s.verticalSquash, 0.1, 10.0, "", "> 1 keeps tunnels level"),
+                      numberKey("max_height", s.maxHeight, -HUGE_LENGTH, 1e30, "m", "no tunnels above this height")};
+    addFractalKeys(spaghetti.keys, s.noise);
+    spaghetti.build = [](const NodeArgs& a) -> DensityFieldPtr {
+        SpaghettiOptions o;
+        o.wavelength = a.number("wavelength");
+        o.radius = a.number("radius");
+        o.verticalSquash = a.number("vertical_squash");
+        o.maxHeight = a.number("max_height");
+        o.noise = fractalOptions(a);
+        return std::make_shared<SpaghettiCaves>(a.seed(), o);
+    };
+    registry.add(std::move(spaghetti));
 }
 
 } // namespace strata::terrain

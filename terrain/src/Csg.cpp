@@ -1,5 +1,8 @@
 #include <strata/terrain/Csg.h>
 
+#include "NodeRegistrations.h"
+#include <strata/terrain/NodeRegistry.h>
+
 #include <algorithm>
 #include <cassert>
 
@@ -89,6 +92,34 @@ double CsgField::distanceBound(const glm::dvec3& p) const
     const double slack = 0.5 * mSmooth * double(mChildren.size() - 1);
     if (mOperation == CsgOperation::UNION) return b > 0.0 ? std::max(0.0, b - slack) : b;
     return b < 0.0 ? std::min(0.0, b + slack) : b;
+}
+
+} // namespace strata::terrain
+
+namespace strata::terrain {
+
+void registerCsgNodes(NodeRegistry& registry)
+{
+    const struct
+    {
+        const char* name;
+        CsgOperation operation;
+        const char* description;
+    } operations[] = {
+        {"union", CsgOperation::UNION, "CSG union (min) of the children"},
+        {"subtract", CsgOperation::SUBTRACT, "CSG: the first child minus the others"},
+        {"intersect", CsgOperation::INTERSECT, "CSG intersection (max) of the children"},
+    };
+    for (const auto& op : operations) {
+        NodeType type{op.name, op.description, {}, {}};
+        type.keys = {childrenKey("children", "the nodes to combine, in order"),
+                     numberKey("smooth", 0.0, 0.0, 1e4, "m", "> 0 blends with a polynomial smooth-min of this radius")};
+        const CsgOperation operation = op.operation;
+        type.build = [operation](const NodeArgs& a) -> DensityFieldPtr {
+            return std::make_shared<CsgField>(operation, a.children("children"), a.number("smooth"));
+        };
+        registry.add(std::move(type));
+    }
 }
 
 } // namespace strata::terrain

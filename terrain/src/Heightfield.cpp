@@ -1,5 +1,9 @@
 #include <strata/terrain/Heightfield.h>
 
+#include "NodeRegistrations.h"
+#include <strata/Format.h>
+#include <strata/terrain/NodeRegistry.h>
+
 #include "ShowValue.h"
 
 #include <strata/Error.h>
@@ -145,6 +149,56 @@ double ImageHeightfield::height(double x, double z) const
     const double top = at(i, j) + fu * (at(i + 1, j) - at(i, j));
     const double bottom = at(i, j + 1) + fu * (at(i + 1, j + 1) - at(i, j + 1));
     return mOptions.base + mOptions.heightScale * (top + fv * (bottom - top));
+}
+
+} // namespace strata::terrain
+
+namespace strata::terrain {
+
+void registerHeightfieldNodes(NodeRegistry& registry)
+{
+    const NoiseHeightfieldOptions n;
+    NodeType noise{"heightfield", "y = base + amplitude * noise(x/wavelength, z/wavelength): rolling terrain", {}, {}};
+    noise.keys = {numberKey("base", n.base, -HUGE_LENGTH, HUGE_LENGTH, "m", "height of the noise's zero"),
+                  numberKey("amplitude", n.amplitude, 0.0, 1e6, "m", "height scale of the noise"),
+                  numberKey("wavelength", n.wavelength, 1e-3, MAX_LENGTH, "m", "size of the largest features")};
+    addFractalKeys(noise.keys, n.noise);
+    noise.build = [](const NodeArgs& a) -> DensityFieldPtr {
+        NoiseHeightfieldOptions o;
+        o.base = a.number("base");
+        o.amplitude = a.number("amplitude");
+        o.wavelength = a.number("wavelength");
+        o.noise = fractalOptions(a);
+        return std::make_shared<NoiseHeightfield>(a.seed(), o);
+    };
+    registry.add(std::move(noise));
+
+    const ImageHeightfieldOptions i;
+    NodeType image{"image_heightfield",
+                   "a height image (8/16-bit PNG, EXR, TIFF..., channel 0) laid over the XZ rectangle min..max, "
+                   "bilinear",
+                   {},
+                   {}};
+    image.keys = {imageKey("file", "the height image; relative paths from the scene's folder"),
+                  vec2Key("min", i.min, HUGE_LENGTH, "m", "world (x, z) of the first pixel"),
+                  vec2Key("max", i.max, HUGE_LENGTH, "m", "world (x, z) of the last pixel"),
+                  numberKey("base", i.base, -HUGE_LENGTH, HUGE_LENGTH, "m", "height of pixel value 0"),
+                  numberKey("height_scale", i.heightScale, -1e6, 1e6, "m", "height of pixel value 1 above base")};
+    image.build = [](const NodeArgs& a) -> DensityFieldPtr {
+        ImageHeightfieldOptions o;
+        o.min = a.vec2("min");
+        o.max = a.vec2("max");
+        for (int axis = 0; axis < 2; ++axis) {
+            if (!(o.max[axis] > o.min[axis])) {
+                a.fail("max", "must be greater than min on both axes (" + formatNumber(o.min[axis]) +
+                                  " >= " + formatNumber(o.max[axis]) + ")");
+            }
+        }
+        o.base = a.number("base");
+        o.heightScale = a.number("height_scale");
+        return std::make_shared<ImageHeightfield>(a.image("file"), o);
+    };
+    registry.add(std::move(image));
 }
 
 } // namespace strata::terrain

@@ -1,6 +1,7 @@
 #include <strata/terrain/SampleLevelSet.h>
 
 #include <strata/Error.h>
+#include <strata/Format.h>
 
 #include <openvdb/tools/LevelSetTracker.h>
 #include <openvdb/tools/Prune.h>
@@ -46,13 +47,7 @@ constexpr double MAX_VOXELS = 1099511627776.0;
 /// noise, so their interval bounds hold only up to rounding.
 constexpr double PRUNE_SLACK = 1e-4;
 
-std::string show(double value)
-{
-    std::ostringstream out;
-    out.precision(17);
-    out << value;
-    return out.str();
-}
+std::string show(double value) { return formatExact(value); }
 
 void validate(const SampleOptions& o)
 {
@@ -424,7 +419,7 @@ private:
 
 void reportProgress(const SampleOptions& options, double fraction)
 {
-    if (options.progress && !options.progress(fraction)) throw Error("sampling interrupted");
+    if (options.progress && !options.progress(fraction)) throw Error(ErrorKind::Interrupted, "sampling interrupted");
 }
 
 } // namespace

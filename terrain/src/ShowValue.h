@@ -2,16 +2,12 @@
 // A double as error messages print it (shortest stream form), shared by the
 // nodes that check their options.
 
-#include <sstream>
+#include <strata/Format.h>
+
 #include <string>
 
 namespace strata::terrain::detail {
 
-inline std::string show(double v)
-{
-    std::ostringstream out;
-    out << v;
-    return out.str();
-}
+inline std::string show(double v) { return formatNumber(v); }
 
 } // namespace strata::terrain::detail

@@ -1,6 +1,7 @@
 #include <strata/terrain/TerrainField.h>
 
 #include <strata/Error.h>
+#include <strata/Format.h>
 
 #include <algorithm>
 #include <cmath>
@@ -22,12 +23,7 @@ constexpr double CAVE_TYPICAL_GRADIENT = 1.0;
 /// Seed streams, so the heightfield and the two cave fields are independent.
 enum SeedStream : std::uint64_t { HEIGHT_STREAM = 1, CAVE_A_STREAM = 2, CAVE_B_STREAM = 3 };
 
-std::string show(double value)
-{
-    std::ostringstream out;
-    out << value;
-    return out.str();
-}
+std::string show(double value) { return formatNumber(value); }
 
 void requirePositive(const char* key, double value)
 {

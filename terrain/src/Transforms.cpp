@@ -1,5 +1,9 @@
 #include <strata/terrain/Transforms.h>
 
+#include "NodeRegistrations.h"
+#include <strata/Format.h>
+#include <strata/terrain/NodeRegistry.h>
+
 #include "ShowValue.h"
 
 #include <strata/Error.h>
@@ -99,6 +103,50 @@ Interval TerraceField::bounds(const WorldBox& box) const
     const double lo = terrace(box.min.y), hi = terrace(box.max.y);
     const double slack = 1e-12 * (std::abs(lo) + std::abs(hi) + mStep);
     return mChild->bounds({{box.min.x, lo - slack, box.min.z}, {box.max.x, hi + slack, box.max.z}});
+}
+
+} // namespace strata::terrain
+
+namespace strata::terrain {
+
+void registerTransformNodes(NodeRegistry& registry)
+{
+    const WarpOptions w;
+    NodeType warp{"warp",
+                  "the child evaluated at p + amplitude * noise3(p/wavelength): overhangs and undercut cliffs",
+                  {},
+                  {}};
+    warp.keys = {childKey("child", "the node to warp"),
+                 numberKey("amplitude", w.amplitude, 0.0, 1e6, "m", "largest displacement"),
+                 numberKey("wavelength", w.wavelength, 1e-3, MAX_LENGTH, "m", "size of the warp's noise"),
+                 numberKey("vertical", w.vertical, 0.0, 10.0, "", "scale of the vertical displacement")};
+    addFractalKeys(warp.keys, w.noise);
+    warp.build = [](const NodeArgs& a) -> DensityFieldPtr {
+        WarpOptions o;
+        o.amplitude = a.number("amplitude");
+        o.wavelength = a.number("wavelength");
+        o.vertical = a.number("vertical");
+        o.noise = fractalOptions(a);
+        return std::make_shared<WarpField>(a.child("child"), a.seed(), o);
+    };
+    registry.add(std::move(warp));
+
+    NodeType terrace{"terrace", "the child evaluated at y mapped through steps: terraces, strata ledges", {}, {}};
+    terrace.keys = {childKey("child", "the node to terrace"),
+                    numberKey("step", 4.0, 1e-3, 1e6, "m", "height of one terrace"),
+                    numberKey("sharpness", 3.0, 1.0, 64.0, "", "1 = no terraces; higher = flatter treads")};
+    terrace.build = [](const NodeArgs& a) -> DensityFieldPtr {
+        return std::make_shared<TerraceField>(a.child("child"), a.number("step"), a.number("sharpness"));
+    };
+    registry.add(std::move(terrace));
+
+    NodeType translate{"translate", "the child moved by offset", {}, {}};
+    translate.keys = {childKey("child", "the node to move"),
+                      vec3Key("offset", glm::dvec3(0.0), HUGE_LENGTH, "m", "how far to move it")};
+    translate.build = [](const NodeArgs& a) -> DensityFieldPtr {
+        return std::make_shared<TranslateField>(a.child("child"), a.vec3("offset"));
+    };
+    registry.add(std::move(translate));
 }
 
 } // namespace strata::terrain

@@ -2,7 +2,7 @@
 // files, the CSV's columns, a row for each preset and each swept knob, and a
 // plot that is an image with something drawn on it.
 
-#include "Quality.h"
+#include <strata/scene/Quality.h>
 #include "RunStrata.h"
 #include "TestDir.h"
 
@@ -100,11 +100,11 @@ TEST(BenchCommand, TinyRunWritesReportCsvAndPlot)
             EXPECT_LT(error, 1.0) << line; // every configuration meshes a sphere within a voxel
         }
     }
-    for (const std::string& preset : strata::app::presetNames()) {
+    for (const std::string& preset : strata::scene::presetNames()) {
         EXPECT_TRUE(sceneConfigs.count(preset)) << preset;
         EXPECT_TRUE(shapeConfigs.count(preset)) << preset;
     }
-    for (const std::string& key : strata::app::qualityKeys()) {
+    for (const std::string& key : strata::scene::qualityKeys()) {
         if (key == "voxel_size") continue; // swept as voxel_scale (the same knob, relative)
         EXPECT_TRUE(knobs.count(key)) << key;
     }

@@ -5,8 +5,8 @@
 // voxels across) and 160×90 snapshots keep it fast; the numbers are printed.
 
 #include "RunStrata.h"
-#include "Scene.h"
-#include "SceneOffset.h"
+#include <strata/scene/Scene.h>
+#include <strata/scene/SceneOffset.h>
 #include "TestDir.h"
 
 #include <strata/Error.h>
@@ -279,7 +279,7 @@ TEST(Extremes, RenderOffsetMatchesTheOrigin)
 // stay small however far out the scene is.
 TEST(Extremes, FarOutMeshIsStoredRelativeToTheRegion)
 {
-    strata::app::Scene scene = strata::app::offsetScene(strata::app::parseScene(SMALL_SCENE, "small.toml"),
+    strata::scene::Scene scene = strata::scene::offsetScene(strata::scene::parseScene(SMALL_SCENE, "small.toml"),
                                                         glm::dvec3(1e7, -1e7, 1e7));
     EXPECT_EQ(scene.region.min, glm::dvec3(1e7 - 16.0, -1e7 - 8.0, 1e7 - 16.0));
     strata::terrain::SampleOptions sampling;
@@ -384,7 +384,7 @@ std::vector<ScaleCase> scaleCases()
         std::vector<DensityFieldPtr>{std::make_shared<SphereField>(glm::dvec3(0.5, 0.25, -0.25), 12.0),
                                      std::make_shared<CapsuleField>(glm::dvec3(-20.0, 0.25, -0.25),
                                                                     glm::dvec3(20.0, 0.25, -0.25), 4.0)});
-    const strata::app::Scene scene = strata::app::parseScene(SMALL_SCENE, "small.toml");
+    const strata::scene::Scene scene = strata::scene::parseScene(SMALL_SCENE, "small.toml");
     return {{"holed sphere", holed, {glm::dvec3(-16.0), glm::dvec3(16.0)}}, {"terrain", scene.field, scene.region}};
 }
 
@@ -542,7 +542,7 @@ TEST(Extremes, EveryNumericSceneKeyRejectsNanAndInfinityNamingTheKey)
         for (const std::string& value : bad) {
             const std::string text = sceneWith(k, value);
             try {
-                (void)strata::app::parseScene(text, "bad.toml");
+                (void)strata::scene::parseScene(text, "bad.toml");
                 ADD_FAILURE() << qualified(k) << " = " << value << " was accepted";
             } catch (const strata::Error& e) {
                 const std::string message = e.what();
@@ -564,7 +564,7 @@ TEST(Extremes, BlendAndNormalLimitsAreLegalInTheSceneFile)
     for (const char* line :
          {"blend_offset = 0.0", "blend_offset = 0.5", "blend_exponent = 1.0", "blend_exponent = 8.0",
           "height_strength = 0.0", "height_strength = 0.99", "normal_strength = 0.0", "normal_strength = 2.0"}) {
-        EXPECT_NO_THROW((void)strata::app::parseScene(std::string("[material]\n") + line + "\n", "limits.toml")) << line;
+        EXPECT_NO_THROW((void)strata::scene::parseScene(std::string("[material]\n") + line + "\n", "limits.toml")) << line;
     }
 }
 

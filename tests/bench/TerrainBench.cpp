@@ -13,7 +13,7 @@
 #include <strata/terrain/Transforms.h>
 
 #ifdef STRATA_BENCH_DEFAULT_SCENE
-#include "Scene.h"
+#include <strata/scene/Scene.h>
 #include "../terrain/DefaultSceneTree.h"
 #endif
 
@@ -105,7 +105,7 @@ void BM_DomainWarp(benchmark::State& s)
 std::shared_ptr<const DensityField> defaultField()
 {
 #ifdef STRATA_BENCH_DEFAULT_SCENE
-    return strata::app::parseScene(std::string(strata::app::defaultSceneText()), "<default scene>").field;
+    return strata::scene::parseScene(std::string(strata::scene::defaultSceneText()), "<default scene>").field;
 #else
     DensityFieldPtr hills = std::make_shared<NoiseHeightfield>(deriveSeed(1, 1), NoiseHeightfieldOptions{});
     WarpOptions warp;

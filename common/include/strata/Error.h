@@ -6,7 +6,8 @@
 /// asserts, not errors.
 ///
 /// An Error carries a kind, so a program can react without reading the text
-/// (the CLI maps BadInput to exit code 2 and every other kind to 1), and the
+/// (the CLI maps BadInput to exit code 2, Interrupted to 130 and every other
+/// kind to 1), and the
 /// place it is about where known (file, line, key, value), so a caller can
 /// point at it without parsing the message.
 
@@ -22,7 +23,8 @@ enum class ErrorKind
     BadInput, ///< the input is wrong: a scene value, a flag, a file that is not what it claims; fix the input
     Io,       ///< the system failed us: a write, a rename, a full disk, a folder we cannot create
     Gl,       ///< the GL driver failed: no context, a shader that does not compile, a GL error
-    Internal, ///< a bug or an exhausted resource inside Strata
+    Internal,    ///< a bug or an exhausted resource inside Strata
+    Interrupted, ///< the caller asked a long operation to stop (a progress callback returned false)
 };
 
 /// "bad input", "I/O", "GL" or "internal".
@@ -33,6 +35,7 @@ inline const char* errorKindName(ErrorKind kind)
     case ErrorKind::Io: return "I/O";
     case ErrorKind::Gl: return "GL";
     case ErrorKind::Internal: return "internal";
+    case ErrorKind::Interrupted: return "interrupted";
     }
     return "internal";
 }
@@ -40,6 +43,12 @@ inline const char* errorKindName(ErrorKind kind)
 /// Where an error is about; every field is optional (empty or 0 = unknown).
 struct ErrorPlace
 {
+    ErrorPlace() = default;
+    ErrorPlace(std::string file_, int line_ = 0, std::string key_ = {}, std::string value_ = {})
+        : file(std::move(file_)), line(line_), key(std::move(key_)), value(std::move(value_))
+    {
+    }
+
     std::string file;  ///< the file being read or written ("<default scene>" for embedded text)
     int line = 0;      ///< 1-based line in `file`, 0 = unknown
     std::string key;   ///< the scene key, e.g. "terrain.nodes.land.amplitude", or the flag

@@ -1,6 +1,6 @@
-// The [terrain] node tree of the scene file (apps/strata/SceneTerrain.h).
+// The [terrain] node tree of the scene file (scene/src/SceneTerrain.h).
 
-#include "Scene.h"
+#include <strata/scene/Scene.h>
 #include "SceneTerrain.h"
 #include "TestDir.h"
 
@@ -17,8 +17,8 @@
 #include <sys/wait.h>
 #include <vector>
 
-using strata::app::parseScene;
-using strata::app::Scene;
+using strata::scene::parseScene;
+using strata::scene::Scene;
 
 namespace {
 
@@ -78,7 +78,7 @@ double surfaceHeight(const strata::terrain::DensityField& field, double x, doubl
 
 TEST(SceneTerrain, DefaultSceneIsANodeTree)
 {
-    const Scene scene = parseScene(std::string(strata::app::defaultSceneText()), "<default scene>");
+    const Scene scene = parseScene(std::string(strata::scene::defaultSceneText()), "<default scene>");
     ASSERT_TRUE(scene.field);
     ASSERT_TRUE(scene.buildField);
     const auto other = scene.buildField(2);
@@ -172,14 +172,14 @@ max = [50, 50]
 height_scale = 10
 )";
     std::set<std::string> used;
-    for (const std::string& type : strata::app::terrainNodeTypes()) {
+    for (const std::string& type : strata::scene::terrainNodeTypes()) {
         if (text.find("type = \"" + type + "\"") != std::string::npos) used.insert(type);
     }
-    EXPECT_EQ(used.size(), strata::app::terrainNodeTypes().size()) << "a node type is missing from this test";
+    EXPECT_EQ(used.size(), strata::scene::terrainNodeTypes().size()) << "a node type is missing from this test";
     {
         std::ofstream(dir / "all.toml") << text;
     }
-    const Scene scene = strata::app::loadScene(dir / "all.toml");
+    const Scene scene = strata::scene::loadScene(dir / "all.toml");
     ASSERT_TRUE(scene.field);
     EXPECT_LT(scene.field->density({0, 30, 0}), 0.0); // inside the shapes
     EXPECT_LT(scene.field->density({40, 30, 0}), 0.0); // the translated ball
@@ -197,7 +197,7 @@ TEST(SceneTerrain, ImageHeightfieldReproducesARampWithinOneStep)
                                                                                   "\"\nmin = [0, 0]\nmax = [255, 7]\n"
                                                                                   "height_scale = 51\nbase = -5\n");
         }
-        const Scene scene = strata::app::loadScene(dir / "scene.toml");
+        const Scene scene = strata::scene::loadScene(dir / "scene.toml");
         const double step = 51.0 / (sixteen ? 65535.0 : 255.0);
         double worst = 0.0;
         for (double x = 0.0; x <= 255.0; x += 0.71) {
@@ -211,7 +211,7 @@ TEST(SceneTerrain, TunnelsReachTheSurfaceInTheDefaultScene)
 {
     // Air connected to the sky that lies at least 3 m inside the land's rock
     // (the land without the tunnels) is a tunnel mouth and the tunnel behind it.
-    std::string text(strata::app::defaultSceneText());
+    std::string text(strata::scene::defaultSceneText());
     const Scene scene = parseScene(text, "<default scene>");
     // The same scene without worms is the land alone.
     const std::size_t worms = text.find("worms_per_cell = ");

@@ -14,9 +14,8 @@
 #include <optional>
 #include <string>
 
-namespace strata::app {
+namespace strata::scene {
 
-class TableReader;
 
 /// One map of the material from a file (overrides the built-in set's map).
 struct MapFileSettings
@@ -62,13 +61,6 @@ struct MaterialSettings
     std::array<std::optional<MapFileSettings>, 9> files; ///< per slot, MATERIAL_MAP_KEYS order
 };
 
-/// Reads [material] (and [materials.*]) from the scene's root table.
-/// `baseDir` resolves relative file names. Throws strata::Error
-/// "SOURCE:LINE: material.KEY ..." for unknown keys, wrong types,
-/// out-of-range values and unknown built-in sets; also for a map file that
-/// is missing ("... no such file").
-void readMaterial(TableReader& root, MaterialSettings& settings, const std::filesystem::path& baseDir);
-
 /// Builds the material: built-in sets, then the files (loaded through
 /// OpenImageIO with the colour space of each map, channel remapping and
 /// normal convention), mip chains. Throws strata::Error naming the
@@ -76,4 +68,4 @@ void readMaterial(TableReader& root, MaterialSettings& settings, const std::file
 /// few channels.
 render::Material buildMaterial(const MaterialSettings& settings);
 
-} // namespace strata::app
+} // namespace strata::scene

@@ -3,7 +3,7 @@
 /// The snapshot flags shared by `strata generate` and `strata render`:
 /// backend, camera (scene, flags, presets), turntable and file format.
 
-#include "Scene.h"
+#include <strata/scene/Scene.h>
 
 #include <strata/meshing/MeshMetrics.h>
 #include <strata/render/Camera.h>
@@ -18,7 +18,7 @@
 #include <string>
 #include <vector>
 
-namespace strata::app {
+namespace strata::scene {
 
 struct SnapshotRequest
 {
@@ -69,4 +69,4 @@ render::Camera turntableFrame(const render::Camera& camera, int index, int count
 /// frames STEM_000.EXT … (at least three digits) beside it.
 std::vector<std::filesystem::path> snapshotPaths(const std::filesystem::path& single, int turntable);
 
-} // namespace strata::app
+} // namespace strata::scene

@@ -10,7 +10,7 @@
 
 #include <cstddef>
 
-namespace strata::app {
+namespace strata::scene {
 
 struct CaveViewOptions
 {
@@ -51,4 +51,4 @@ struct CaveView
 CaveView findCaveView(const openvdb::FloatGrid& grid, const glm::dvec3& regionMin, const glm::dvec3& regionMax,
                       const CaveViewOptions& options = {});
 
-} // namespace strata::app
+} // namespace strata::scene

@@ -1,4 +1,4 @@
-#include "Snapshot.h"
+#include <strata/scene/Snapshot.h>
 
 #include <strata/Error.h>
 
@@ -11,7 +11,7 @@
 #include <ostream>
 #include <regex>
 
-namespace strata::app {
+namespace strata::scene {
 
 void checkSnapshotRequest(const SnapshotRequest& r)
 {
@@ -147,4 +147,4 @@ std::vector<std::filesystem::path> snapshotPaths(const std::filesystem::path& si
     return paths;
 }
 
-} // namespace strata::app
+} // namespace strata::scene

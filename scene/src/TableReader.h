@@ -5,6 +5,7 @@
 /// SceneMaterial.cpp.
 
 #include <strata/Error.h>
+#include <strata/Format.h>
 
 #include <toml++/toml.h>
 
@@ -18,14 +19,9 @@
 #include <string>
 #include <vector>
 
-namespace strata::app {
+namespace strata::scene {
 
-inline std::string formatNumber(double value)
-{
-    std::ostringstream out;
-    out << value;
-    return out.str();
-}
+using strata::formatNumber;
 
 /// Reads one TOML table, checking types and ranges, and remembers which keys
 /// it consumed so that `finish()` can reject unknown ones (typos).
@@ -130,7 +126,8 @@ public:
         if (!mTable) return;
         for (const auto& [key, node] : *mTable) {
             if (!mUsed.count(std::string(key.str()))) {
-                throw Error(location(&node) + "unknown key '" + qualified(std::string(key.str())) + "'");
+                const std::string name = qualified(std::string(key.str()));
+                throw Error(ErrorKind::BadInput, location(&node) + "unknown key '" + name + "'", place(&node, name));
             }
         }
     }
@@ -140,7 +137,7 @@ public:
     [[noreturn]] void fail(const toml::node* node, const std::string& key, const std::string& what) const
     {
         if (!node && mTable) node = mTable->get(key);
-        throw Error(location(node) + qualified(key) + " " + what);
+        throw Error(ErrorKind::BadInput, location(node) + qualified(key) + " " + what, place(node, qualified(key)));
     }
 
 private:
@@ -157,6 +154,24 @@ private:
             fail(node, key, "= " + formatNumber(value) + " is out of range [" + formatNumber(min) + ", " +
                                 formatNumber(max) + "]");
         }
+    }
+
+    /// The error's place: the file, the node's line, the key and the value
+    /// as TOML writes it.
+    ErrorPlace place(const toml::node* node, const std::string& key) const
+    {
+        ErrorPlace p{mSource, 0, key, ""};
+        if (node) {
+            p.line = int(node->source().begin.line);
+            if (const auto* value = node->as_string()) {
+                p.value = value->get();
+            } else if (!node->is_table()) {
+                std::ostringstream text;
+                node->visit([&text](const auto& n) { text << n; });
+                p.value = text.str();
+            }
+        }
+        return p;
     }
 
     std::string qualified(const std::string& key) const { return mPrefix.empty() ? key : mPrefix + "." + key; }
@@ -178,4 +193,4 @@ private:
     std::set<std::string> mUsed;
 };
 
-} // namespace strata::app
+} // namespace strata::scene

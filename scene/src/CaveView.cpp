@@ -1,4 +1,4 @@
-#include "CaveView.h"
+#include <strata/scene/CaveView.h>
 
 #include <strata/Error.h>
 
@@ -18,7 +18,7 @@
 #include <string>
 #include <vector>
 
-namespace strata::app {
+namespace strata::scene {
 
 namespace {
 
@@ -298,4 +298,4 @@ CaveView findCaveView(const openvdb::FloatGrid& grid, const glm::dvec3& regionMi
     return view;
 }
 
-} // namespace strata::app
+} // namespace strata::scene

@@ -29,7 +29,7 @@
 #include <string>
 #include <vector>
 
-namespace strata::app {
+namespace strata::scene {
 
 using DensityFieldPtr = std::shared_ptr<const terrain::DensityField>;
 
@@ -51,4 +51,4 @@ const std::vector<std::string>& terrainNodeTypes();
 TerrainBuilder readTerrainNodes(const toml::table* terrainTable, const std::string& source,
                                 const std::filesystem::path& baseDirectory, std::uint64_t seed);
 
-} // namespace strata::app
+} // namespace strata::scene

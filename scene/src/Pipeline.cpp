@@ -1,10 +1,10 @@
-#include "Generate.h"
+#include <strata/scene/Pipeline.h>
 
-#include "CaveView.h"
-#include "Progress.h"
+#include <strata/scene/CaveView.h>
 
 #include <strata/AtomicFile.h>
 #include <strata/Error.h>
+#include <strata/Format.h>
 #include <strata/meshing/GltfIO.h>
 #include <strata/meshing/GridIO.h>
 #include <strata/meshing/DualContouring.h>
@@ -20,28 +20,17 @@
 
 #include <nlohmann/json.hpp>
 
+#include <chrono>
 #include <fstream>
 #include <iomanip>
 #include <iostream>
+#include <map>
 #include <memory>
 #include <sstream>
 
-namespace strata::app {
+namespace strata::scene {
 
-namespace {
-
-std::string withThousands(std::uint64_t n)
-{
-    std::string digits = std::to_string(n), out;
-    for (std::size_t i = 0; i < digits.size(); ++i) {
-        if (i > 0 && (digits.size() - i) % 3 == 0) out += ',';
-        out += digits[i];
-    }
-    return out;
-}
-
-void writeReport(const GenerateResult& result, const Scene& scene, const GenerateOptions& options,
-                 const std::filesystem::path& path)
+void writeReport(const GenerateResult& result, const Scene& scene, int threads, const std::filesystem::path& path)
 {
     nlohmann::ordered_json report;
     report["scene"] = scene.source;
@@ -55,7 +44,7 @@ void writeReport(const GenerateResult& result, const Scene& scene, const Generat
     report["grid_memory_bytes"] = result.gridMemoryBytes;
     report["vertices"] = result.vertices;
     report["triangles"] = result.triangles;
-    report["threads"] = options.threads;
+    report["threads"] = threads;
     report["renderer"] = result.renderer;
     const QualitySettings& q = result.quality;
     report["quality"] = {{"preset", q.preset},
@@ -91,11 +80,9 @@ void writeReport(const GenerateResult& result, const Scene& scene, const Generat
     writeAtomically(path, [&](const std::filesystem::path& temporary) {
         std::ofstream out(temporary);
         out << report.dump(2) << '\n';
-        if (!out.flush()) throw Error("cannot write '" + path.string() + "'");
+        if (!out.flush()) throw Error(ErrorKind::Io, "cannot write '" + path.string() + "'", {path.string()});
     });
 }
-
-} // namespace
 
 render::SnapshotOptions makeSnapshotOptions(const Scene& scene, const meshing::TriangleMesh& mesh,
                                             std::optional<int> width, std::optional<int> height)
@@ -181,9 +168,142 @@ meshing::TriangleMesh meshWithQuality(const openvdb::FloatGrid& grid, const Qual
     return mesh;
 }
 
-GenerateResult generate(const Scene& input, const GenerateOptions& options, std::ostream& out)
+SampledTerrain sampleTerrain(const Scene& scene, std::optional<std::uint64_t> seed, std::uint64_t maxMemoryBytes,
+                             const std::function<bool(double)>& progress)
 {
-    StageLog log(out, stdoutIsTerminal(), options.quiet);
+    SampledTerrain out;
+    out.seed = seed.value_or(scene.terrain.seed);
+    // The scene's root density field; another seed rebuilds the tree.
+    out.field = seed && *seed != scene.terrain.seed && scene.buildField ? scene.buildField(*seed) : scene.field;
+    if (!out.field) throw Error(ErrorKind::BadInput, scene.source + ": the scene has no terrain", {scene.source});
+    terrain::SampleOptions sampling;
+    sampling.voxelSize = scene.voxelSize;
+    sampling.halfWidth = scene.halfWidth;
+    sampling.region = scene.region;
+    sampling.maxMemoryBytes = maxMemoryBytes;
+    sampling.renormalize = scene.renormalize;
+    sampling.progress = progress;
+    out.grid = terrain::sampleLevelSet(*out.field, sampling, &out.stats);
+    out.grid->setName("terrain");
+    return out;
+}
+
+meshing::GradientFunction fieldGradient(std::shared_ptr<const terrain::DensityField> field, double step)
+{
+    return [field = std::move(field), step](const glm::dvec3& p) {
+        glm::dvec3 g;
+        for (int axis = 0; axis < 3; ++axis) {
+            glm::dvec3 d(0.0);
+            d[axis] = step;
+            g[axis] = (field->density(p + d) - field->density(p - d)) / (2.0 * step);
+        }
+        return g;
+    };
+}
+
+meshing::TriangleMesh meshTerrain(const Scene& scene, const QualitySettings& quality, const SampledTerrain& terrain,
+                                  std::string* what)
+{
+    // Positions relative to the region's centre (the .glb node translation),
+    // so float precision holds for regions far from the world origin.
+    const glm::dvec3 origin = 0.5 * (scene.region.min + scene.region.max);
+    // "field" normals: the density field's own gradient (central differences
+    // a quarter voxel apart), not the grid's.
+    meshing::TriangleMesh mesh =
+        meshWithQuality(*terrain.grid, quality, fieldGradient(terrain.field, 0.25 * scene.voxelSize), origin, what);
+    if (mesh.triangleCount() == 0) {
+        throw Error(ErrorKind::BadInput,
+                    scene.source + ": the terrain has no surface inside the region (check region and terrain.height)",
+                    {scene.source});
+    }
+    return mesh;
+}
+
+void writeTerrain(const SampledTerrain& terrain, const meshing::TriangleMesh& mesh,
+                  const std::filesystem::path& outputDir, bool writePly)
+{
+    meshing::writeGrid(*terrain.grid, outputDir / "terrain.vdb");
+    meshing::writeGlb(mesh, outputDir / "terrain.glb");
+    if (writePly) meshing::writePly(mesh, outputDir / "terrain.ply");
+}
+
+RenderStats renderSnapshots(const Scene& scene, const meshing::TriangleMesh& mesh, const SnapshotRequest& request,
+                            render::GlContext* context, int frames, std::optional<int> width,
+                            std::optional<int> height, const std::optional<render::Camera>& cave,
+                            const std::function<void(int frame, const render::Image& image)>& sink)
+{
+    RenderStats stats;
+    const render::SnapshotOptions snapshot = makeSnapshotOptions(scene, mesh, width, height, request, cave);
+    stats.features = render::featureNames(render::materialFeatures(snapshot.material));
+    const render::MeshView view = meshView(mesh);
+    std::unique_ptr<render::GlRenderer> renderer;
+    if (context) {
+        renderer = std::make_unique<render::GlRenderer>(*context);
+        renderer->setMesh(view);
+    }
+    for (int frame = 0; frame < frames; ++frame) {
+        render::SnapshotOptions frameOptions = snapshot;
+        frameOptions.camera = turntableFrame(snapshot.camera, frame, frames);
+        render::CpuRenderStats cpuStats;
+        const render::Image image =
+            renderer ? renderer->renderImage(frameOptions) : render::renderSnapshotCpu(view, frameOptions, &cpuStats);
+        stats.shadedPixels += cpuStats.shadedPixels;
+        stats.textureFetches += cpuStats.textureFetches;
+        stats.naiveFetches += cpuStats.naiveFetches;
+        sink(frame, image);
+    }
+    if (renderer) {
+        const render::ProgramStats programs = renderer->stats();
+        stats.programsCompiled = programs.compiled;
+        stats.programsPossible = programs.possible;
+    }
+    return stats;
+}
+
+namespace {
+
+/// Times the stages of generate() and tells the observer.
+class Stages
+{
+public:
+    explicit Stages(PipelineObserver* observer)
+        : mObserver(observer)
+    {
+    }
+    void begin(const std::string& stage)
+    {
+        mStage = stage;
+        mStart = Clock::now();
+        if (mObserver) mObserver->beginStage(stage);
+    }
+    bool progress(double fraction) { return mObserver ? mObserver->progress(fraction) : true; }
+    void end(const std::string& detail = "")
+    {
+        const double seconds = std::chrono::duration<double>(Clock::now() - mStart).count();
+        mSeconds[mStage] = seconds;
+        if (mObserver) mObserver->endStage(mStage, seconds, detail);
+    }
+    void notice(const std::string& line)
+    {
+        if (mObserver) mObserver->notice(line);
+    }
+    std::map<std::string, double>& seconds() { return mSeconds; }
+    double elapsed() const { return std::chrono::duration<double>(Clock::now() - mCreated).count(); }
+
+private:
+    using Clock = std::chrono::steady_clock;
+    PipelineObserver* mObserver;
+    std::string mStage;
+    Clock::time_point mCreated = Clock::now();
+    Clock::time_point mStart;
+    std::map<std::string, double> mSeconds;
+};
+
+} // namespace
+
+GenerateResult generate(const Scene& input, const GenerateOptions& options, PipelineObserver* observer)
+{
+    Stages log(observer);
     GenerateResult result;
     // Quality first: a bad preset writes nothing. An explicit backend in the
     // request counts as a flag.
@@ -202,7 +322,9 @@ GenerateResult generate(const Scene& input, const GenerateOptions& options, std:
     std::error_code ec;
     std::filesystem::create_directories(options.outputDir, ec);
     if (ec || !std::filesystem::is_directory(options.outputDir)) {
-        throw Error("cannot create output directory '" + options.outputDir.string() + "': " + ec.message());
+        throw Error(ErrorKind::Io,
+                    "cannot create output directory '" + options.outputDir.string() + "': " + ec.message(),
+                    {options.outputDir.string()});
     }
 
     // The GL context first: on a machine without one, fail before the long stages.
@@ -210,39 +332,25 @@ GenerateResult generate(const Scene& input, const GenerateOptions& options, std:
     double contextSeconds = 0.0;
     if (options.snapshot && request.backend != "cpu") {
         log.begin("context");
-        context = openBackend(request, std::cerr, result.renderer);
+        std::ostringstream notices;
+        context = openBackend(request, notices, result.renderer);
+        std::istringstream lines(notices.str());
+        for (std::string line; std::getline(lines, line);) log.notice(line);
         log.end(result.renderer);
         contextSeconds = log.seconds().at("context");
     } else if (options.snapshot) {
         result.renderer = "strata CPU reference renderer";
     }
 
-    result.seed = options.seed.value_or(scene.terrain.seed);
     result.voxelSize = scene.voxelSize;
-
     log.begin("generate");
-    // The scene's root density field; another seed rebuilds the tree.
-    const std::shared_ptr<const terrain::DensityField> field =
-        options.seed && *options.seed != scene.terrain.seed && scene.buildField ? scene.buildField(*options.seed)
-                                                                                : scene.field;
-    if (!field) throw Error(scene.source + ": the scene has no terrain");
-    terrain::SampleOptions sampling;
-    sampling.voxelSize = scene.voxelSize;
-    sampling.halfWidth = scene.halfWidth;
-    sampling.region = scene.region;
-    sampling.maxMemoryBytes = options.maxMemoryBytes;
-    sampling.renormalize = scene.renormalize;
-    sampling.progress = [&log](double fraction) {
-        log.progress(fraction);
-        return true;
-    };
-    terrain::SampleStats stats;
-    openvdb::FloatGrid::Ptr grid = terrain::sampleLevelSet(*field, sampling, &stats);
-    grid->setName("terrain");
-    result.activeVoxels = grid->activeVoxelCount();
-    result.evaluatedPoints = stats.evaluatedPoints;
-    result.boundEvaluations = stats.boundEvaluations;
-    result.gridMemoryBytes = grid->memUsage();
+    const SampledTerrain terrain = sampleTerrain(scene, options.seed, options.maxMemoryBytes,
+                                                 [&log](double fraction) { return log.progress(fraction); });
+    result.seed = terrain.seed;
+    result.activeVoxels = terrain.grid->activeVoxelCount();
+    result.evaluatedPoints = terrain.stats.evaluatedPoints;
+    result.boundEvaluations = terrain.stats.boundEvaluations;
+    result.gridMemoryBytes = terrain.grid->memUsage();
     log.end(withThousands(result.activeVoxels) + " active voxels, " +
             withThousands(result.gridMemoryBytes / 1024) + " KiB");
 
@@ -250,7 +358,7 @@ GenerateResult generate(const Scene& input, const GenerateOptions& options, std:
     std::optional<render::Camera> caveCamera;
     if (options.snapshot && request.view == "cave") {
         log.begin("cave");
-        const CaveView cave = findCaveView(*grid, scene.region.min, scene.region.max);
+        const CaveView cave = findCaveView(*terrain.grid, scene.region.min, scene.region.max);
         caveCamera = cave.camera;
         std::ostringstream info;
         info << std::fixed << std::setprecision(1) << "camera at (" << cave.camera.position.x << ", "
@@ -260,70 +368,36 @@ GenerateResult generate(const Scene& input, const GenerateOptions& options, std:
     }
 
     log.begin("mesh");
-    // Positions relative to the region's centre (the .glb node translation),
-    // so float precision holds for regions far from the world origin.
-    const glm::dvec3 meshOrigin = 0.5 * (scene.region.min + scene.region.max);
-    // "field" normals: the density field's own gradient (central differences
-    // a quarter voxel apart), not the grid's.
-    const double step = 0.25 * scene.voxelSize;
-    const meshing::GradientFunction fieldGradient = [&field, step](const glm::dvec3& p) {
-        glm::dvec3 g;
-        for (int axis = 0; axis < 3; ++axis) {
-            glm::dvec3 d(0.0);
-            d[axis] = step;
-            g[axis] = (field->density(p + d) - field->density(p - d)) / (2.0 * step);
-        }
-        return g;
-    };
-    std::string mesherDescription;
-    const meshing::TriangleMesh mesh =
-        meshWithQuality(*grid, result.quality, fieldGradient, meshOrigin, &mesherDescription);
-    result.mesher = mesherDescription;
+    const meshing::TriangleMesh mesh = meshTerrain(scene, result.quality, terrain, &result.mesher);
     result.vertices = mesh.vertexCount();
     result.triangles = mesh.triangleCount();
     log.end(withThousands(result.vertices) + " vertices, " + withThousands(result.triangles) + " triangles, " +
-            mesherDescription);
-    if (mesh.triangleCount() == 0) {
-        throw Error(scene.source + ": the terrain has no surface inside the region (check region and terrain.height)");
-    }
+            result.mesher);
 
     log.begin("write");
-    meshing::writeGrid(*grid, options.outputDir / "terrain.vdb");
-    meshing::writeGlb(mesh, options.outputDir / "terrain.glb");
-    if (options.writePly) meshing::writePly(mesh, options.outputDir / "terrain.ply");
+    writeTerrain(terrain, mesh, options.outputDir, options.writePly);
     log.end();
 
     if (options.snapshot) {
         log.begin("render");
-        const render::SnapshotOptions snapshot =
-            makeSnapshotOptions(scene, mesh, options.width, options.height, request, caveCamera);
         const std::string format = request.format.empty() ? "png" : request.format;
         const std::vector<std::filesystem::path> paths =
             snapshotPaths(options.outputDir / ("snapshot." + format), request.turntable);
-        const render::MeshView view = meshView(mesh);
-        std::unique_ptr<render::GlRenderer> renderer;
-        if (context) {
-            renderer = std::make_unique<render::GlRenderer>(*context);
-            renderer->setMesh(view);
-        }
-        render::Image image;
-        for (std::size_t frame = 0; frame < paths.size(); ++frame) {
-            render::SnapshotOptions frameOptions = snapshot;
-            frameOptions.camera = turntableFrame(snapshot.camera, int(frame), int(paths.size()));
-            render::CpuRenderStats cpuStats;
-            image = renderer ? renderer->renderImage(frameOptions) : render::renderSnapshotCpu(view, frameOptions, &cpuStats);
-            result.shadedPixels += cpuStats.shadedPixels;
-            result.textureFetches += cpuStats.textureFetches;
-            result.naiveFetches += cpuStats.naiveFetches;
-            render::writeImage(image, paths[frame]);
-        }
-        if (renderer) {
-            const render::ProgramStats programs = renderer->stats();
-            result.programsCompiled = programs.compiled;
-            result.programsPossible = programs.possible;
-        }
-        log.end(std::to_string(image.width) + "x" + std::to_string(image.height) + ", " + (context ? "gl" : "cpu") +
-                ", " + render::featureNames(render::materialFeatures(snapshot.material)) +
+        int width = 0, height = 0;
+        const RenderStats stats =
+            renderSnapshots(scene, mesh, request, context.get(), int(paths.size()), options.width, options.height,
+                            caveCamera, [&](int frame, const render::Image& image) {
+                                render::writeImage(image, paths[std::size_t(frame)]);
+                                width = image.width;
+                                height = image.height;
+                            });
+        result.programsCompiled = stats.programsCompiled;
+        result.programsPossible = stats.programsPossible;
+        result.shadedPixels = stats.shadedPixels;
+        result.textureFetches = stats.textureFetches;
+        result.naiveFetches = stats.naiveFetches;
+        log.end(std::to_string(width) + "x" + std::to_string(height) + ", " + (context ? "gl" : "cpu") + ", " +
+                stats.features +
                 (paths.size() > 1 ? ", " + std::to_string(paths.size()) + " frames" : std::string()));
     }
 
@@ -334,29 +408,8 @@ GenerateResult generate(const Scene& input, const GenerateOptions& options, std:
         result.timings.erase("context");
     }
     result.timings["total"] = log.elapsed();
-    writeReport(result, scene, options, options.outputDir / "report.json");
-    if (!options.quiet) {
-        // Model only what the scene requires: work done against work possible.
-        std::ostringstream model;
-        model << std::fixed << std::setprecision(2) << "  model     " << withThousands(result.evaluatedPoints)
-              << " points evaluated for " << withThousands(result.activeVoxels) << " active voxels ("
-              << (result.activeVoxels ? double(result.evaluatedPoints) / double(result.activeVoxels) : 0.0)
-              << " per voxel)";
-        if (result.programsPossible > 0) {
-            model << "; " << result.programsCompiled << " of " << result.programsPossible
-                  << " shader variants compiled";
-        }
-        if (result.naiveFetches > 0) {
-            model << "; " << withThousands(result.textureFetches) << " texture fetches of "
-                  << withThousands(result.naiveFetches) << " naive ("
-                  << 100.0 * double(result.naiveFetches - result.textureFetches) / double(result.naiveFetches)
-                  << "% skipped)";
-        }
-        out << model.str() << "\n  quality   " << describeQuality(result.quality) << '\n';
-        out << "  total     " << std::fixed << std::setprecision(3) << std::setw(8) << result.timings["total"]
-            << " s   wrote " << options.outputDir.string() << "/" << std::defaultfloat << std::endl;
-    }
+    writeReport(result, scene, options.threads, options.outputDir / "report.json");
     return result;
 }
 
-} // namespace strata::app
+} // namespace strata::scene

@@ -18,9 +18,8 @@
 #include <string>
 #include <vector>
 
-namespace strata::app {
+namespace strata::scene {
 
-class TableReader;
 struct Scene;
 
 /// Knob key → value text (already checked by checkKnob(); numbers as text).
@@ -77,11 +76,6 @@ std::string checkKnob(const std::string& key, const std::string& value);
 /// both voxel_size and voxel_scale is an error.
 void addQualityFlag(const std::string& text, QualityOverrides& overrides);
 
-/// Reads [quality] from the scene's root table; throws strata::Error
-/// "SOURCE:LINE: quality.KEY ..." for unknown keys, wrong types, values
-/// out of range and unknown presets.
-QualityTable readQuality(TableReader& root);
-
 /// The effective settings: the scene's own values, then the preset
 /// (`presetFlag`, else the scene's [quality] preset, else balanced), then
 /// the [quality] keys, then `flags`. Throws strata::Error for an unknown
@@ -101,4 +95,4 @@ const char* normalBlendName(render::NormalBlend blend);
 /// normals, ..." for the terminal.
 std::string describeQuality(const QualitySettings& settings);
 
-} // namespace strata::app
+} // namespace strata::scene

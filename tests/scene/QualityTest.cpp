@@ -2,9 +2,9 @@
 // precedence, scene-file and flag errors, and `strata generate` applying each
 // knob end to end.
 
-#include "Quality.h"
+#include <strata/scene/Quality.h>
 #include "RunStrata.h"
-#include "Scene.h"
+#include <strata/scene/Scene.h>
 #include "TestDir.h"
 
 #include <strata/Error.h>
@@ -23,7 +23,7 @@
 #include <map>
 #include <sstream>
 
-using namespace strata::app;
+using namespace strata::scene;
 
 namespace {
 

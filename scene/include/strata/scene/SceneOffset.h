@@ -3,12 +3,12 @@
 /// `--offset X,Y,Z`: the whole scene moved in the world (large-world tests
 /// and far-out chunks): its density field, sampled region and camera.
 
-#include "Scene.h"
-#include "Snapshot.h"
+#include <strata/scene/Scene.h>
+#include <strata/scene/Snapshot.h>
 
 #include <glm/vec3.hpp>
 
-namespace strata::app {
+namespace strata::scene {
 
 /// The scene moved by `offset` (world metres, finite): the root field (and
 /// the `--seed` rebuilder) is wrapped in a terrain::TranslateField, the
@@ -25,4 +25,4 @@ Scene offsetScene(Scene scene, const glm::dvec3& offset);
 /// with --offset they are given in the scene's own coordinates.
 void offsetRequest(SnapshotRequest& request, const glm::dvec3& offset);
 
-} // namespace strata::app
+} // namespace strata::scene

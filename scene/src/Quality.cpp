@@ -1,7 +1,7 @@
-#include "Quality.h"
+#include <strata/scene/Quality.h>
 
-#include "Scene.h"
-#include "TableReader.h"
+#include <strata/scene/Scene.h>
+#include "SceneReaders.h"
 
 #include <strata/Error.h>
 
@@ -10,7 +10,7 @@
 #include <cstdlib>
 #include <sstream>
 
-namespace strata::app {
+namespace strata::scene {
 
 namespace {
 
@@ -305,4 +305,4 @@ std::string describeQuality(const QualitySettings& s)
     return out.str();
 }
 
-} // namespace strata::app
+} // namespace strata::scene

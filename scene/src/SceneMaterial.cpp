@@ -1,13 +1,13 @@
-#include "SceneMaterial.h"
+#include <strata/scene/SceneMaterial.h>
 
-#include "TableReader.h"
+#include "SceneReaders.h"
 
 #include <strata/Error.h>
 #include <strata/render/ProceduralTextures.h>
 
 #include <map>
 
-namespace strata::app {
+namespace strata::scene {
 
 namespace {
 
@@ -317,4 +317,4 @@ render::Material buildMaterial(const MaterialSettings& settings)
     return material;
 }
 
-} // namespace strata::app
+} // namespace strata::scene

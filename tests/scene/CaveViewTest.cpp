@@ -1,7 +1,7 @@
 // The `cave` camera preset on synthetic level sets: an enclosed cavity, the
 // same cavity with a tunnel to the region's side, and solid rock.
 
-#include "CaveView.h"
+#include <strata/scene/CaveView.h>
 
 #include <strata/Error.h>
 
@@ -15,8 +15,8 @@
 
 namespace {
 
-using strata::app::CaveView;
-using strata::app::findCaveView;
+using strata::scene::CaveView;
+using strata::scene::findCaveView;
 
 const glm::dvec3 REGION_MIN(-10.0, -5.0, -10.0);
 const glm::dvec3 REGION_MAX(10.0, 15.0, 10.0);

@@ -1,9 +1,9 @@
-#include "Scene.h"
+#include <strata/scene/Scene.h>
 
 #include "DefaultScene.h"
-#include "SceneMaterial.h"
+#include <strata/scene/SceneMaterial.h>
 #include "SceneTerrain.h"
-#include "TableReader.h"
+#include "SceneReaders.h"
 
 #include <strata/Error.h>
 
@@ -19,7 +19,7 @@
 #include <set>
 #include <sstream>
 
-namespace strata::app {
+namespace strata::scene {
 
 namespace {
 
@@ -212,4 +212,4 @@ Scene loadScene(const std::filesystem::path& path)
     return parseScene(text.str(), path.string());
 }
 
-} // namespace strata::app
+} // namespace strata::scene

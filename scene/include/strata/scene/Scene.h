@@ -2,8 +2,8 @@
 /// \file
 /// The scene file: everything `strata generate` needs, read from TOML.
 
-#include "Quality.h"
-#include "SceneMaterial.h"
+#include <strata/scene/Quality.h>
+#include <strata/scene/SceneMaterial.h>
 
 #include <strata/render/Material.h>
 #include <strata/render/SnapshotOptions.h>
@@ -18,7 +18,7 @@
 #include <string>
 #include <string_view>
 
-namespace strata::app {
+namespace strata::scene {
 
 /// Where the camera looks from: an orbit around the terrain's bounds, or an
 /// explicit position and target (world metres).
@@ -77,4 +77,4 @@ Scene parseScene(std::string_view text, const std::string& source);
 /// Reads and parses a scene file. Throws strata::Error naming the file.
 Scene loadScene(const std::filesystem::path& path);
 
-} // namespace strata::app
+} // namespace strata::scene

@@ -1,4 +1,4 @@
-#include "SceneOffset.h"
+#include <strata/scene/SceneOffset.h>
 
 #include <strata/Error.h>
 #include <strata/terrain/Transforms.h>
@@ -6,7 +6,7 @@
 #include <cmath>
 #include <sstream>
 
-namespace strata::app {
+namespace strata::scene {
 
 Scene offsetScene(Scene scene, const glm::dvec3& offset)
 {
@@ -38,4 +38,4 @@ void offsetRequest(SnapshotRequest& request, const glm::dvec3& offset)
     if (request.cameraTarget) *request.cameraTarget += offset;
 }
 
-} // namespace strata::app
+} // namespace strata::scene

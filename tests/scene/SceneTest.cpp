@@ -1,4 +1,4 @@
-#include "Scene.h"
+#include <strata/scene/Scene.h>
 
 #include <strata/Error.h>
 
@@ -7,8 +7,8 @@
 
 #include <cmath>
 
-using strata::app::parseScene;
-using strata::app::Scene;
+using strata::scene::parseScene;
+using strata::scene::Scene;
 
 namespace {
 
@@ -28,7 +28,7 @@ std::string parseError(const std::string& text)
 
 TEST(Scene, DefaultSceneParses)
 {
-    const Scene scene = parseScene(strata::app::defaultSceneText(), "<default scene>");
+    const Scene scene = parseScene(strata::scene::defaultSceneText(), "<default scene>");
     EXPECT_EQ(scene.terrain.seed, 1u);
     EXPECT_DOUBLE_EQ(scene.voxelSize, 0.5);
     EXPECT_GE(scene.halfWidth, 3);
@@ -92,12 +92,12 @@ TEST(Scene, SyntaxErrorsGiveTheLine)
 
 TEST(Scene, MissingFileIsAnError)
 {
-    EXPECT_THROW(strata::app::loadScene("/nonexistent/scene.toml"), strata::Error);
+    EXPECT_THROW(strata::scene::loadScene("/nonexistent/scene.toml"), strata::Error);
 }
 
 // --- Materials (SceneMaterial.cpp) ---------------------------------------------
 
-#include "SceneMaterial.h"
+#include <strata/scene/SceneMaterial.h>
 #include "TestDir.h"
 
 #include <strata/render/Image.h>
@@ -107,10 +107,10 @@ TEST(Scene, MissingFileIsAnError)
 
 TEST(SceneMaterial, DefaultSceneIsRockWithGrassTopsAndHeightBlending)
 {
-    const Scene scene = parseScene(strata::app::defaultSceneText(), "<default scene>");
+    const Scene scene = parseScene(strata::scene::defaultSceneText(), "<default scene>");
     EXPECT_EQ(scene.material.side, "rock");
     EXPECT_EQ(scene.material.top, "grass");
-    const strata::render::Material m = strata::app::buildMaterial(scene.material);
+    const strata::render::Material m = strata::scene::buildMaterial(scene.material);
     namespace f = strata::render::feature;
     EXPECT_EQ(strata::render::materialFeatures(m), f::MASK_MAP | f::HEIGHT_BLEND | f::NORMAL_MAP | f::TOP_MAPS);
 }
@@ -143,7 +143,7 @@ fresnel_strength = 0.5
 texture_size = 64
 )",
                                    "m.toml");
-    const strata::app::MaterialSettings& s = scene.material;
+    const strata::scene::MaterialSettings& s = scene.material;
     const strata::render::Material& p = s.parameters;
     EXPECT_EQ(s.side, "circuitry");
     EXPECT_EQ(s.top, "none");
@@ -154,7 +154,7 @@ texture_size = 64
     EXPECT_FLOAT_EQ(p.emissionColor.x, 4.0f);
     EXPECT_FLOAT_EQ(p.albedoTint.z, 0.8f);
     EXPECT_FLOAT_EQ(s.detailFadeEnd, 4.0f);
-    const strata::render::Material m = strata::app::buildMaterial(s);
+    const strata::render::Material m = strata::scene::buildMaterial(s);
     namespace f = strata::render::feature;
     EXPECT_EQ(strata::render::materialFeatures(m), f::MASK_MAP | f::MODS | f::NORMAL_MAP | f::DETAIL |
                                                        f::DETAIL_NORMAL | f::EMISSION | f::NORMAL_RNM);
@@ -215,13 +215,13 @@ TEST(SceneMaterial, MapFilesAreLoadedRemappedAndChecked)
     }
     auto scene = [&](const std::string& maps) {
         std::ofstream(dir / "scene.toml") << "[material]\n" << maps;
-        return strata::app::loadScene(dir / "scene.toml");
+        return strata::scene::loadScene(dir / "scene.toml");
     };
     // A gloss map's R as smoothness, height from a normal map's alpha.
     const Scene ok = scene("[material.maps.mask]\nmetallic = \"rgba.png\"\nheight = \"rgba.png\"\nheight_channel = \"a\"\n"
                            "smoothness = \"rgba.png\"\nsmoothness_channel = \"1-r\"\n"
                            "[material.maps.normal]\nfile = \"rgba.png\"\nconvention = \"directx\"\n");
-    const strata::render::Material m = strata::app::buildMaterial(ok.material);
+    const strata::render::Material m = strata::scene::buildMaterial(ok.material);
     ASSERT_TRUE(m.mask);
     const std::uint8_t* mohs = m.mask->levels[0].texels.data();
     EXPECT_EQ(mohs[0], 200);     // metallic
@@ -232,7 +232,7 @@ TEST(SceneMaterial, MapFilesAreLoadedRemappedAndChecked)
 
     const Scene alpha = scene("[material.maps.mask]\nfile = \"rgb.jpg\"\n");
     try {
-        strata::app::buildMaterial(alpha.material);
+        strata::scene::buildMaterial(alpha.material);
         ADD_FAILURE() << "no error";
     } catch (const strata::Error& e) {
         const std::string what = e.what();
@@ -243,7 +243,7 @@ TEST(SceneMaterial, MapFilesAreLoadedRemappedAndChecked)
     }
     const Scene broken = scene("[material.maps.albedo]\nfile = \"broken.png\"\n");
     try {
-        strata::app::buildMaterial(broken.material);
+        strata::scene::buildMaterial(broken.material);
         ADD_FAILURE() << "no error";
     } catch (const strata::Error& e) {
         const std::string what = e.what();

@@ -1,0 +1,298 @@
+#include "SceneTerrain.h"
+
+#include <strata/Error.h>
+#include <strata/Format.h>
+#include <strata/terrain/Heightfield.h>
+#include <strata/terrain/NodeRegistry.h>
+#include <strata/terrain/Noise.h>
+
+#include <OpenImageIO/imageio.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <mutex>
+#include <set>
+
+namespace strata::scene {
+
+namespace {
+
+using namespace strata::terrain;
+
+/// FNV-1a of a node's name: its default seed stream.
+std::uint64_t nameStream(const std::string& name)
+{
+    std::uint64_t h = 0xcbf29ce484222325ULL;
+    for (unsigned char c : name) {
+        h ^= c;
+        h *= 0x100000001b3ULL;
+    }
+    return h;
+}
+
+/// Images read once per scene, shared by every build (seed override).
+struct ImageCache
+{
+    std::mutex mutex;
+    std::map<std::string, std::shared_ptr<const HeightImage>> images;
+};
+
+std::shared_ptr<const HeightImage> readHeightImage(const std::filesystem::path& path, TableReader& t,
+                                                   const std::string& key, ImageCache& cache)
+{
+    std::lock_guard<std::mutex> lock(cache.mutex);
+    auto found = cache.images.find(path.string());
+    if (found != cache.images.end()) return found->second;
+    const std::string shown = "= '" + path.string() + "'";
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(path, ec)) t.fail(nullptr, key, shown + ": no such file");
+    OIIO::ImageSpec config;
+    config.attribute("oiio:UnassociatedAlpha", 1);
+    std::unique_ptr<OIIO::ImageInput> in = OIIO::ImageInput::open(path.string(), &config);
+    if (!in) t.fail(nullptr, key, shown + " cannot be read as an image: " + OIIO::geterror());
+    const OIIO::ImageSpec& spec = in->spec();
+    auto image = std::make_shared<HeightImage>();
+    image->width = spec.width;
+    image->height = spec.height;
+    if (spec.width < 2 || spec.height < 2 || spec.nchannels < 1 ||
+        double(spec.width) * double(spec.height) > double(1 << 28)) {
+        t.fail(nullptr, key, shown + " is " + std::to_string(spec.width) + "x" + std::to_string(spec.height) +
+                                    " pixels: heightmaps need 2x2 to 16384x16384");
+    }
+    image->values.resize(std::size_t(spec.width) * std::size_t(spec.height));
+    // Channel 0 as float: 8- and 16-bit integers come normalised to [0, 1].
+    if (!in->read_image(0, 0, 0, 1, OIIO::TypeDesc::FLOAT, image->values.data())) {
+        t.fail(nullptr, key, shown + " cannot be read: " + in->geterror());
+    }
+    in->close();
+    cache.images.emplace(path.string(), image);
+    return image;
+}
+
+/// The deepest node tree a scene may have: deeper chains are almost surely a
+/// generated mistake, and evaluating them would recurse that deep per voxel.
+constexpr int MAX_NODE_DEPTH = 256;
+
+/// Builds nodes by name from [terrain.nodes.*], checking every key against
+/// the node registry.
+class NodeBuilder
+{
+public:
+    NodeBuilder(const toml::table* nodes, const std::string& source, const std::filesystem::path& baseDirectory,
+                std::uint64_t seed, ImageCache& images)
+        : mNodes(nodes), mSource(source), mBase(baseDirectory), mSeed(seed), mImages(images)
+    {
+    }
+
+    /// Builds node `name`; `referrer` and `key` say where the name was given.
+    DensityFieldPtr build(const std::string& name, TableReader& referrer, const std::string& key)
+    {
+        auto found = mBuilt.find(name);
+        if (found != mBuilt.end()) return found->second;
+        const toml::node* node = mNodes ? mNodes->get(name) : nullptr;
+        if (!node) {
+            referrer.fail(nullptr, key, "= '" + name + "' names no node: add a [terrain.nodes." + name + "] table");
+        }
+        if (!node->is_table()) {
+            const int line = int(node->source().begin.line);
+            throw Error(ErrorKind::BadInput,
+                        mSource + ":" + std::to_string(line) + ": terrain.nodes." + name + " must be a table",
+                        {mSource, line, "terrain.nodes." + name, ""});
+        }
+        if (mVisiting.count(name)) {
+            referrer.fail(nullptr, key, "= '" + name + "' makes a cycle: a node cannot contain itself");
+        }
+        if (int(mVisiting.size()) >= MAX_NODE_DEPTH) {
+            referrer.fail(nullptr, key,
+                          "= '" + name + "' is too deep: the node tree may be at most " +
+                              std::to_string(MAX_NODE_DEPTH) + " levels deep");
+        }
+        mVisiting.insert(name);
+        TableReader t(node->as_table(), "terrain.nodes." + name, mSource);
+        DensityFieldPtr field = make(name, t);
+        t.finish();
+        mVisiting.erase(name);
+        mBuilt.emplace(name, field);
+        return field;
+    }
+
+    bool isBuilt(const std::string& name) const { return mBuilt.count(name) > 0; }
+
+private:
+    /// Reads every key of `type` from `t` into arguments: types and ranges
+    /// checked, defaults filled in, children built, images loaded.
+    NodeArgs readArgs(const std::string& name, const NodeType& type, TableReader& t)
+    {
+        // The seed first: NodeArgs carries the derived one.
+        std::uint64_t seed = 0;
+        if (type.findKey("seed")) {
+            const std::int64_t stream =
+                t.integer("seed", std::int64_t(nameStream(name) >> 1), 0, std::numeric_limits<std::int64_t>::max());
+            seed = deriveSeed(mSeed, std::uint64_t(stream));
+        }
+        NodeArgs args(name, seed);
+        for (const NodeKey& key : type.keys) {
+            if (key.required && !t.has(key.name)) t.fail(nullptr, key.name, "is required (" + key.description + ")");
+            switch (key.type) {
+            case NodeKeyType::Number:
+                args.set(key.name, t.number(key.name, std::get<double>(key.defaultValue), key.min, key.max));
+                break;
+            case NodeKeyType::Integer:
+                args.set(key.name, t.integer(key.name, std::get<std::int64_t>(key.defaultValue),
+                                             std::int64_t(key.min), std::int64_t(key.max)));
+                break;
+            case NodeKeyType::Boolean: args.set(key.name, t.boolean(key.name, std::get<bool>(key.defaultValue))); break;
+            case NodeKeyType::Choice: {
+                const std::string value = t.string(key.name, std::get<std::string>(key.defaultValue));
+                if (std::find(key.choices.begin(), key.choices.end(), value) == key.choices.end()) {
+                    t.fail(nullptr, key.name, "= '" + value + "' is not one of " + key.rangeText());
+                }
+                args.set(key.name, value);
+                break;
+            }
+            case NodeKeyType::Vec2: args.set(key.name, vec2(t, key)); break;
+            case NodeKeyType::Vec3:
+                args.set(key.name, t.vec3(key.name, key.max).value_or(std::get<glm::dvec3>(key.defaultValue)));
+                break;
+            case NodeKeyType::Child: args.set(key.name, build(t.string(key.name, ""), t, key.name)); break;
+            case NodeKeyType::Children: args.set(key.name, children(t, key.name)); break;
+            case NodeKeyType::Image: {
+                std::filesystem::path file = t.string(key.name, "");
+                if (file.is_relative()) file = mBase / file;
+                args.set(key.name, readHeightImage(file, t, key.name, mImages));
+                break;
+            }
+            case NodeKeyType::Seed: break; // read above
+            }
+        }
+        return args;
+    }
+
+    DensityFieldPtr make(const std::string& name, TableReader& t)
+    {
+        const NodeRegistry& registry = NodeRegistry::builtin();
+        if (!t.has("type")) t.fail(nullptr, "type", "is required (one of " + registry.typeList() + ")");
+        const std::string typeName = t.string("type", "");
+        const NodeType* type = registry.find(typeName);
+        if (!type) {
+            t.fail(nullptr, "type", "= '" + typeName + "' is not a node type (one of " + registry.typeList() + ")");
+        }
+        const NodeArgs args = readArgs(name, *type, t);
+        try {
+            return type->build(args);
+        } catch (const Error& e) {
+            // A check across keys (NodeArgs::fail) names its key: point at it.
+            const std::string& key = e.place().key;
+            const std::string what = e.what();
+            if (!key.empty() && t.has(key) && what.rfind(key + " ", 0) == 0) {
+                t.fail(nullptr, key, what.substr(key.size() + 1));
+            }
+            // The library's own checks: at the node's type line.
+            t.fail(nullptr, "type", "= '" + typeName + "': " + what);
+        }
+    }
+
+    std::vector<DensityFieldPtr> children(TableReader& t, const std::string& key)
+    {
+        const toml::node* node = t.node(key);
+        const toml::array* array = node ? node->as_array() : nullptr;
+        if (!array || array->size() < 2) {
+            t.fail(node, key, "must be an array of at least two node names, e.g. [\"land\", \"caves\"]");
+        }
+        std::vector<DensityFieldPtr> out;
+        for (std::size_t i = 0; i < array->size(); ++i) {
+            const toml::node& element = *array->get(i);
+            if (!element.is_string()) t.fail(&element, key, "must hold node names (strings)");
+            out.push_back(build(*element.value<std::string>(), t, key));
+        }
+        return out;
+    }
+
+    glm::dvec2 vec2(TableReader& t, const NodeKey& key)
+    {
+        const toml::node* node = t.node(key.name);
+        if (!node) return std::get<glm::dvec2>(key.defaultValue);
+        const toml::array* array = node->as_array();
+        if (!array || array->size() != 2) t.fail(node, key.name, "must be an array of two numbers [x, z]");
+        glm::dvec2 v;
+        for (int i = 0; i < 2; ++i) {
+            const toml::node& element = *array->get(std::size_t(i));
+            const std::optional<double> value = element.value<double>();
+            if (!value || element.is_boolean() || !std::isfinite(*value) || *value < key.min || *value > key.max) {
+                t.fail(node, key.name,
+                       "must be an array of two finite numbers [x, z] within ±" + formatNumber(key.max));
+            }
+            v[i] = *value;
+        }
+        return v;
+    }
+
+    const toml::table* mNodes;
+    const std::string& mSource;
+    std::filesystem::path mBase;
+    std::uint64_t mSeed;
+    ImageCache& mImages;
+    std::map<std::string, DensityFieldPtr> mBuilt;
+    std::set<std::string> mVisiting;
+};
+
+} // namespace
+
+const std::vector<std::string>& terrainNodeTypes()
+{
+    static const std::vector<std::string> types = [] {
+        std::vector<std::string> out;
+        for (const NodeType* type : NodeRegistry::builtin().types()) out.push_back(type->name);
+        return out;
+    }();
+    return types;
+}
+
+namespace {
+
+/// Builds the tree of [terrain] in `table`; see readTerrainNodes.
+DensityFieldPtr buildTree(const toml::table* table, const std::string& source,
+                          const std::filesystem::path& baseDirectory, ImageCache& images, std::uint64_t seed)
+{
+    TableReader terrain(table, "terrain", source);
+    if (!terrain.has("root")) {
+        terrain.fail(nullptr, "root", "is required with [terrain.nodes]: the name of the node to sample");
+    }
+    const std::string rootName = terrain.string("root", "");
+    const toml::node* nodesNode = terrain.node("nodes");
+    if (nodesNode && !nodesNode->is_table()) terrain.fail(nodesNode, "nodes", "must be a table of named node tables");
+    NodeBuilder nodes(nodesNode ? nodesNode->as_table() : nullptr, source, baseDirectory, seed, images);
+    DensityFieldPtr root = nodes.build(rootName, terrain, "root");
+    terrain.finish();
+    // A node that nothing uses is most likely a mistake (a misspelt name).
+    if (nodesNode) {
+        TableReader all(nodesNode->as_table(), "terrain.nodes", source);
+        for (const std::string& name : all.keys()) {
+            if (!nodes.isBuilt(name)) {
+                all.fail(nullptr, name, "is not used: no node's child or children, nor terrain.root, names it");
+            }
+        }
+    }
+    return root;
+}
+
+} // namespace
+
+TerrainBuilder readTerrainNodes(const toml::table* terrainTable, const std::string& source,
+                                const std::filesystem::path& baseDirectory, std::uint64_t seed)
+{
+    auto images = std::make_shared<ImageCache>();
+    // Built once now, from the parsed document, so errors carry its lines.
+    buildTree(terrainTable, source, baseDirectory, *images, seed);
+    // Rebuilds (another seed) work on a copy of the table, which cannot fail
+    // where this one did not (images are cached).
+    auto table = std::make_shared<toml::table>(terrainTable ? *terrainTable : toml::table{});
+    auto sourceCopy = std::make_shared<std::string>(source);
+    return [table, sourceCopy, images, baseDirectory](std::uint64_t s) -> DensityFieldPtr {
+        return buildTree(table.get(), *sourceCopy, baseDirectory, *images, s);
+    };
+}
+
+} // namespace strata::scene
