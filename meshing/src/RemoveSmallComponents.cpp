@@ -50,7 +50,6 @@ ComponentRemoval removeSmallComponents(TriangleMesh& mesh, const SmallComponentO
         glm::dvec3 lo{std::numeric_limits<double>::max()};
         glm::dvec3 hi{std::numeric_limits<double>::lowest()};
         double area = 0.0;
-        bool closed = true;
     };
     std::vector<Measure> measures(removal.components);
     for (std::size_t t = 0; t < triangleCount; ++t) {
@@ -63,8 +62,17 @@ ComponentRemoval removeSmallComponents(TriangleMesh& mesh, const SmallComponentO
         }
         m.area += 0.5 * glm::length(glm::cross(p[1] - p[0], p[2] - p[0]));
     }
-    if (options.closedOnly) {
-        // A boundary edge (one use, welded) marks its component open.
+    // Candidates: the components under either limit.
+    std::vector<unsigned char> remove(removal.components, 0);
+    bool anySmall = false;
+    for (std::size_t c = 0; c < removal.components; ++c) {
+        const Measure& m = measures[c];
+        remove[c] = glm::length(m.hi - m.lo) < options.minDiagonal || m.area < options.minArea ? 1 : 0;
+        anySmall |= remove[c] != 0;
+    }
+    if (anySmall && options.closedOnly) {
+        // A boundary edge (one use, welded) keeps a candidate: it is open.
+        // Only the candidates' edges are sorted, usually a tiny share.
         struct Edge
         {
             std::uint32_t lo, hi, component;
@@ -72,8 +80,8 @@ ComponentRemoval removeSmallComponents(TriangleMesh& mesh, const SmallComponentO
             bool operator==(const Edge& o) const { return lo == o.lo && hi == o.hi; }
         };
         std::vector<Edge> edges;
-        edges.reserve(3 * triangleCount);
         for (std::size_t t = 0; t < triangleCount; ++t) {
+            if (!remove[componentOf[t]]) continue;
             for (int e = 0; e < 3; ++e) {
                 const std::uint32_t a = weld[mesh.indices[3 * t + e]], b = weld[mesh.indices[3 * t + (e + 1) % 3]];
                 if (a != b) edges.push_back({std::min(a, b), std::max(a, b), componentOf[t]});
@@ -83,17 +91,11 @@ ComponentRemoval removeSmallComponents(TriangleMesh& mesh, const SmallComponentO
         for (std::size_t i = 0; i < edges.size();) {
             std::size_t j = i + 1;
             while (j < edges.size() && edges[j] == edges[i]) ++j;
-            if (j - i == 1) measures[edges[i].component].closed = false;
+            if (j - i == 1) remove[edges[i].component] = 0;
             i = j;
         }
     }
-    std::vector<unsigned char> remove(removal.components, 0);
-    for (std::size_t c = 0; c < removal.components; ++c) {
-        const Measure& m = measures[c];
-        const bool small = glm::length(m.hi - m.lo) < options.minDiagonal || m.area < options.minArea;
-        remove[c] = small && (m.closed || !options.closedOnly) ? 1 : 0;
-        removal.removedComponents += remove[c];
-    }
+    for (unsigned char r : remove) removal.removedComponents += r;
     if (removal.removedComponents == 0) return removal;
 
     // Keep the triangles of kept components; then the vertices they use (and
