@@ -3,11 +3,15 @@
 #include <strata/AtomicFile.h>
 #include <strata/Error.h>
 
+#include "FilePlace.h"
+
 #include <glm/common.hpp>
 #include <tiny_gltf.h>
 
 #include <algorithm>
 #include <cstring>
+#include <fstream>
+#include <sstream>
 #include <limits>
 
 namespace strata::meshing {
@@ -79,17 +83,40 @@ std::vector<T> readAccessor(const tinygltf::Model& model, int index, int compone
     return values;
 }
 
+// Serialises `model` as binary glTF in memory, then writes it atomically,
+// checking the stream (tinygltf's file writer does not report failed writes).
+void writeModel(const tinygltf::Model& model, const std::filesystem::path& path)
+{
+    std::ostringstream bytes;
+    tinygltf::TinyGLTF writer;
+    if (!writer.WriteGltfSceneToStream(&model, bytes, /*prettyPrint*/ false, /*writeBinary*/ true)) {
+        throw Error(ErrorKind::Internal, "cannot encode glTF file '" + path.string() + "'", detail::filePlace(path));
+    }
+    writeAtomically(path, [&](const std::filesystem::path& temporary) {
+        std::ofstream out(temporary, std::ios::binary);
+        const std::string data = std::move(bytes).str();
+        out.write(data.data(), std::streamsize(data.size()));
+        out.close();
+        if (!out) {
+            throw Error(ErrorKind::Io, "cannot write glTF file '" + path.string() + "'", detail::filePlace(path));
+        }
+    });
+}
+
 } // namespace
 
-void writeGlb(const TriangleMesh& mesh, const std::filesystem::path& path)
+void writeGlb(const TriangleMesh& mesh, const std::filesystem::path& path, const GlbOptions& options)
 {
+    std::string name = options.name.empty() ? path.stem().string() : options.name;
+    if (name.empty()) name = "terrain";
+
     tinygltf::Model model;
     model.asset.version = "2.0";
     model.asset.generator = "Strata";
     model.buffers.resize(1);
 
     tinygltf::Node node;
-    node.name = "terrain";
+    node.name = name;
     if (mesh.origin != glm::dvec3(0.0)) {
         node.translation = {mesh.origin.x, mesh.origin.y, mesh.origin.z};
     }
@@ -101,13 +128,7 @@ void writeGlb(const TriangleMesh& mesh, const std::filesystem::path& path)
         // glTF accessors cannot be empty: an empty mesh is a node without one.
         model.buffers.clear();
         model.nodes.push_back(node);
-        writeAtomically(path, [&](const std::filesystem::path& temporary) {
-            tinygltf::TinyGLTF writer;
-            if (!writer.WriteGltfSceneToFile(&model, temporary.string(), true, true, false, true)) {
-                throw Error("cannot write glTF file '" + path.string() + "'");
-            }
-        });
-        return;
+        return writeModel(model, path);
     }
 
     tinygltf::Primitive primitive;
@@ -125,21 +146,24 @@ void writeGlb(const TriangleMesh& mesh, const std::filesystem::path& path)
     model.accessors.push_back(indices);
     primitive.indices = int(model.accessors.size() - 1);
 
+    // A neutral rough dielectric instead of glTF's default (metallic 1).
+    tinygltf::Material material;
+    material.name = "strata-neutral";
+    material.pbrMetallicRoughness.baseColorFactor = {0.8, 0.8, 0.8, 1.0};
+    material.pbrMetallicRoughness.metallicFactor = 0.0;
+    material.pbrMetallicRoughness.roughnessFactor = 0.9;
+    model.materials.push_back(material);
+    primitive.material = 0;
+
     tinygltf::Mesh gltfMesh;
-    gltfMesh.name = "terrain";
+    gltfMesh.name = name;
     gltfMesh.primitives.push_back(primitive);
     model.meshes.push_back(gltfMesh);
 
     node.mesh = 0;
     model.nodes.push_back(node);
 
-    writeAtomically(path, [&](const std::filesystem::path& temporary) {
-        tinygltf::TinyGLTF writer;
-        if (!writer.WriteGltfSceneToFile(&model, temporary.string(), /*embedImages*/ true,
-                                         /*embedBuffers*/ true, /*prettyPrint*/ false, /*writeBinary*/ true)) {
-            throw Error("cannot write glTF file '" + path.string() + "'");
-        }
-    });
+    writeModel(model, path);
 }
 
 TriangleMesh readGltf(const std::filesystem::path& path)

@@ -66,6 +66,22 @@ void fillDegenerateNormals(TriangleMesh& mesh, const std::vector<unsigned char>&
 
 } // namespace
 
+std::size_t orientNormalsToFaces(TriangleMesh& mesh)
+{
+    if (mesh.normals.size() != mesh.positions.size()) return 0;
+    const std::vector<glm::vec3> faceSums = areaWeightedNormals(mesh);
+    std::size_t replaced = 0;
+    for (std::size_t i = 0; i < faceSums.size(); ++i) {
+        const float len2 = glm::dot(faceSums[i], faceSums[i]);
+        if (!(len2 > MIN_LENGTH2) || !std::isfinite(len2)) continue; // no faces, or they cancel out
+        if (glm::dot(mesh.normals[i], faceSums[i]) < 0.0f) {
+            mesh.normals[i] = faceSums[i] / std::sqrt(len2);
+            ++replaced;
+        }
+    }
+    return replaced;
+}
+
 void computeFaceNormals(TriangleMesh& mesh)
 {
     std::vector<glm::vec3> sums = areaWeightedNormals(mesh);
@@ -102,6 +118,7 @@ void computeGridNormals(const openvdb::FloatGrid& grid, TriangleMesh& mesh)
     });
 
     fillDegenerateNormals(mesh, degenerate);
+    orientNormalsToFaces(mesh);
 }
 
 const char* toString(NormalMethod method)
@@ -128,6 +145,7 @@ void computeGradientNormals(const GradientFunction& gradient, TriangleMesh& mesh
         }
     });
     fillDegenerateNormals(mesh, degenerate);
+    orientNormalsToFaces(mesh);
 }
 
 } // namespace strata::meshing

@@ -5,10 +5,12 @@
 #include <strata/meshing/GltfIO.h>
 #include <strata/meshing/PlyIO.h>
 
+#include "FilePlace.h"
 #include "OpenMeshConvert.h"
 
 #include <algorithm>
 #include <cctype>
+#include <limits>
 
 namespace strata::meshing {
 
@@ -28,14 +30,20 @@ std::string meshFileExtensions()
     return ".glb, .ply, .obj, .stl, .off";
 }
 
-void writeMeshFile(const TriangleMesh& mesh, const std::filesystem::path& path)
+void writeMeshFile(const TriangleMesh& mesh, const std::filesystem::path& path, const MeshFileOptions& fileOptions)
 {
     const std::string ext = lowerExtension(path);
-    if (ext == ".glb") return writeGlb(mesh, path);
+    if (ext == ".glb") {
+        GlbOptions glb;
+        glb.name = fileOptions.name;
+        return writeGlb(mesh, path, glb);
+    }
     if (ext == ".ply") return writePly(mesh, path);
     if (ext != ".obj" && ext != ".stl" && ext != ".off") {
-        throw Error("cannot write mesh file '" + path.string() + "': unknown extension '" + ext + "' (use " +
-                    meshFileExtensions() + ")");
+        throw Error(ErrorKind::BadInput,
+                    "cannot write mesh file '" + path.string() + "': unknown extension '" + ext + "' (use " +
+                        meshFileExtensions() + ")",
+                    detail::filePlace(path));
     }
     detail::OmMesh om;
     const bool hasNormals = detail::toOpenMesh(mesh, om);
@@ -50,13 +58,15 @@ void writeMeshFile(const TriangleMesh& mesh, const std::filesystem::path& path)
         std::filesystem::path lower = temporary;
         lower.replace_extension(ext == temporary.extension().string() ? ext : ext + ".tmp" + ext);
         omlog().disable();
-        const bool ok = OpenMesh::IO::write_mesh(om, lower.string(), options);
+        // max_digits10 significant digits: every float reads back bit-identical
+        // (OpenMesh's default of 6 merges nearby vertices into zero-area triangles).
+        const bool ok = OpenMesh::IO::write_mesh(om, lower.string(), options, std::numeric_limits<float>::max_digits10);
         omlog().enable();
         std::error_code ec;
         if (ok && lower != temporary) std::filesystem::rename(lower, temporary, ec);
         if (!ok || ec) {
             std::filesystem::remove(lower, ec);
-            throw Error("cannot write mesh file '" + path.string() + "'");
+            throw Error(ErrorKind::Io, "cannot write mesh file '" + path.string() + "'", detail::filePlace(path));
         }
     });
 }

@@ -1,5 +1,7 @@
 #include <strata/meshing/MeshMetrics.h>
 
+#include "PositionWeld.h"
+
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
@@ -13,8 +15,19 @@
 
 namespace strata::meshing {
 
-MeshTopology analyzeTopology(const TriangleMesh& mesh)
+MeshTopology analyzeTopology(const TriangleMesh& mesh, const TopologyOptions& options)
 {
+    MeshTopology topology;
+    const std::size_t n = mesh.positions.size();
+
+    // Vertex identity: the lowest index at the same position, or the index.
+    const std::vector<std::uint32_t> weld = detail::weldByPosition(mesh.positions);
+    for (std::uint32_t v = 0; v < n; ++v) topology.coincidentVertices += weld[v] != v ? 1 : 0;
+    std::vector<std::uint32_t> indices(mesh.indices.size() / 3 * 3);
+    for (std::size_t i = 0; i < indices.size(); ++i) {
+        indices[i] = options.weldByPosition ? weld[mesh.indices[i]] : mesh.indices[i];
+    }
+
     // Each directed half-edge as (min, max, direction); sorting groups the
     // uses of one undirected edge together.
     struct HalfEdge
@@ -27,15 +40,15 @@ MeshTopology analyzeTopology(const TriangleMesh& mesh)
         }
     };
 
-    MeshTopology topology;
     std::vector<HalfEdge> halfEdges;
-    halfEdges.reserve(mesh.indices.size());
-    for (std::size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
-        const std::array<std::uint32_t, 3> v{mesh.indices[t], mesh.indices[t + 1], mesh.indices[t + 2]};
+    halfEdges.reserve(indices.size());
+    for (std::size_t t = 0; t < indices.size(); t += 3) {
+        const std::array<std::uint32_t, 3> v{indices[t], indices[t + 1], indices[t + 2]};
         if (v[0] == v[1] || v[1] == v[2] || v[0] == v[2]) {
             ++topology.degenerateTriangles;
             continue;
         }
+        ++topology.triangles;
         const glm::vec3 cross = glm::cross(mesh.positions[v[1]] - mesh.positions[v[0]],
                                            mesh.positions[v[2]] - mesh.positions[v[0]]);
         if (glm::dot(cross, cross) == 0.0f) ++topology.degenerateTriangles;
@@ -61,21 +74,35 @@ MeshTopology analyzeTopology(const TriangleMesh& mesh)
         i = j;
     }
 
+    // Components: union-find over the vertices of every triangle.
+    std::vector<std::uint32_t> root(n);
+    for (std::uint32_t v = 0; v < n; ++v) root[v] = v;
+    auto findRoot = [&](std::uint32_t v) {
+        while (root[v] != v) v = root[v] = root[root[v]];
+        return v;
+    };
+    for (std::size_t t = 0; t < indices.size(); t += 3) {
+        root[findRoot(indices[t + 1])] = findRoot(indices[t]);
+        root[findRoot(indices[t + 2])] = findRoot(indices[t]);
+    }
+
     // Vertex fans: join the triangles around each vertex through the edges
     // they share; more than one group is a non-manifold vertex.
-    const std::size_t n = mesh.positions.size();
     std::vector<std::uint32_t> start(n + 1, 0);
-    for (std::uint32_t v : mesh.indices) ++start[v + 1];
+    for (std::uint32_t v : indices) ++start[v + 1];
     for (std::size_t v = 0; v < n; ++v) start[v + 1] += start[v];
-    std::vector<std::uint32_t> corners(mesh.indices.size()), fill(start.begin(), start.end() - 1);
-    for (std::uint32_t i = 0; i < mesh.indices.size(); ++i) corners[fill[mesh.indices[i]]++] = i;
+    std::vector<std::uint32_t> corners(indices.size()), fill(start.begin(), start.end() - 1);
+    for (std::uint32_t i = 0; i < indices.size(); ++i) corners[fill[indices[i]]++] = i;
     std::vector<std::uint32_t> parent;
-    for (std::size_t v = 0; v < n; ++v) {
+    for (std::uint32_t v = 0; v < n; ++v) {
         const std::uint32_t count = start[v + 1] - start[v];
         if (count == 0) {
-            ++topology.nonManifoldVertices;
+            // An unused vertex, unless it is a welded copy of another one.
+            if (!options.weldByPosition || weld[v] == v) ++topology.nonManifoldVertices;
             continue;
         }
+        ++topology.vertices;
+        topology.components += findRoot(v) == v ? 1 : 0;
         parent.resize(count);
         for (std::uint32_t k = 0; k < count; ++k) parent[k] = k;
         auto find = [&](std::uint32_t k) {
@@ -89,9 +116,9 @@ MeshTopology analyzeTopology(const TriangleMesh& mesh)
                 const std::uint32_t tb = corners[start[v] + b] / 3 * 3;
                 bool shared = false;
                 for (int i = 0; i < 3 && !shared; ++i) {
-                    const std::uint32_t w = mesh.indices[ta + i];
+                    const std::uint32_t w = indices[ta + i];
                     if (w == v) continue;
-                    for (int j = 0; j < 3; ++j) shared |= mesh.indices[tb + j] == w;
+                    for (int j = 0; j < 3; ++j) shared |= indices[tb + j] == w;
                 }
                 if (shared) parent[find(a)] = find(b);
             }

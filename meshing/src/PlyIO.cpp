@@ -3,6 +3,7 @@
 #include <strata/AtomicFile.h>
 #include <strata/Error.h>
 
+#include "FilePlace.h"
 #include "OpenMeshConvert.h"
 
 namespace strata::meshing {
@@ -22,7 +23,7 @@ void writePly(const TriangleMesh& mesh, const std::filesystem::path& path)
     if (hasNormals) options += OpenMesh::IO::Options::VertexNormal;
     writeAtomically(path, [&](const std::filesystem::path& temporary) {
         if (!OpenMesh::IO::write_mesh(om, temporary.string(), options)) {
-            throw Error("cannot write mesh file '" + path.string() + "'");
+            throw Error(ErrorKind::Io, "cannot write mesh file '" + path.string() + "'", detail::filePlace(path));
         }
     });
 }

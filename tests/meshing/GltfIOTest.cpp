@@ -7,6 +7,7 @@
 #include <openvdb/tools/LevelSetSphere.h>
 
 #include <gtest/gtest.h>
+#include <tiny_gltf.h>
 
 #include <fstream>
 
@@ -58,7 +59,13 @@ TEST(GltfIO, GlbRoundTripIsExact)
 TEST(GltfIO, UnwritableTargetThrowsAndLeavesNothing)
 {
     const auto dir = strata::test::freshTestDir();
-    EXPECT_THROW(writeGlb(sphereMesh(), dir / "missing-dir" / "a.glb"), strata::Error);
+    try {
+        writeGlb(sphereMesh(), dir / "missing-dir" / "a.glb");
+        FAIL() << "expected strata::Error";
+    } catch (const strata::Error& e) {
+        EXPECT_EQ(e.kind(), strata::ErrorKind::Io);
+        EXPECT_EQ(e.place().file, (dir / "missing-dir" / "a.glb").string());
+    }
     EXPECT_EQ(filesIn(dir), 0u);
 }
 
@@ -75,4 +82,59 @@ TEST(GltfIO, BadFilesGiveErrorsNamingThePath)
         EXPECT_NE(std::string(e.what()).find("garbage.glb"), std::string::npos) << e.what();
     }
     EXPECT_THROW(readGltf(dir / "does-not-exist.glb"), strata::Error);
+}
+
+namespace {
+
+tinygltf::Model loadGlb(const std::filesystem::path& path)
+{
+    tinygltf::Model model;
+    tinygltf::TinyGLTF loader;
+    std::string error, warning;
+    EXPECT_TRUE(loader.LoadBinaryFromFile(&model, &error, &warning, path.string())) << error;
+    EXPECT_EQ(warning, "");
+    return model;
+}
+
+} // namespace
+
+// glTF's default material is fully metallic (viewers show dark metal): the
+// primitive carries a neutral rough dielectric, and the mesh and node are
+// named after the file or the option.
+TEST(GltfIO, GlbCarriesANeutralRoughMaterialAndAName)
+{
+    const auto dir = strata::test::freshTestDir();
+    const TriangleMesh mesh = sphereMesh({1.0, 2.0, 3.0});
+    writeGlb(mesh, dir / "cave-system.glb");
+    const tinygltf::Model model = loadGlb(dir / "cave-system.glb");
+    ASSERT_EQ(model.materials.size(), 1u);
+    const tinygltf::PbrMetallicRoughness& pbr = model.materials[0].pbrMetallicRoughness;
+    EXPECT_EQ(pbr.metallicFactor, 0.0);
+    EXPECT_NEAR(pbr.roughnessFactor, 0.9, 1e-12);
+    ASSERT_EQ(pbr.baseColorFactor.size(), 4u);
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(pbr.baseColorFactor[c], 0.8, 1e-12);
+    EXPECT_EQ(pbr.baseColorFactor[3], 1.0);
+    EXPECT_EQ(pbr.baseColorTexture.index, -1);
+    ASSERT_EQ(model.meshes.size(), 1u);
+    ASSERT_EQ(model.meshes[0].primitives.size(), 1u);
+    EXPECT_EQ(model.meshes[0].primitives[0].material, 0);
+    EXPECT_EQ(model.meshes[0].name, "cave-system");
+    ASSERT_EQ(model.nodes.size(), 1u);
+    EXPECT_EQ(model.nodes[0].name, "cave-system");
+    EXPECT_EQ(model.nodes[0].mesh, 0);
+    EXPECT_EQ(model.nodes[0].translation, (std::vector<double>{1.0, 2.0, 3.0}));
+
+    GlbOptions options;
+    options.name = "island";
+    writeGlb(mesh, dir / "out.glb", options);
+    const tinygltf::Model named = loadGlb(dir / "out.glb");
+    EXPECT_EQ(named.meshes.at(0).name, "island");
+    EXPECT_EQ(named.nodes.at(0).name, "island");
+
+    // An empty mesh is a named node without mesh or material.
+    writeGlb(TriangleMesh{}, dir / "empty.glb");
+    const tinygltf::Model empty = loadGlb(dir / "empty.glb");
+    EXPECT_TRUE(empty.meshes.empty());
+    EXPECT_TRUE(empty.materials.empty());
+    EXPECT_EQ(empty.nodes.at(0).name, "empty");
 }

@@ -114,3 +114,76 @@ TEST(MeshMetrics, NonManifoldVerticesAngleStatisticsAndDegenerateRemoval)
     EXPECT_EQ(d.triangleCount(), 12u);
     EXPECT_EQ(analyzeTopology(d).degenerateTriangles, 0u);
 }
+
+TEST(MeshMetrics, CountsVerticesComponentsAndEulerCharacteristic)
+{
+    const MeshTopology t = analyzeTopology(unitCube());
+    EXPECT_EQ(t.vertices, 8u);
+    EXPECT_EQ(t.triangles, 12u);
+    EXPECT_EQ(t.components, 1u);
+    EXPECT_EQ(t.coincidentVertices, 0u);
+    EXPECT_EQ(t.eulerCharacteristic(), 2);
+
+    // Two disjoint cubes: two components, Euler characteristic 4.
+    TriangleMesh two = unitCube();
+    const TriangleMesh cube = unitCube();
+    for (const glm::vec3& p : cube.positions) two.positions.push_back(p + glm::vec3(5.0f, 0.0f, 0.0f));
+    for (std::uint32_t i : cube.indices) two.indices.push_back(i + 8);
+    const MeshTopology pair = analyzeTopology(two);
+    EXPECT_EQ(pair.components, 2u);
+    EXPECT_EQ(pair.eulerCharacteristic(), 4);
+    EXPECT_TRUE(pair.watertight());
+}
+
+// Two cubes touching along an edge, each with its own vertices: by index
+// both are closed and apart; by position the shared edge has four triangles.
+TEST(MeshMetrics, CoincidentVerticesMakingANonManifoldEdgeAreDetected)
+{
+    TriangleMesh m = unitCube();
+    const TriangleMesh cube = unitCube();
+    // Second cube [1,2] x [0,1] x [1,2]: its edge x = 1, z = 1 is the first cube's.
+    for (const glm::vec3& p : cube.positions) m.positions.push_back(p + glm::vec3(1.0f, 0.0f, 1.0f));
+    for (std::uint32_t i : cube.indices) m.indices.push_back(i + 8);
+
+    TopologyOptions byIndex;
+    byIndex.weldByPosition = false;
+    const MeshTopology unwelded = analyzeTopology(m, byIndex);
+    EXPECT_EQ(unwelded.nonManifoldEdges, 0u);
+    EXPECT_EQ(unwelded.components, 2u);
+    EXPECT_EQ(unwelded.coincidentVertices, 2u);
+
+    const MeshTopology welded = analyzeTopology(m); // the default
+    EXPECT_EQ(welded.nonManifoldEdges, 1u);
+    EXPECT_EQ(welded.components, 1u);
+    EXPECT_EQ(welded.vertices, 14u);
+    EXPECT_EQ(welded.coincidentVertices, 2u);
+    EXPECT_FALSE(welded.watertight());
+    EXPECT_EQ(welded.nonManifoldVertices, 0u); // the two fans join through the shared edge
+}
+
+// A cube whose faces have their own vertices (as an STL reader or an unwelded
+// writer gives): closed once welded; -0 and +0 weld too.
+TEST(MeshMetrics, SplitVerticesWeldByPosition)
+{
+    const TriangleMesh cube = unitCube();
+    TriangleMesh split;
+    for (std::uint32_t i : cube.indices) {
+        glm::vec3 p = cube.positions[i];
+        if (split.positions.size() % 2 == 1 && p.x == 0.0f) p.x = -0.0f;
+        split.indices.push_back(std::uint32_t(split.positions.size()));
+        split.positions.push_back(p);
+    }
+    const MeshTopology welded = analyzeTopology(split);
+    EXPECT_TRUE(welded.watertight());
+    EXPECT_EQ(welded.vertices, 8u);
+    EXPECT_EQ(welded.edges, 18u);
+    EXPECT_EQ(welded.eulerCharacteristic(), 2);
+    EXPECT_EQ(welded.coincidentVertices, 36u - 8u);
+    EXPECT_EQ(welded.nonManifoldVertices, 0u);
+
+    TopologyOptions byIndex;
+    byIndex.weldByPosition = false;
+    const MeshTopology unwelded = analyzeTopology(split, byIndex);
+    EXPECT_EQ(unwelded.boundaryEdges, 36u);
+    EXPECT_EQ(unwelded.components, 12u);
+}
