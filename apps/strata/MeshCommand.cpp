@@ -132,7 +132,10 @@ int runMesh(const MeshArguments& args)
     if (std::filesystem::path(args.output).has_parent_path()) {
         std::filesystem::create_directories(std::filesystem::path(args.output).parent_path());
     }
-    meshing::writeMeshFile(mesh, args.output);
+    // The mesh is named after its source (the grid's name, else the input file's stem).
+    meshing::MeshFileOptions fileOptions;
+    fileOptions.name = grid->getName().empty() ? std::filesystem::path(args.input).stem().string() : grid->getName();
+    meshing::writeMeshFile(mesh, args.output, fileOptions);
     say("write    " + fixed(secondsSince(start), 3) + " s  " + args.output);
     return 0;
 }

@@ -270,8 +270,8 @@ TEST(SceneTerrain, BadNodesNameFileLineKeyAndValue)
     EXPECT_EQ(parseError(oneNode("heightfield", "octaves = 1000\n")),
               "test.toml:5: terrain.nodes.a.octaves = 1000 is out of range [1, 24]");
     EXPECT_EQ(parseError(oneNode("heightfield", "noise = \"perlin\"\n")),
-              "test.toml:5: terrain.nodes.a.noise = 'perlin' is not a noise type (gradient, simplex, value, "
-              "cellular_f1, cellular_f2)");
+              "test.toml:5: terrain.nodes.a.noise = 'perlin' is not one of gradient, simplex, value, "
+              "cellular_f1, cellular_f2");
     EXPECT_EQ(parseError(oneNode("sphere", "radiuss = 3\n")), "test.toml:5: unknown key 'terrain.nodes.a.radiuss'");
     EXPECT_EQ(parseError(oneNode("box", "size = [1, -2, 3]\n")),
               "test.toml:5: terrain.nodes.a.size must be positive on every axis");
