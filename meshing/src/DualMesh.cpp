@@ -430,6 +430,27 @@ private:
     /// Separate sheets only the crossed edges of sheet `sheet` count.
     glm::dvec3 place(const float f[8], std::size_t corner0, const int cell[3], int mask, int sheet) const
     {
+        const bool dual = mP.placement == DualPlacement::DualContouring;
+        const int sheets = mP.sheets == DualSheets::Separate ? mTable.count[mask] : 1;
+        if (!dual || sheets < 2) return placeSheet(f, corner0, cell, mask, sheet, true);
+        // Two sheets of one cell can clamp to the same point (a thin slab
+        // whose QEF minima both lie beyond the same corner): then every sheet
+        // of the cell goes to its mean crossing instead, which lies next to
+        // its own crossings, apart from the other sheets'. Decided from the
+        // cell alone, so every chunk that meshes the cell agrees.
+        glm::dvec3 all[4];
+        for (int s = 0; s < sheets; ++s) all[s] = placeSheet(f, corner0, cell, mask, s, true);
+        for (int a = 0; a < sheets; ++a)
+            for (int b = a + 1; b < sheets; ++b)
+                if (all[a] == all[b]) return placeSheet(f, corner0, cell, mask, sheet, false);
+        return all[sheet];
+    }
+
+    /// place() for one sheet; `qef` false: the mean crossing, without
+    /// projection (dual contouring's fallback).
+    glm::dvec3 placeSheet(const float f[8], std::size_t corner0, const int cell[3], int mask, int sheet,
+                          bool qef) const
+    {
         const double iso = mP.isovalue;
         const bool dual = mP.placement == DualPlacement::DualContouring;
         const bool separate = mP.sheets == DualSheets::Separate;
@@ -488,8 +509,7 @@ private:
         }
         glm::dvec3 p = count > 0 ? mean / double(count) : glm::dvec3(0.5);
 
-        double lo = 0.0, hi = 1.0;
-        if (dual && count > 0) {
+        if (dual && qef && count > 0) {
             // Minimise sum (n_i . (x - p_i))^2 about the mass point, ignoring
             // near-singular directions (there x stays at the mass point).
             double ata[3][3] = {}, atb[3] = {};
@@ -512,8 +532,15 @@ private:
             }
             p += x;
         }
+        // Dual contouring keeps the vertex strictly inside its cell: the QEF
+        // minimum often lies outside, and clamped onto a face, edge or corner
+        // it could meet the clamped vertex of a neighbouring cell at the same
+        // point, which a reader welding by position turns into a non-manifold
+        // edge. Cells are disjoint inside, so vertices of distinct cells never
+        // coincide (and each stays where every chunk computes it).
+        const double lo = dual ? DUAL_CONTOURING_MARGIN : 0.0, hi = 1.0 - lo;
 
-        for (int s = 0; s < mP.projectionSteps; ++s) {
+        for (int s = 0; s < (qef ? mP.projectionSteps : 0); ++s) {
             const double fp = trilinear(corner0, p) - iso;
             const glm::dvec3 g = centralGradient(corner0, p);
             const double g2 = glm::dot(g, g);

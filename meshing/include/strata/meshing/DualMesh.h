@@ -27,7 +27,9 @@
 ///   interpolation of the two samples), cell centre if none;
 /// - dual contouring: the minimiser of the quadric error of the tangent
 ///   planes at the crossings, solved about the mean with near-singular
-///   directions dropped, clamped to its cell.
+///   directions dropped, then clamped strictly inside its cell (a margin of
+///   DUAL_CONTOURING_MARGIN cells), so vertices of distinct cells never
+///   share a position and the mesh stays manifold when welded by position.
 ///
 /// Reproducibility. Corners and crossings are visited in the memory order of
 /// `DualSamples::values` (the axis with the smallest stride varies fastest)
@@ -85,6 +87,13 @@ enum class DualQuadSplit
     /// Along the shorter diagonal (ties: through the first cell).
     ShorterDiagonal,
 };
+
+/// Dual contouring keeps its vertices at least this far (in cells) from
+/// their cell's faces. Small enough to keep sharp features sharp (1/1024 of
+/// a voxel), large enough to survive float positions (cells up to 2^13 from
+/// the chunk origin), and a multiple of 1/65536, so DualMeshSettings::quantum
+/// rounding keeps it.
+constexpr double DUAL_CONTOURING_MARGIN = 1.0 / 1024.0;
 
 /// The samples of one chunk: plain arrays and a callback, filled by the
 /// caller before dualMesh() runs.
