@@ -222,17 +222,23 @@ public:
         const int u0 = mOuter[0], u1 = mOuter[1], u2 = mOuter[2];
         const std::ptrdiff_t sx = mS.stride[0], sy = mS.stride[1], sz = mS.stride[2];
         const std::ptrdiff_t strides[3] = {sx, sy, sz};
+        const std::uint8_t* inside = mInside.data();
+        const int n0 = mS.cells[u0], n1 = mS.cells[u1], n2 = mS.cells[u2];
+        const std::ptrdiff_t step = strides[u2];
         int p[3];
-        for (p[u0] = 0; p[u0] < mS.cells[u0]; ++p[u0]) {
-            for (p[u1] = 0; p[u1] < mS.cells[u1]; ++p[u1]) {
+        for (int i0 = 0; i0 < n0; ++i0) {
+            for (int i1 = 0; i1 < n1; ++i1) {
+                p[u0] = i0;
+                p[u1] = i1;
                 p[u2] = 0;
-                std::size_t b = dense(p[0], p[1], p[2]);
-                for (; p[u2] < mS.cells[u2]; ++p[u2], b += std::size_t(strides[u2])) {
-                    const std::uint8_t s = mInside[b];
+                const std::uint8_t* row = inside + dense(p[0], p[1], p[2]);
+                for (int i2 = 0; i2 < n2; ++i2, row += step) {
+                    const std::uint8_t s = row[0];
                     // Most points cross nothing: one test for all three edges.
-                    if (mInside[b + sx] == s && mInside[b + sy] == s && mInside[b + sz] == s) continue;
+                    if (row[sx] == s && row[sy] == s && row[sz] == s) continue;
+                    p[u2] = i2;
                     for (int a = 0; a < 3; ++a) {
-                        if (mInside[b + std::size_t(strides[a])] == s) continue;
+                        if (row[strides[a]] == s) continue;
                         if (mAnyLevel && minNeighbourLevel(p, a) < 0) continue; // subdivided by a finer neighbour
                         const std::int64_t q[3] = {2 * p[0], 2 * p[1], 2 * p[2]};
                         polygon(a, q, 2, s != 0);
@@ -275,13 +281,17 @@ private:
         std::size_t count = 1;
         for (int a = 0; a < 3; ++a) count += std::size_t(mS.size[a] - 1) * std::size_t(mS.stride[a]);
         mInside.assign(count, 0);
-        int i[3];
-        for (i[0] = 0; i[0] < mS.size[0]; ++i[0])
-            for (i[1] = 0; i[1] < mS.size[1]; ++i[1])
-                for (i[2] = 0; i[2] < mS.size[2]; ++i[2]) {
-                    const std::size_t at = std::size_t(i[0] * mS.stride[0] + i[1] * mS.stride[1] + i[2] * mS.stride[2]);
-                    mInside[at] = mS.values[at] < mIso ? 1 : 0;
-                }
+        // Memory order: rows along the axis of the smallest stride.
+        const int u0 = mOuter[0], u1 = mOuter[1], u2 = mOuter[2];
+        const std::ptrdiff_t step = mS.stride[u2];
+        const float iso = mIso;
+        for (int i0 = 0; i0 < mS.size[u0]; ++i0)
+            for (int i1 = 0; i1 < mS.size[u1]; ++i1) {
+                const std::ptrdiff_t first = i0 * mS.stride[u0] + i1 * mS.stride[u1];
+                const float* from = mS.values + first;
+                std::uint8_t* to = mInside.data() + first;
+                for (int i2 = 0, n = mS.size[u2]; i2 < n; ++i2) to[i2 * step] = from[i2 * step] < iso ? 1 : 0;
+            }
     }
 
     /// The level (relative to this chunk's) of the finest chunk touching the
@@ -415,12 +425,14 @@ private:
             for (int k = 0; k < 8; ++k) f[k] = mS.fine(cell[0] + (k >> 2 & 1), cell[1] + (k >> 1 & 1), cell[2] + (k & 1));
         }
         v.local = place(f, level == 0 ? corner0 : std::size_t(0), cell, mask, sheet);
-        if (mP.gradients == DualGradient::Cell) v.gradient = cellGradient(f, v.local);
-        else if (mP.gradients == DualGradient::Central) v.gradient = centralGradient(corner0, v.local);
-        const double scale = level > 0 ? 2.0 : level < 0 ? 0.5 : 1.0;
-        mChunkPosition.emplace_back(float((double(cell[0]) + v.local.x) * scale),
-                                    float((double(cell[1]) + v.local.y) * scale),
-                                    float((double(cell[2]) + v.local.z) * scale));
+        if (mP.gradients == DualGradient::Cell) mOut.gradients.push_back(cellGradient(f, v.local));
+        else if (mP.gradients == DualGradient::Central) mOut.gradients.push_back(centralGradient(corner0, v.local));
+        if (mP.split == DualQuadSplit::ShorterDiagonal) {
+            const double scale = level > 0 ? 2.0 : level < 0 ? 0.5 : 1.0;
+            mChunkPosition.emplace_back(float((double(cell[0]) + v.local.x) * scale),
+                                        float((double(cell[1]) + v.local.y) * scale),
+                                        float((double(cell[2]) + v.local.z) * scale));
+        }
         mOut.vertices.push_back(v);
         return std::uint32_t(mOut.vertices.size() - 1);
     }
@@ -453,6 +465,7 @@ private:
     {
         const double iso = mP.isovalue;
         const bool dual = mP.placement == DualPlacement::DualContouring;
+        if (!dual) return finish(meanCrossing(f, mask, sheet), corner0, true, 0.0);
         const bool separate = mP.sheets == DualSheets::Separate;
         glm::dvec3 points[12], normals[12];
         int count = 0;
@@ -538,9 +551,38 @@ private:
         // point, which a reader welding by position turns into a non-manifold
         // edge. Cells are disjoint inside, so vertices of distinct cells never
         // coincide (and each stays where every chunk computes it).
-        const double lo = dual ? DUAL_CONTOURING_MARGIN : 0.0, hi = 1.0 - lo;
+        const double lo = DUAL_CONTOURING_MARGIN;
 
-        for (int s = 0; s < (qef ? mP.projectionSteps : 0); ++s) {
+        return finish(p, corner0, qef, lo);
+    }
+
+    /// Surface nets: the mean of the crossings (of sheet `sheet`), the cell
+    /// centre if none.
+    glm::dvec3 meanCrossing(const float f[8], int mask, int sheet) const
+    {
+        const double iso = mP.isovalue;
+        const bool separate = mP.sheets == DualSheets::Separate;
+        glm::dvec3 sum(0.0);
+        int count = 0;
+        for (int n = 0; n < 12; ++n) {
+            const int e = mEdgeOrder[n];
+            const int k0 = CELL_EDGES[e][0], k1 = CELL_EDGES[e][1];
+            if (separate ? mTable.component[mask][e] != sheet : (f[k0] < mIso) == (f[k1] < mIso)) continue;
+            const double v0 = f[k0], v1 = f[k1];
+            glm::dvec3 q(k0 >> 2 & 1, k0 >> 1 & 1, k0 & 1);
+            q[e / 4] = std::clamp((iso - v0) / (v1 - v0), 0.0, 1.0);
+            sum += q;
+            ++count;
+        }
+        return count > 0 ? sum / double(count) : glm::dvec3(0.5);
+    }
+
+    /// Projection steps (when `project`), then the clamp into [lo, 1 − lo]
+    /// and the rounding to the quantum.
+    glm::dvec3 finish(glm::dvec3 p, std::size_t corner0, bool project, double lo) const
+    {
+        const double iso = mP.isovalue, hi = 1.0 - lo;
+        for (int s = 0; s < (project ? mP.projectionSteps : 0); ++s) {
             const double fp = trilinear(corner0, p) - iso;
             const glm::dvec3 g = centralGradient(corner0, p);
             const double g2 = glm::dot(g, g);
@@ -636,7 +678,7 @@ private:
     std::vector<std::uint32_t> mCellSlot;
     std::vector<std::array<std::uint32_t, 5>> mSlots; // 4 vertices, then the corner signs
     std::map<std::array<int, 4>, std::uint32_t> mOtherLevels;
-    std::vector<glm::vec3> mChunkPosition; // per vertex, in own-level cells (float, as callers store them)
+    std::vector<glm::vec3> mChunkPosition; // ShorterDiagonal: per vertex, in own-level cells (float, as callers store them)
     DualMeshResult mOut;
 };
 

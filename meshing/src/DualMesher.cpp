@@ -199,7 +199,8 @@ ChunkData GridChunkMesher::mesh(const Coord& min, const Coord& dim) const
     out.cells.reserve(result.vertices.size());
     out.components.reserve(result.vertices.size());
     if (perVertexNormals) out.normals.reserve(result.vertices.size());
-    for (const DualVertex& v : result.vertices) {
+    for (std::size_t i = 0; i < result.vertices.size(); ++i) {
+        const DualVertex& v = result.vertices[i];
         const glm::dvec3& p = v.local;
         out.local.emplace_back(float(v.cell[0] + p[0]), float(v.cell[1] + p[1]), float(v.cell[2] + p[2]));
         const Coord cell = min + Coord(v.cell[0], v.cell[1], v.cell[2]);
@@ -211,7 +212,8 @@ ChunkData GridChunkMesher::mesh(const Coord& min, const Coord& dim) const
                 g = options.gradient(mFrame.world(openvdb::Vec3d(cell.x(), cell.y(), cell.z()) +
                                                   openvdb::Vec3d(p.x, p.y, p.z)));
             } else {
-                g = mFrame.worldGradient(openvdb::Vec3d(v.gradient.x, v.gradient.y, v.gradient.z));
+                const glm::dvec3& d = result.gradients[i];
+                g = mFrame.worldGradient(openvdb::Vec3d(d.x, d.y, d.z));
             }
             const glm::vec3 n(g);
             const float len2 = glm::dot(n, n);

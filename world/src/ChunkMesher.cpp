@@ -199,12 +199,14 @@ public:
         out.mesh.positions.reserve(result.vertices.size());
         out.mesh.normals.reserve(result.vertices.size());
         out.vertexCells.reserve(result.vertices.size());
-        for (const meshing::DualVertex& v : result.vertices) {
+        for (std::size_t i = 0; i < result.vertices.size(); ++i) {
+            const meshing::DualVertex& v = result.vertices[i];
+            const glm::dvec3& g = result.gradients[i];
             const int level = mL + v.level;
             const double cell = double(std::int64_t(1) << level) * mParams.voxelSize;
             const glm::dvec3 position = (glm::dvec3{double(v.cell[0]), double(v.cell[1]), double(v.cell[2])} + v.local) * cell;
-            const double len = glm::length(v.gradient);
-            const glm::dvec3 n = len > 0.0 ? v.gradient / len : glm::dvec3(0.0, 1.0, 0.0);
+            const double len = glm::length(g);
+            const glm::dvec3 n = len > 0.0 ? g / len : glm::dvec3(0.0, 1.0, 0.0);
             out.mesh.positions.emplace_back(float(position.x), float(position.y), float(position.z));
             out.mesh.normals.emplace_back(float(n.x), float(n.y), float(n.z));
             out.vertexCells.push_back(VertexCell{level, std::int32_t(v.cell[0] + (mMin[0] >> level)),

@@ -128,7 +128,7 @@ struct DualMeshSettings
     DualPlacement placement = DualPlacement::SurfaceNets;
     DualSheets sheets = DualSheets::One;
     DualQuadSplit split = DualQuadSplit::Fixed;
-    /// What DualVertex::gradient holds (sample units per cell).
+    /// What DualMeshResult::gradients holds (sample units per cell).
     DualGradient gradients = DualGradient::None;
     /// Dual contouring: eigenvalues of the QEF matrix below this fraction of
     /// the largest are ignored. In (0, 1).
@@ -156,12 +156,13 @@ struct DualVertex
     std::uint8_t sheet = 0;          ///< which surface sheet of the cell (0 with DualSheets::One)
     std::array<int, 3> cell{0, 0, 0}; ///< relative to the chunk minimum, in cells of its level
     glm::dvec3 local{0.5};           ///< position inside the cell, each in [0, 1]
-    glm::dvec3 gradient{0.0};        ///< see DualMeshSettings::gradients (0 with None)
 };
 
 struct DualMeshResult
 {
     std::vector<DualVertex> vertices; ///< in order of first use
+    /// Per vertex, as DualMeshSettings::gradients asks (empty with None).
+    std::vector<glm::dvec3> gradients;
     /// Triangles, counter-clockwise seen from outside (value >= isovalue).
     std::vector<std::uint32_t> indices;
 };
