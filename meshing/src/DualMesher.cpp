@@ -1,6 +1,7 @@
 #include "DualMesher.h"
 
 #include <strata/Error.h>
+#include <strata/meshing/DualMesh.h>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -20,8 +21,7 @@ using openvdb::Coord;
 namespace {
 
 constexpr std::uint32_t UNSET = 0xffffffffu;
-constexpr std::size_t NO_SAMPLE = ~std::size_t(0);
-constexpr int APRON = 3;             // block samples below the first owned cell (ENO stencils)
+constexpr int APRON = 3;             // block samples below the first owned cell (DualMesh stencils)
 constexpr double QUANTUM = 65536.0;  // vertex offsets inside a cell are multiples of 1/65536
 constexpr float MIN_LENGTH2 = 1e-20f;
 
@@ -67,70 +67,21 @@ struct Frame
 };
 
 // The dense samples a chunk needs: its cells, the one-cell apron below and
-// one more layer on each side for central differences.
+// two more layers on each side for the stencils of DualMesh.cpp.
 struct Block
 {
     Coord min;   // index coordinates of sample (0,0,0)
     int n[3];    // samples per axis
     std::vector<float> values;
-    std::vector<std::uint8_t> inside;
 
     std::size_t at(int x, int y, int z) const { return (std::size_t(x) * n[1] + y) * n[2] + z; }
     std::size_t stride(int axis) const { return axis == 0 ? std::size_t(n[1]) * n[2] : axis == 1 ? n[2] : 1; }
-
-    // Trilinear interpolation at `p`, relative to sample `base`, p in
-    // [-1, 2]^3 (a cell and one voxel around it). Relative coordinates make
-    // the result independent of where the cell sits in the block, so every
-    // chunk that meshes a cell gets the same bits.
-    double sample(std::size_t base, const openvdb::Vec3d& p) const
-    {
-        const int x = std::clamp(int(std::floor(p[0])), -1, 1);
-        const int y = std::clamp(int(std::floor(p[1])), -1, 1);
-        const int z = std::clamp(int(std::floor(p[2])), -1, 1);
-        const double u = p[0] - x, v = p[1] - y, w = p[2] - z;
-        const std::size_t sx = stride(0), sy = stride(1);
-        const std::size_t i = base + x * std::ptrdiff_t(sx) + y * std::ptrdiff_t(sy) + z;
-        auto lerp = [](double a, double b, double t) { return a + (b - a) * t; };
-        const double c00 = lerp(values[i], values[i + 1], w), c01 = lerp(values[i + sy], values[i + sy + 1], w);
-        const double c10 = lerp(values[i + sx], values[i + sx + 1], w);
-        const double c11 = lerp(values[i + sx + sy], values[i + sx + sy + 1], w);
-        return lerp(lerp(c00, c01, v), lerp(c10, c11, v), u);
-    }
-    // Central differences one voxel apart on the trilinear interpolant,
-    // p in [0, 1]^3 relative to sample `base`.
-    openvdb::Vec3d gradient(std::size_t base, const openvdb::Vec3d& p) const
-    {
-        return {0.5 * (sample(base, p + openvdb::Vec3d(1, 0, 0)) - sample(base, p - openvdb::Vec3d(1, 0, 0))),
-                0.5 * (sample(base, p + openvdb::Vec3d(0, 1, 0)) - sample(base, p - openvdb::Vec3d(0, 1, 0))),
-                0.5 * (sample(base, p + openvdb::Vec3d(0, 0, 1)) - sample(base, p - openvdb::Vec3d(0, 0, 1)))};
-    }
-    // Gradient at a sample, per axis: central differences where the field is
-    // smooth (small centred second difference), else the one-sided
-    // difference whose side is smoother (ENO: smaller one-sided second
-    // difference), so a kink (a sharp edge of the surface) next to the
-    // sample does not bend the estimate. `smooth` bounds the second
-    // difference of a smooth field (world units).
-    openvdb::Vec3d enoGradient(std::size_t i, double smooth) const
-    {
-        openvdb::Vec3d g;
-        for (int a = 0; a < 3; ++a) {
-            const std::size_t s = stride(a);
-            const double m2 = values[i - 2 * s], m1 = values[i - s], c = values[i], p1 = values[i + s],
-                         p2 = values[i + 2 * s];
-            const double back = c - m1, fore = p1 - c;
-            const double back2 = std::abs(c - 2.0 * m1 + m2), fore2 = std::abs(p2 - 2.0 * p1 + c);
-            if (std::abs(fore - back) < smooth) g[a] = 0.5 * (back + fore);
-            else g[a] = back2 < fore2 ? back : fore;
-        }
-        return g;
-    }
 };
 
-void fillBlock(const openvdb::FloatGrid& grid, double isovalue, Block& block)
+void fillBlock(const openvdb::FloatGrid& grid, Block& block)
 {
     const std::size_t count = std::size_t(block.n[0]) * block.n[1] * block.n[2];
     block.values.resize(count);
-    block.inside.resize(count);
     openvdb::FloatGrid::ConstAccessor accessor = grid.getConstAccessor();
     const Coord lo = block.min, hi = block.min + Coord(block.n[0] - 1, block.n[1] - 1, block.n[2] - 1);
     // Leaf by leaf: copy from the leaf buffer, or fill with the tile value.
@@ -157,147 +108,6 @@ void fillBlock(const openvdb::FloatGrid& grid, double isovalue, Block& block)
             }
         }
     }
-    const float iso = float(isovalue);
-    for (std::size_t i = 0; i < count; ++i) block.inside[i] = block.values[i] < iso ? 1 : 0;
-}
-
-// The 12 edges of a cell as corner pairs; corner k sits at
-// (k >> 2 & 1, k >> 1 & 1, k & 1).
-constexpr std::array<std::array<int, 2>, 12> CELL_EDGES = {{{0, 4}, {1, 5}, {2, 6}, {3, 7},   // x
-                                                            {0, 2}, {1, 3}, {4, 6}, {5, 7},   // y
-                                                            {0, 1}, {2, 3}, {4, 5}, {6, 7}}}; // z
-
-// Surface components of a cell, per corner sign mask (bit k: corner k
-// inside): which crossed edges belong to the same sheet of the surface, as
-// in marching cubes. Crossed edges on one face are joined; on an ambiguous
-// face (inside corners diagonal) the edges around each inside corner are
-// joined, so inside corners stay apart. The rule depends on the face alone,
-// so the two cells sharing a face agree, and the dual mesh is manifold.
-struct ComponentTable
-{
-    std::int8_t component[256][12]; // -1 where the edge does not cross
-    std::uint8_t count[256];
-    // The one ambiguous face (0..5: x-, x+, y-, y+, z-, z+) that a single
-    // sheet crosses twice (a tunnel through the face), else -1. Two such
-    // cells facing each other would share a dual edge four times: both then
-    // group their edges as the complement configuration does (OpenVDB's
-    // correctCellSigns), which splits the sheet at that face.
-    std::int8_t tunnelFace[256];
-
-    ComponentTable()
-    {
-        // Corners of the faces x-, x+, y-, y+, z-, z+ in cyclic order.
-        constexpr int FACES[6][4] = {{0, 1, 3, 2}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 3, 7, 6}, {0, 2, 6, 4}, {1, 3, 7, 5}};
-        auto edgeOf = [](int a, int b) {
-            for (int e = 0; e < 12; ++e) {
-                if ((CELL_EDGES[e][0] == a && CELL_EDGES[e][1] == b) || (CELL_EDGES[e][0] == b && CELL_EDGES[e][1] == a)) {
-                    return e;
-                }
-            }
-            return -1;
-        };
-        for (int mask = 0; mask < 256; ++mask) {
-            auto inside = [mask](int corner) { return (mask >> corner & 1) != 0; };
-            int parent[12];
-            for (int e = 0; e < 12; ++e) parent[e] = e;
-            auto find = [&](int e) {
-                while (parent[e] != e) e = parent[e];
-                return e;
-            };
-            for (const auto& face : FACES) {
-                int crossing[4], n = 0;
-                for (int i = 0; i < 4; ++i) {
-                    if (inside(face[i]) != inside(face[(i + 1) % 4])) crossing[n++] = edgeOf(face[i], face[(i + 1) % 4]);
-                }
-                if (n == 2) {
-                    parent[find(crossing[0])] = find(crossing[1]);
-                } else if (n == 4) {
-                    for (int i = 0; i < 4; ++i) { // edges i-1 and i meet at corner i
-                        if (!inside(face[i])) continue;
-                        const int before = edgeOf(face[(i + 3) % 4], face[i]), after = edgeOf(face[i], face[(i + 1) % 4]);
-                        parent[find(before)] = find(after);
-                    }
-                }
-            }
-            count[mask] = 0;
-            int label[12];
-            for (int e = 0; e < 12; ++e) label[e] = -1;
-            for (int e = 0; e < 12; ++e) {
-                component[mask][e] = -1;
-                if (inside(CELL_EDGES[e][0]) == inside(CELL_EDGES[e][1])) continue;
-                const int root = find(e);
-                if (label[root] < 0) label[root] = count[mask]++;
-                component[mask][e] = std::int8_t(label[root]);
-            }
-            tunnelFace[mask] = -1;
-            int ambiguous = 0, tunnel = -1;
-            for (int f = 0; f < 6; ++f) {
-                const int* face = FACES[f];
-                if (inside(face[0]) != inside(face[2]) || inside(face[1]) != inside(face[3]) ||
-                    inside(face[0]) == inside(face[1])) {
-                    continue; // not the diagonal pattern
-                }
-                ++ambiguous;
-                const int first = inside(face[0]) ? 0 : 1; // the two inside corners: first, first + 2
-                const int a = edgeOf(face[first], face[first + 1]), b = edgeOf(face[first + 2], face[(first + 3) % 4]);
-                if (component[mask][a] == component[mask][b]) tunnel = f;
-            }
-            if (ambiguous == 1 && tunnel >= 0) tunnelFace[mask] = std::int8_t(tunnel);
-        }
-    }
-};
-
-const ComponentTable& componentTable()
-{
-    static const ComponentTable table;
-    return table;
-}
-
-// Index in CELL_EDGES of the edge along `axis` whose lower corner sits at
-// local offset (x, y, z) in {0, 1} (the offset along `axis` is ignored).
-int cellEdge(int axis, int x, int y, int z)
-{
-    switch (axis) {
-    case 0: return y * 2 + z;
-    case 1: return 4 + x * 2 + z;
-    default: return 8 + x * 2 + y;
-    }
-}
-
-// Symmetric 3x3 eigen decomposition by cyclic Jacobi rotations
-// (deterministic, fixed sweep count). Columns of `v` are the eigenvectors.
-void symmetricEigen(double m[3][3], double eigenvalues[3], double v[3][3])
-{
-    for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j) v[i][j] = i == j ? 1.0 : 0.0;
-    for (int sweep = 0; sweep < 8; ++sweep) {
-        const double off = m[0][1] * m[0][1] + m[0][2] * m[0][2] + m[1][2] * m[1][2];
-        if (off < 1e-24) break;
-        for (int p = 0; p < 2; ++p) {
-            for (int q = p + 1; q < 3; ++q) {
-                if (std::abs(m[p][q]) < 1e-30) continue;
-                const double theta = (m[q][q] - m[p][p]) / (2.0 * m[p][q]);
-                const double t = (theta >= 0 ? 1.0 : -1.0) / (std::abs(theta) + std::sqrt(theta * theta + 1.0));
-                const double c = 1.0 / std::sqrt(t * t + 1.0), s = t * c;
-                for (int k = 0; k < 3; ++k) { // m = J^T m J
-                    const double mkp = m[k][p], mkq = m[k][q];
-                    m[k][p] = c * mkp - s * mkq;
-                    m[k][q] = s * mkp + c * mkq;
-                }
-                for (int k = 0; k < 3; ++k) {
-                    const double mpk = m[p][k], mqk = m[q][k];
-                    m[p][k] = c * mpk - s * mqk;
-                    m[q][k] = s * mpk + c * mqk;
-                }
-                for (int k = 0; k < 3; ++k) {
-                    const double vkp = v[k][p], vkq = v[k][q];
-                    v[k][p] = c * vkp - s * vkq;
-                    v[k][q] = s * vkp + c * vkq;
-                }
-            }
-        }
-    }
-    for (int i = 0; i < 3; ++i) eigenvalues[i] = m[i][i];
 }
 
 // Internal result of one chunk: positions in index space relative to the
@@ -322,127 +132,26 @@ struct ChunkData
     }
 };
 
-class ChunkMesher
+// Meshes the chunks of one grid: gathers each chunk's samples into a Block
+// and hands them to dualMesh(); turns its vertices into index-space
+// positions and per-vertex normals.
+class GridChunkMesher
 {
 public:
-    ChunkMesher(const openvdb::FloatGrid& grid, const detail::DualSettings& settings)
-        : mGrid(grid), mSettings(settings), mFrame(grid.transform()), mSmooth(0.1 * grid.voxelSize()[0])
+    GridChunkMesher(const openvdb::FloatGrid& grid, const detail::DualSettings& settings)
+        : mGrid(grid), mSettings(settings), mFrame(grid.transform())
     {
     }
 
     ChunkData mesh(const Coord& min, const Coord& dim) const;
 
 private:
-    // Cell-local vertex position in [0,1]^3 for cell (block index of its
-    // first corner), and its normal if the method computes one per vertex.
-    // Only the crossed edges of surface component `component` are used.
-    openvdb::Vec3d place(const Block& block, std::size_t corner0, const Coord& cell, int mask, int component) const;
-
     const openvdb::FloatGrid& mGrid;
     const detail::DualSettings& mSettings;
     Frame mFrame;
-    double mSmooth; // second differences below this are smooth (world units)
 };
 
-openvdb::Vec3d ChunkMesher::place(const Block& block, std::size_t corner0, const Coord& cell, int mask,
-                                  int component) const
-{
-    const ComponentTable& table = componentTable();
-    const double iso = mSettings.options.isovalue;
-    std::size_t corner[8];
-    for (int k = 0; k < 8; ++k) {
-        corner[k] = corner0 + (k >> 2 & 1) * block.stride(0) + (k >> 1 & 1) * block.stride(1) + (k & 1);
-    }
-    openvdb::Vec3d points[12], normals[12];
-    int count = 0;
-    openvdb::Vec3d mean(0.0);
-    const bool dual = mSettings.method == detail::DualMethod::DualContouring;
-    for (int e = 0; e < 12; ++e) {
-        const auto& edge = CELL_EDGES[e];
-        if (table.component[mask][e] != component) continue;
-        const std::size_t i0 = corner[edge[0]], i1 = corner[edge[1]];
-        const double v0 = block.values[i0], v1 = block.values[i1];
-        double t = std::clamp((iso - v0) / (v1 - v0), 0.0, 1.0);
-        std::size_t normalAt = NO_SAMPLE; // else the sample whose side was trusted
-        if (dual) {
-            // Near a sharp edge the field is not linear along the grid edge
-            // (the other face is nearer to the inside sample): of the
-            // linear estimate and the two one-sided extrapolations, trust
-            // the steepest, which is the one that does not cross a kink.
-            const std::ptrdiff_t step = std::ptrdiff_t(block.stride(e / 4)) * (block.inside[i0] ? 1 : -1);
-            const std::size_t in = block.inside[i0] ? i0 : i1, out = block.inside[i0] ? i1 : i0;
-            const double dIn = block.values[in] - iso, dOut = block.values[out] - iso;
-            const double sOut = block.values[out + step] - iso - dOut, sIn = dIn - (block.values[in - step] - iso);
-            double best = dOut - dIn, u = -dIn / best;
-            if (sOut > 1.001 * best && dOut / sOut <= 1.0) {
-                best = sOut;
-                u = 1.0 - dOut / sOut;
-                normalAt = out;
-            }
-            if (sIn > 1.001 * best && -dIn / sIn <= 1.0) {
-                u = -dIn / sIn;
-                normalAt = in;
-            }
-            t = block.inside[i0] ? u : 1.0 - u;
-        }
-        const openvdb::Vec3d p0(edge[0] >> 2 & 1, edge[0] >> 1 & 1, edge[0] & 1);
-        const openvdb::Vec3d p1(edge[1] >> 2 & 1, edge[1] >> 1 & 1, edge[1] & 1);
-        points[count] = p0 + (p1 - p0) * t;
-        mean += points[count];
-        if (dual) {
-            if (mSettings.options.gradient) {
-                const openvdb::Vec3d ijk = openvdb::Vec3d(cell.x(), cell.y(), cell.z()) + points[count];
-                normals[count] = mFrame.indexGradient(mSettings.options.gradient(mFrame.world(ijk)));
-            } else if (normalAt != NO_SAMPLE) {
-                normals[count] = block.enoGradient(normalAt, mSmooth);
-            } else {
-                normals[count] = block.enoGradient(i0, mSmooth) * (1.0 - t) + block.enoGradient(i1, mSmooth) * t;
-            }
-            const double len = normals[count].length();
-            normals[count] = len > 1e-12 && std::isfinite(len) ? normals[count] / len : openvdb::Vec3d(0.0);
-        }
-        ++count;
-    }
-    openvdb::Vec3d p = count > 0 ? mean / double(count) : openvdb::Vec3d(0.5);
-
-    if (mSettings.method == detail::DualMethod::DualContouring && count > 0) {
-        // Minimise sum (n_i . (x - p_i))^2 about the mass point, ignoring
-        // near-singular directions (there x stays at the mass point).
-        double ata[3][3] = {}, atb[3] = {};
-        for (int i = 0; i < count; ++i) {
-            const openvdb::Vec3d& n = normals[i];
-            const double d = n.dot(points[i] - p);
-            for (int r = 0; r < 3; ++r) {
-                atb[r] += n[r] * d;
-                for (int c = 0; c < 3; ++c) ata[r][c] += n[r] * n[c];
-            }
-        }
-        double lambda[3], v[3][3];
-        symmetricEigen(ata, lambda, v);
-        const double largest = std::max({std::abs(lambda[0]), std::abs(lambda[1]), std::abs(lambda[2])});
-        openvdb::Vec3d x(0.0);
-        for (int e = 0; e < 3; ++e) {
-            if (largest <= 0.0 || std::abs(lambda[e]) < mSettings.singularThreshold * largest) continue;
-            const double proj = (v[0][e] * atb[0] + v[1][e] * atb[1] + v[2][e] * atb[2]) / lambda[e];
-            for (int r = 0; r < 3; ++r) x[r] += v[r][e] * proj;
-        }
-        p += x;
-    }
-
-    const int steps = mSettings.options.projectionSteps;
-    for (int s = 0; s < steps; ++s) {
-        const double f = block.sample(corner0, p) - iso;
-        const openvdb::Vec3d g = block.gradient(corner0, p);
-        const double g2 = g.lengthSqr();
-        if (!(g2 > 1e-12)) break;
-        p -= g * (f / g2);
-        for (int a = 0; a < 3; ++a) p[a] = std::clamp(p[a], 0.0, 1.0);
-    }
-    for (int a = 0; a < 3; ++a) p[a] = std::floor(std::clamp(p[a], 0.0, 1.0) * QUANTUM + 0.5) / QUANTUM;
-    return p;
-}
-
-ChunkData ChunkMesher::mesh(const Coord& min, const Coord& dim) const
+ChunkData GridChunkMesher::mesh(const Coord& min, const Coord& dim) const
 {
     ChunkData out;
     out.min = min;
@@ -451,112 +160,68 @@ ChunkData ChunkMesher::mesh(const Coord& min, const Coord& dim) const
     Block block;
     block.min = min - Coord(APRON);
     for (int a = 0; a < 3; ++a) block.n[a] = dim[a] + 2 * APRON;
-    fillBlock(mGrid, mSettings.options.isovalue, block);
+    fillBlock(mGrid, block);
 
-    // Vertices of each cell in [min - 1, min + dim), one per surface
-    // component, created on first use: cellSlot indexes `slots`.
-    const int cx = dim[0] + 1, cy = dim[1] + 1, cz = dim[2] + 1;
-    std::vector<std::uint32_t> cellSlot(std::size_t(cx) * cy * cz, UNSET);
-    std::vector<std::array<std::uint32_t, 5>> slots; // 4 vertices, then the corner signs
-    const NormalMethod normalMethod = mSettings.options.normals;
-    const bool perVertexNormals = normalMethod == NormalMethod::Grid || normalMethod == NormalMethod::Gradient;
-    const ComponentTable& table = componentTable();
-    const std::size_t sx = block.stride(0), sy = block.stride(1);
-
-    // The vertex of cell (i, j, k) relative to `min` (i in [-1, dim)) on
-    // the surface sheet through its edge `edge`.
-    auto vertexOf = [&](int i, int j, int k, int edge) -> std::uint32_t {
-        const std::size_t corner0 = block.at(i + APRON, j + APRON, k + APRON);
-        std::uint32_t& slotIndex = cellSlot[(std::size_t(i + 1) * cy + (j + 1)) * cz + (k + 1)];
-        if (slotIndex == UNSET) { // first visit: the corner signs, once per cell
-            auto signsAt = [&](std::size_t first) {
-                int signs = 0;
-                for (int c = 0; c < 8; ++c) {
-                    signs |= block.inside[first + (c >> 2 & 1) * sx + (c >> 1 & 1) * sy + (c & 1)] << c;
-                }
-                return signs;
+    DualSamples samples;
+    samples.values = block.values.data();
+    samples.apron = APRON;
+    for (int a = 0; a < 3; ++a) {
+        samples.cells[a] = dim[a];
+        samples.size[a] = block.n[a];
+        samples.stride[a] = std::ptrdiff_t(block.stride(a));
+    }
+    const ChunkMeshOptions& options = mSettings.options;
+    DualMeshSettings settings;
+    settings.isovalue = options.isovalue;
+    settings.sheets = DualSheets::Separate;
+    settings.split = DualQuadSplit::ShorterDiagonal;
+    settings.projectionSteps = options.projectionSteps;
+    settings.quantum = QUANTUM;
+    const NormalMethod normalMethod = options.normals;
+    if (normalMethod == NormalMethod::Grid) settings.gradients = DualGradient::Central;
+    if (mSettings.method == detail::DualMethod::DualContouring) {
+        settings.placement = DualPlacement::DualContouring;
+        settings.singularThreshold = mSettings.singularThreshold;
+        settings.smoothness = 0.1 * mGrid.voxelSize()[0]; // second differences of a smooth field (world units)
+        if (options.gradient) {
+            settings.planeGradient = [&](const std::array<int, 3>& cell, const glm::dvec3& local) {
+                const openvdb::Vec3d ijk = openvdb::Vec3d(min.x() + cell[0], min.y() + cell[1], min.z() + cell[2]) +
+                                           openvdb::Vec3d(local.x, local.y, local.z);
+                const openvdb::Vec3d g = mFrame.indexGradient(options.gradient(mFrame.world(ijk)));
+                return glm::dvec3(g[0], g[1], g[2]);
             };
-            int signs = signsAt(corner0);
-            const int face = table.tunnelFace[signs];
-            if (face >= 0) {
-                // The neighbour across that face (inside the block: the apron
-                // leaves room for one more cell on each side).
-                const int axis = face / 2;
-                const std::ptrdiff_t step = std::ptrdiff_t(block.stride(axis)) * (face % 2 ? 1 : -1);
-                if (table.tunnelFace[signsAt(std::size_t(std::ptrdiff_t(corner0) + step))] == (face ^ 1)) {
-                    signs = ~signs & 0xff; // group as the complement does
-                }
-            }
-            slotIndex = std::uint32_t(slots.size());
-            slots.push_back({UNSET, UNSET, UNSET, UNSET, std::uint32_t(signs)});
         }
-        const int mask = int(slots[slotIndex][4]);
-        const int component = table.component[mask][edge];
-        std::uint32_t& vertex = slots[slotIndex][std::size_t(component)];
-        if (vertex != UNSET) return vertex;
-        vertex = std::uint32_t(out.local.size());
-        const Coord cell = min + Coord(i, j, k);
-        const openvdb::Vec3d p = place(block, corner0, cell, mask, component);
-        out.local.emplace_back(float(i + p[0]), float(j + p[1]), float(k + p[2]));
+    }
+    DualMeshResult result = dualMesh(samples, settings);
+
+    const bool perVertexNormals = normalMethod == NormalMethod::Grid || normalMethod == NormalMethod::Gradient;
+    out.local.reserve(result.vertices.size());
+    out.cells.reserve(result.vertices.size());
+    out.components.reserve(result.vertices.size());
+    if (perVertexNormals) out.normals.reserve(result.vertices.size());
+    for (std::size_t i = 0; i < result.vertices.size(); ++i) {
+        const DualVertex& v = result.vertices[i];
+        const glm::dvec3& p = v.local;
+        out.local.emplace_back(float(v.cell[0] + p[0]), float(v.cell[1] + p[1]), float(v.cell[2] + p[2]));
+        const Coord cell = min + Coord(v.cell[0], v.cell[1], v.cell[2]);
         out.cells.push_back(cell);
-        out.components.push_back(std::uint8_t(component));
+        out.components.push_back(v.sheet);
         if (perVertexNormals) {
             glm::dvec3 g;
             if (normalMethod == NormalMethod::Gradient) {
-                g = mSettings.options.gradient(mFrame.world(openvdb::Vec3d(cell.x(), cell.y(), cell.z()) + p));
+                g = options.gradient(mFrame.world(openvdb::Vec3d(cell.x(), cell.y(), cell.z()) +
+                                                  openvdb::Vec3d(p.x, p.y, p.z)));
             } else {
-                g = mFrame.worldGradient(block.gradient(corner0, p));
+                const glm::dvec3& d = result.gradients[i];
+                g = mFrame.worldGradient(openvdb::Vec3d(d.x, d.y, d.z));
             }
             const glm::vec3 n(g);
             const float len2 = glm::dot(n, n);
             // Zero marks a vanished gradient; assembly replaces it.
             out.normals.push_back(len2 > MIN_LENGTH2 && std::isfinite(len2) ? n / std::sqrt(len2) : glm::vec3(0.0f));
         }
-        return vertex;
-    };
-
-    auto emitQuad = [&](std::uint32_t q0, std::uint32_t q1, std::uint32_t q2, std::uint32_t q3) {
-        // Split along the shorter diagonal (ties: q0-q2), deterministic.
-        const float d02 = (out.local[q0] - out.local[q2]).lengthSqr();
-        const float d13 = (out.local[q1] - out.local[q3]).lengthSqr();
-        if (d02 <= d13) {
-            out.indices.insert(out.indices.end(), {q0, q1, q2, q0, q2, q3});
-        } else {
-            out.indices.insert(out.indices.end(), {q1, q2, q3, q1, q3, q0});
-        }
-    };
-
-    // One quad per owned edge (lower voxel inside the chunk) that crosses.
-    for (int x = 0; x < dim[0]; ++x) {
-        for (int y = 0; y < dim[1]; ++y) {
-            std::size_t b = block.at(x + APRON, y + APRON, APRON);
-            for (int z = 0; z < dim[2]; ++z, ++b) {
-                const std::uint8_t s = block.inside[b];
-                const std::size_t strides[3] = {sx, sy, 1};
-                // Most voxels cross nothing: one test for all three edges.
-                if (block.inside[b + sx] == s && block.inside[b + sy] == s && block.inside[b + 1] == s) continue;
-                for (int a = 0; a < 3; ++a) {
-                    if (block.inside[b + strides[a]] == s) continue;
-                    const int ab = (a + 1) % 3, ac = (a + 2) % 3;
-                    // The four cells around the edge, and the edge's place
-                    // in each: offsets (along b, along c) of 1 or 0.
-                    auto around = [&](int db, int dc) {
-                        int c[3] = {x, y, z}, local[3] = {0, 0, 0};
-                        c[ab] -= db;
-                        c[ac] -= dc;
-                        local[ab] = db;
-                        local[ac] = dc;
-                        return vertexOf(c[0], c[1], c[2], cellEdge(a, local[0], local[1], local[2]));
-                    };
-                    const std::uint32_t q00 = around(1, 1), q10 = around(0, 1), q11 = around(0, 0), q01 = around(1, 0);
-                    // Inside at the lower voxel: the surface faces +a, and
-                    // (b, c) is counter-clockwise seen from +a.
-                    if (s) emitQuad(q00, q10, q11, q01);
-                    else emitQuad(q00, q01, q11, q10);
-                }
-            }
-        }
     }
+    out.indices = std::move(result.indices);
     return out;
 }
 
@@ -639,7 +304,7 @@ ChunkMesh meshChunk(const openvdb::FloatGrid& grid, const Coord& chunkMin, const
         }
     }
     const Frame frame(grid.transform());
-    ChunkData data = ChunkMesher(grid, settings).mesh(chunkMin, Coord(n));
+    ChunkData data = GridChunkMesher(grid, settings).mesh(chunkMin, Coord(n));
     ChunkMesh chunk;
     chunk.chunkMin = chunkMin;
     chunk.mesh.origin = frame.world(openvdb::Vec3d(chunkMin.x(), chunkMin.y(), chunkMin.z()));
@@ -671,7 +336,7 @@ TriangleMesh meshChunks(const openvdb::FloatGrid& grid, const DualSettings& sett
     }
 
     std::vector<ChunkData> chunks(mins.size());
-    const ChunkMesher mesher(grid, settings);
+    const GridChunkMesher mesher(grid, settings);
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, mins.size(), 1), [&](const tbb::blocked_range<std::size_t>& r) {
         for (std::size_t c = r.begin(); c != r.end(); ++c) chunks[c] = mesher.mesh(mins[c], dims[c]);
     });

@@ -430,3 +430,63 @@ TEST(World, DeterministicAcrossThreadCountsAndTaskOrder)
 
 } // namespace
 } // namespace strata::test
+
+namespace strata::test {
+namespace {
+
+std::uint64_t fnv(std::uint64_t h, const void* data, std::size_t n)
+{
+    const auto* p = static_cast<const unsigned char*>(data);
+    for (std::size_t i = 0; i < n; ++i) h = (h ^ p[i]) * 0x100000001b3ull;
+    return h;
+}
+
+template <typename T>
+std::uint64_t fnvVector(std::uint64_t h, const std::vector<T>& v)
+{
+    const std::uint64_t n = v.size();
+    h = fnv(h, &n, sizeof(n));
+    return v.empty() ? h : fnv(h, v.data(), v.size() * sizeof(T));
+}
+
+// One hash over every resident chunk's mesh bytes, in key order.
+std::uint64_t meshMapHash(const MeshMap& meshes)
+{
+    std::uint64_t h = 0xcbf29ce484222325ull;
+    for (const auto& [key, data] : meshes) {
+        h = fnv(h, &key, sizeof(key));
+        if (!data) continue;
+        h = fnv(h, &data->mesh.origin, sizeof(data->mesh.origin));
+        h = fnvVector(h, data->mesh.positions);
+        h = fnvVector(h, data->mesh.normals);
+        h = fnvVector(h, data->mesh.indices);
+        h = fnvVector(h, data->vertexCells);
+    }
+    return h;
+}
+
+// The chunk meshes (three levels, LOD seams, edits) hash to the values the
+// World's own mesher gave before it moved into meshing's DualMesh: the move
+// changed no bit.
+TEST(World, ChunkMeshBytesAreUnchanged)
+{
+    const MeshMap edited = meshesFor(2, 0, true);
+    terrain::TerrainOptions terrainOptions;
+    terrainOptions.seed = 11;
+    WorldOptions o = smallOptions();
+    o.viewRadius = 60.0;
+    World w(std::make_shared<terrain::TerrainField>(terrainOptions), o);
+    w.setPointsOfInterest({glm::dvec3(-3.0, 1.0, 7.0)});
+    w.waitIdle();
+    const MeshMap wide = currentMeshes(w);
+    std::set<int> levels;
+    for (const auto& [key, mesh] : wide) levels.insert(key.level);
+    EXPECT_EQ(levels.size(), 3u);
+    const std::uint64_t got[] = {meshMapHash(edited), meshMapHash(wide)};
+    const std::uint64_t expected[] = {0xaba7e945f39b63daull, 0x216d1c60e14fc7b1ull};
+    for (std::size_t i = 0; i < std::size(got); ++i)
+        EXPECT_EQ(got[i], expected[i]) << i << ": " << std::hex << got[i];
+}
+
+} // namespace
+} // namespace strata::test

@@ -1,11 +1,12 @@
 #include "ChunkMesher.h"
 
+#include <strata/meshing/DualMesh.h>
+
 #include <glm/geometric.hpp>
 
 #include <algorithm>
 #include <cassert>
 #include <cmath>
-#include <unordered_map>
 
 namespace strata::world::detail {
 
@@ -51,6 +52,21 @@ public:
         if (!mFilled[b]) fill(i / BLOCK, j / BLOCK, k / BLOCK, b);
         return mValues[(std::size_t(k) * mDim + j) * mDim + i];
     }
+
+    /// Fills every block not filled yet (the same values as on demand).
+    void fillAll()
+    {
+        for (int bk = 0; bk < mBlocks; ++bk)
+            for (int bj = 0; bj < mBlocks; ++bj)
+                for (int bi = 0; bi < mBlocks; ++bi) {
+                    const std::size_t b = (std::size_t(bk) * mBlocks + bj) * mBlocks + bi;
+                    if (!mFilled[b]) fill(bi, bj, bk, b);
+                }
+    }
+
+    /// The values, x fastest, then y, then z (fillAll() first).
+    const float* data() const { return mValues.data(); }
+    int dim() const { return mDim; }
 
 private:
     void fill(int bi, int bj, int bk, std::size_t b)
@@ -119,6 +135,9 @@ private:
     std::vector<std::uint8_t> mFilled;
 };
 
+/// Gathers one chunk's samples (the field and the edits through
+/// SampleArray) and meshes them with meshing::dualMesh(): surface nets, one
+/// vertex per cell, the cells of lower neighbours at their own levels.
 class Mesher
 {
 public:
@@ -143,9 +162,10 @@ public:
 
     ChunkMeshData run()
     {
-        mOut.key = mKey;
-        mOut.mesh.origin = glm::dvec3(double(mMin[0]), double(mMin[1]), double(mMin[2])) * mParams.voxelSize;
-        if (emptyByBound()) return std::move(mOut);
+        ChunkMeshData out;
+        out.key = mKey;
+        out.mesh.origin = glm::dvec3(double(mMin[0]), double(mMin[1]), double(mMin[2])) * mParams.voxelSize;
+        if (emptyByBound()) return out;
 
         std::int64_t origin[3];
         for (int a = 0; a < 3; ++a) origin[a] = mMin[a] - 2 * mS;
@@ -155,51 +175,46 @@ public:
         // any (they read this array too).
         bool coarser = false;
         for (int m = 1; m < 8; ++m) coarser = coarser || mSig[m] > 0;
-        mCoarse.init(&mField, &mEdits, mParams.voxelSize, origin, mS, mN + 3, coarser ? 2 * mS : mS, mCache);
+        mCoarse.init(&mField, &mEdits, mParams.voxelSize, origin, mS, int(mN) + 3, coarser ? 2 * mS : mS, mCache);
+        mCoarse.fillAll(); // the walk reads every block of it anyway
+        meshing::DualSamples samples;
+        samples.values = mCoarse.data();
+        samples.cells = {int(mN), int(mN), int(mN)};
+        samples.size = {mCoarse.dim(), mCoarse.dim(), mCoarse.dim()};
+        samples.stride = {1, mCoarse.dim(), std::ptrdiff_t(mCoarse.dim()) * mCoarse.dim()};
+        samples.apron = 2;
+        samples.signature = mSig;
         if (mHasFiner) {
             for (int a = 0; a < 3; ++a) origin[a] = mMin[a] - mS;
-            mFine.init(&mField, &mEdits, mParams.voxelSize, origin, mS / 2, 2 * mN + 3, mS / 2);
+            mFine.init(&mField, &mEdits, mParams.voxelSize, origin, mS / 2, 2 * int(mN) + 3, mS / 2);
+            samples.fine = [this](int x, int y, int z) { return mFine.at(x + 2, y + 2, z + 2); };
+        } else {
+            // Level 0 has no finer level: a finer entry cannot occur.
+            for (std::int8_t& level : samples.signature) level = std::max<std::int8_t>(level, 0);
         }
+        meshing::DualMeshSettings settings;
+        settings.gradients = meshing::DualGradient::Cell;
+        const meshing::DualMeshResult result = meshing::dualMesh(samples, settings);
 
-        // Edits of this chunk's own level.
-        for (int z = 0; z < mN; ++z) {
-            for (int y = 0; y < mN; ++y) {
-                for (int x = 0; x < mN; ++x) {
-                    const std::int64_t p[3] = {x * mS, y * mS, z * mS};
-                    const float v0 = sample(mL, p[0], p[1], p[2]);
-                    for (int a = 0; a < 3; ++a) {
-                        std::int64_t q[3] = {p[0], p[1], p[2]};
-                        q[a] += mS;
-                        const float v1 = sample(mL, q[0], q[1], q[2]);
-                        if ((v0 < 0.0f) == (v1 < 0.0f)) continue;
-                        if (minNeighbourLevel(p, a) < 0) continue; // subdivided by a finer neighbour
-                        quad(a, p, mS, v0 < 0.0f);
-                    }
-                }
-            }
+        out.mesh.positions.reserve(result.vertices.size());
+        out.mesh.normals.reserve(result.vertices.size());
+        out.vertexCells.reserve(result.vertices.size());
+        for (std::size_t i = 0; i < result.vertices.size(); ++i) {
+            const meshing::DualVertex& v = result.vertices[i];
+            const glm::dvec3& g = result.gradients[i];
+            const int level = mL + v.level;
+            const double cell = double(std::int64_t(1) << level) * mParams.voxelSize;
+            const glm::dvec3 position = (glm::dvec3{double(v.cell[0]), double(v.cell[1]), double(v.cell[2])} + v.local) * cell;
+            const double len = glm::length(g);
+            const glm::dvec3 n = len > 0.0 ? g / len : glm::dvec3(0.0, 1.0, 0.0);
+            out.mesh.positions.emplace_back(float(position.x), float(position.y), float(position.z));
+            out.mesh.normals.emplace_back(float(n.x), float(n.y), float(n.z));
+            out.vertexCells.push_back(VertexCell{level, std::int32_t(v.cell[0] + (mMin[0] >> level)),
+                                                 std::int32_t(v.cell[1] + (mMin[1] >> level)),
+                                                 std::int32_t(v.cell[2] + (mMin[2] >> level))});
         }
-        // The seam with finer lower neighbours: their edges on this chunk's lower faces.
-        if (mHasFiner) {
-            const std::int64_t h = mS / 2;
-            for (int z = 0; z < 2 * mN; ++z) {
-                for (int y = 0; y < 2 * mN; ++y) {
-                    const bool anyX = z == 0 || y == 0;
-                    for (int x = 0; x < 2 * mN; x = anyX ? x + 1 : 2 * mN) {
-                        const std::int64_t p[3] = {x * h, y * h, z * h};
-                        for (int a = 0; a < 3; ++a) {
-                            if (minNeighbourLevel(p, a) != -1) continue;
-                            std::int64_t q[3] = {p[0], p[1], p[2]};
-                            q[a] += h;
-                            const float v0 = sample(mL - 1, p[0], p[1], p[2]);
-                            const float v1 = sample(mL - 1, q[0], q[1], q[2]);
-                            if ((v0 < 0.0f) == (v1 < 0.0f)) continue;
-                            quad(a, p, h, v0 < 0.0f);
-                        }
-                    }
-                }
-            }
-        }
-        return std::move(mOut);
+        out.mesh.indices = std::move(result.indices);
+        return out;
     }
 
 private:
@@ -217,110 +232,6 @@ private:
         return std::abs(mField.distanceBound(centre)) > radius + 2.0 * double(mS) * v;
     }
 
-    /// The level (relative to this chunk's) of the finest chunk touching the
-    /// edge from p along axis a, p inside this chunk; in {-1, 0}.
-    int minNeighbourLevel(const std::int64_t p[3], int a) const
-    {
-        int face = 0;
-        for (int b = 0; b < 3; ++b)
-            if (b != a && p[b] == 0) face |= 1 << b;
-        int level = 0;
-        for (int sub = face; sub; sub = (sub - 1) & face) level = std::min(level, int(mSig[sub]));
-        return level;
-    }
-
-    /// A lattice sample at `level` (L−1, L or L+1), p relative to the chunk minimum (voxels).
-    float sample(int level, std::int64_t x, std::int64_t y, std::int64_t z)
-    {
-        if (level >= mL) return mCoarse.at(int((x + 2 * mS) / mS), int((y + 2 * mS) / mS), int((z + 2 * mS) / mS));
-        const std::int64_t h = mS / 2;
-        return mFine.at(int((x + mS) / h), int((y + mS) / h), int((z + mS) / h));
-    }
-
-    /// The vertex of cell c (relative to the chunk, at level `level`).
-    std::uint32_t vertex(int level, const std::int64_t c[3])
-    {
-        const std::uint64_t id = (std::uint64_t(level - mL + 1) << 60) | (std::uint64_t(c[0] + 1024) << 40) |
-                                 (std::uint64_t(c[1] + 1024) << 20) | std::uint64_t(c[2] + 1024);
-        const auto found = mIds.find(id);
-        if (found != mIds.end()) return found->second;
-
-        const std::int64_t size = std::int64_t(1) << level;
-        float f[8];
-        for (int i = 0; i < 8; ++i)
-            f[i] = sample(level, (c[0] + (i & 1)) * size, (c[1] + ((i >> 1) & 1)) * size,
-                          (c[2] + ((i >> 2) & 1)) * size);
-        glm::dvec3 sum(0.0);
-        int count = 0;
-        for (int a = 0; a < 3; ++a) {
-            const int bit = 1 << a;
-            for (int i = 0; i < 8; ++i) {
-                if (i & bit) continue;
-                const int j = i | bit;
-                if ((f[i] < 0.0f) == (f[j] < 0.0f)) continue;
-                const double t = std::clamp(double(f[i]) / (double(f[i]) - double(f[j])), 0.0, 1.0);
-                glm::dvec3 q(double(i & 1), double((i >> 1) & 1), double((i >> 2) & 1));
-                q[a] = t;
-                sum += q;
-                ++count;
-            }
-        }
-        const glm::dvec3 local = count ? sum / double(count) : glm::dvec3(0.5);
-        const double cell = double(size) * mParams.voxelSize;
-        const glm::dvec3 position = (glm::dvec3{double(c[0]), double(c[1]), double(c[2])} + local) * cell;
-
-        // Gradient of the trilinear interpolant at `local`.
-        glm::dvec3 g(0.0);
-        for (int i = 0; i < 8; ++i) {
-            const double wx = (i & 1) ? local.x : 1.0 - local.x;
-            const double wy = ((i >> 1) & 1) ? local.y : 1.0 - local.y;
-            const double wz = ((i >> 2) & 1) ? local.z : 1.0 - local.z;
-            const double sx = (i & 1) ? 1.0 : -1.0, sy = ((i >> 1) & 1) ? 1.0 : -1.0, sz = ((i >> 2) & 1) ? 1.0 : -1.0;
-            g.x += sx * wy * wz * f[i];
-            g.y += sy * wx * wz * f[i];
-            g.z += sz * wx * wy * f[i];
-        }
-        const double len = glm::length(g);
-        const glm::dvec3 n = len > 0.0 ? g / len : glm::dvec3(0.0, 1.0, 0.0);
-
-        const std::uint32_t index = std::uint32_t(mOut.mesh.positions.size());
-        mOut.mesh.positions.emplace_back(float(position.x), float(position.y), float(position.z));
-        mOut.mesh.normals.emplace_back(float(n.x), float(n.y), float(n.z));
-        mOut.vertexCells.push_back(VertexCell{level, std::int32_t(c[0] + (mMin[0] >> level)),
-                                              std::int32_t(c[1] + (mMin[1] >> level)),
-                                              std::int32_t(c[2] + (mMin[2] >> level))});
-        mIds.emplace(id, index);
-        return index;
-    }
-
-    /// The polygon of the minimal edge from p along a, length h voxels.
-    void quad(int a, const std::int64_t p[3], std::int64_t h, bool lowerInside)
-    {
-        static const int SB[4] = {-1, 1, 1, -1};
-        static const int SC[4] = {-1, -1, 1, 1};
-        const int b = (a + 1) % 3, c = (a + 2) % 3;
-        std::uint32_t poly[4];
-        int n = 0;
-        for (int i = 0; i < 4; ++i) {
-            std::int64_t q[3] = {2 * p[0], 2 * p[1], 2 * p[2]}; // half-voxel units
-            q[a] += h;
-            q[b] += SB[i] * h;
-            q[c] += SC[i] * h;
-            const int mask = (q[0] < 0 ? 1 : 0) | (q[1] < 0 ? 2 : 0) | (q[2] < 0 ? 4 : 0);
-            const int level = mL + mSig[mask];
-            const std::int64_t cellHalf = std::int64_t(2) << level;
-            const std::int64_t cell[3] = {floorDiv(q[0], cellHalf), floorDiv(q[1], cellHalf), floorDiv(q[2], cellHalf)};
-            const std::uint32_t v = vertex(level, cell);
-            if (n == 0 || poly[n - 1] != v) poly[n++] = v;
-        }
-        if (n > 1 && poly[n - 1] == poly[0]) --n;
-        if (n < 3) return;
-        if (!lowerInside) std::reverse(poly, poly + n);
-        std::vector<std::uint32_t>& idx = mOut.mesh.indices;
-        idx.insert(idx.end(), {poly[0], poly[1], poly[2]});
-        if (n == 4) idx.insert(idx.end(), {poly[0], poly[2], poly[3]});
-    }
-
     const terrain::DensityField& mField;
     MesherParams mParams;
     ChunkKey mKey;
@@ -333,8 +244,6 @@ private:
     std::int64_t mMin[3] = {0, 0, 0};
     bool mHasFiner = false;
     SampleArray mCoarse, mFine;
-    std::unordered_map<std::uint64_t, std::uint32_t> mIds;
-    ChunkMeshData mOut;
 };
 
 } // namespace

@@ -1,5 +1,6 @@
 #pragma once
-// Internal: samples and meshes one chunk (dual contouring on the octree of
+// Internal: gathers one chunk's samples (field, edits, cache) and meshes them
+// with meshing::dualMesh() (dual contouring on the octree of
 // cells with surface-nets vertices; see World.h for the method).
 
 #include <strata/world/WorldTypes.h>

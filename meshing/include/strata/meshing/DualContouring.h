@@ -17,8 +17,10 @@ struct DualContouringOptions : ChunkMeshOptions
     double singularThreshold = 0.1;
 };
 
-/// Like surfaceNets(), with each vertex at the clamped QEF minimum inside its
-/// cell. Plane normals come from `options.gradient` when set, else from the
+/// Like surfaceNets(), with each vertex at the QEF minimum clamped strictly
+/// inside its cell (DUAL_CONTOURING_MARGIN, DualMesh.h), and a cell's sheets
+/// at their mean crossings where their minima would coincide: no two
+/// vertices share a position, so welding by position keeps the mesh manifold. Plane normals come from `options.gradient` when set, else from the
 /// grid's central-difference gradient interpolated along the crossed edge.
 /// Throws strata::Error for bad options (see surfaceNets(), and
 /// singularThreshold outside (0, 1)).

@@ -1,0 +1,692 @@
+#include <strata/meshing/DualMesh.h>
+
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <cassert>
+#include <cmath>
+#include <map>
+
+namespace strata::meshing {
+
+namespace {
+
+constexpr std::uint32_t UNSET = 0xffffffffu;
+constexpr int NO_SAMPLE = -1;
+
+// Inside this file corners and edges of a cell use one numbering: corner k
+// sits at (k >> 2 & 1, k >> 1 & 1, k & 1), and these are the 12 edges as
+// corner pairs. Visiting orders (memory order of the samples) are tables
+// into it, built per call.
+constexpr int CELL_EDGES[12][2] = {{0, 4}, {1, 5}, {2, 6}, {3, 7},  // x
+                                   {0, 2}, {1, 3}, {4, 6}, {5, 7},  // y
+                                   {0, 1}, {2, 3}, {4, 5}, {6, 7}}; // z
+
+int cornerAt(const int o[3])
+{
+    return o[0] << 2 | o[1] << 1 | o[2];
+}
+
+// Index in CELL_EDGES of the edge along `axis` whose lower corner sits at
+// local offset (x, y, z) in {0, 1} (the offset along `axis` is ignored).
+int cellEdge(int axis, int x, int y, int z)
+{
+    switch (axis) {
+    case 0: return y * 2 + z;
+    case 1: return 4 + x * 2 + z;
+    default: return 8 + x * 2 + y;
+    }
+}
+
+std::int64_t floorDiv(std::int64_t a, std::int64_t b)
+{
+    return a >= 0 ? a / b : -((-a + b - 1) / b);
+}
+
+// Surface components of a cell, per corner sign mask (bit k: corner k
+// inside): which crossed edges belong to the same sheet of the surface, as
+// in marching cubes. Crossed edges on one face are joined; on an ambiguous
+// face (inside corners diagonal) the edges around each inside corner are
+// joined, so inside corners stay apart. The rule depends on the face alone,
+// so the two cells sharing a face agree, and the dual mesh is manifold.
+struct ComponentTable
+{
+    std::int8_t component[256][12]; // -1 where the edge does not cross
+    std::uint8_t count[256];
+    // The one ambiguous face (0..5: x-, x+, y-, y+, z-, z+) that a single
+    // sheet crosses twice (a tunnel through the face), else -1. Two such
+    // cells facing each other would share a dual edge four times: both then
+    // group their edges as the complement configuration does (OpenVDB's
+    // correctCellSigns), which splits the sheet at that face.
+    std::int8_t tunnelFace[256];
+
+    ComponentTable()
+    {
+        // Corners of the faces x-, x+, y-, y+, z-, z+ in cyclic order.
+        constexpr int FACES[6][4] = {{0, 1, 3, 2}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 3, 7, 6}, {0, 2, 6, 4}, {1, 3, 7, 5}};
+        auto edgeOf = [](int a, int b) {
+            for (int e = 0; e < 12; ++e) {
+                if ((CELL_EDGES[e][0] == a && CELL_EDGES[e][1] == b) || (CELL_EDGES[e][0] == b && CELL_EDGES[e][1] == a)) {
+                    return e;
+                }
+            }
+            return -1;
+        };
+        for (int mask = 0; mask < 256; ++mask) {
+            auto inside = [mask](int corner) { return (mask >> corner & 1) != 0; };
+            int parent[12];
+            for (int e = 0; e < 12; ++e) parent[e] = e;
+            auto find = [&](int e) {
+                while (parent[e] != e) e = parent[e];
+                return e;
+            };
+            for (const auto& face : FACES) {
+                int crossing[4], n = 0;
+                for (int i = 0; i < 4; ++i) {
+                    if (inside(face[i]) != inside(face[(i + 1) % 4])) crossing[n++] = edgeOf(face[i], face[(i + 1) % 4]);
+                }
+                if (n == 2) {
+                    parent[find(crossing[0])] = find(crossing[1]);
+                } else if (n == 4) {
+                    for (int i = 0; i < 4; ++i) { // edges i-1 and i meet at corner i
+                        if (!inside(face[i])) continue;
+                        const int before = edgeOf(face[(i + 3) % 4], face[i]), after = edgeOf(face[i], face[(i + 1) % 4]);
+                        parent[find(before)] = find(after);
+                    }
+                }
+            }
+            count[mask] = 0;
+            int label[12];
+            for (int e = 0; e < 12; ++e) label[e] = -1;
+            for (int e = 0; e < 12; ++e) {
+                component[mask][e] = -1;
+                if (inside(CELL_EDGES[e][0]) == inside(CELL_EDGES[e][1])) continue;
+                const int root = find(e);
+                if (label[root] < 0) label[root] = count[mask]++;
+                component[mask][e] = std::int8_t(label[root]);
+            }
+            tunnelFace[mask] = -1;
+            int ambiguous = 0, tunnel = -1;
+            for (int f = 0; f < 6; ++f) {
+                const int* face = FACES[f];
+                if (inside(face[0]) != inside(face[2]) || inside(face[1]) != inside(face[3]) ||
+                    inside(face[0]) == inside(face[1])) {
+                    continue; // not the diagonal pattern
+                }
+                ++ambiguous;
+                const int first = inside(face[0]) ? 0 : 1; // the two inside corners: first, first + 2
+                const int a = edgeOf(face[first], face[first + 1]), b = edgeOf(face[first + 2], face[(first + 3) % 4]);
+                if (component[mask][a] == component[mask][b]) tunnel = f;
+            }
+            if (ambiguous == 1 && tunnel >= 0) tunnelFace[mask] = std::int8_t(tunnel);
+        }
+    }
+};
+
+const ComponentTable& componentTable()
+{
+    static const ComponentTable table;
+    return table;
+}
+
+// Symmetric 3x3 eigen decomposition by cyclic Jacobi rotations
+// (deterministic, fixed sweep count). Columns of `v` are the eigenvectors.
+void symmetricEigen(double m[3][3], double eigenvalues[3], double v[3][3])
+{
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) v[i][j] = i == j ? 1.0 : 0.0;
+    for (int sweep = 0; sweep < 8; ++sweep) {
+        const double off = m[0][1] * m[0][1] + m[0][2] * m[0][2] + m[1][2] * m[1][2];
+        if (off < 1e-24) break;
+        for (int p = 0; p < 2; ++p) {
+            for (int q = p + 1; q < 3; ++q) {
+                if (std::abs(m[p][q]) < 1e-30) continue;
+                const double theta = (m[q][q] - m[p][p]) / (2.0 * m[p][q]);
+                const double t = (theta >= 0 ? 1.0 : -1.0) / (std::abs(theta) + std::sqrt(theta * theta + 1.0));
+                const double c = 1.0 / std::sqrt(t * t + 1.0), s = t * c;
+                for (int k = 0; k < 3; ++k) { // m = J^T m J
+                    const double mkp = m[k][p], mkq = m[k][q];
+                    m[k][p] = c * mkp - s * mkq;
+                    m[k][q] = s * mkp + c * mkq;
+                }
+                for (int k = 0; k < 3; ++k) {
+                    const double mpk = m[p][k], mqk = m[q][k];
+                    m[p][k] = c * mpk - s * mqk;
+                    m[q][k] = s * mpk + c * mqk;
+                }
+                for (int k = 0; k < 3; ++k) {
+                    const double vkp = v[k][p], vkq = v[k][q];
+                    v[k][p] = c * vkp - s * vkq;
+                    v[k][q] = s * vkp + c * vkq;
+                }
+            }
+        }
+    }
+    for (int i = 0; i < 3; ++i) eigenvalues[i] = m[i][i];
+}
+
+class Walker
+{
+public:
+    Walker(const DualSamples& samples, const DualMeshSettings& settings)
+        : mS(samples)
+        , mP(settings)
+        , mTable(componentTable())
+    {
+        assert(mS.values);
+        assert(mS.apron >= 2);
+        for (int a = 0; a < 3; ++a) assert(mS.size[a] - mS.apron >= mS.cells[a] + 1);
+        // Memory order: perm[0] has the largest stride (outermost loop);
+        // axis a is bit mBit[a] of the memory-order corner numbering.
+        int perm[3] = {0, 1, 2};
+        std::sort(perm, perm + 3, [&](int a, int b) { return mS.stride[a] > mS.stride[b]; });
+        for (int i = 0; i < 3; ++i) {
+            mOuter[i] = perm[i];
+            mBit[perm[i]] = 2 - i;
+        }
+        for (int m = 0; m < 8; ++m) {
+            int o[3];
+            for (int a = 0; a < 3; ++a) o[a] = m >> mBit[a] & 1;
+            mCornerOrder[m] = cornerAt(o);
+        }
+        int n = 0;
+        for (int a = 0; a < 3; ++a) {
+            for (int m = 0; m < 8; ++m) {
+                if (m >> mBit[a] & 1) continue;
+                int o[3];
+                for (int b = 0; b < 3; ++b) o[b] = m >> mBit[b] & 1;
+                mEdgeOrder[n++] = cellEdge(a, o[0], o[1], o[2]);
+            }
+        }
+        for (int k = 0; k < 8; ++k) {
+            const std::ptrdiff_t d[3] = {k >> 2 & 1, k >> 1 & 1, k & 1};
+            mCornerOffset[k] = d[0] * mS.stride[0] + d[1] * mS.stride[1] + d[2] * mS.stride[2];
+        }
+        mAnyFiner = mAnyLevel = false;
+        for (int m = 1; m < 8; ++m) {
+            mAnyFiner = mAnyFiner || mS.signature[m] < 0;
+            mAnyLevel = mAnyLevel || mS.signature[m] != 0;
+        }
+        assert(!mAnyFiner || mS.fine);
+        assert(!mAnyLevel || (mP.sheets == DualSheets::One && mP.placement == DualPlacement::SurfaceNets));
+        mIso = float(mP.isovalue);
+    }
+
+    DualMeshResult run()
+    {
+        fillInside();
+        const int cx = mS.cells[0] + 1, cy = mS.cells[1] + 1, cz = mS.cells[2] + 1;
+        mCellSlot.assign(std::size_t(cx) * cy * cz, UNSET);
+
+        // One polygon per owned edge that crosses, lattice points in memory order.
+        const int u0 = mOuter[0], u1 = mOuter[1], u2 = mOuter[2];
+        const std::ptrdiff_t sx = mS.stride[0], sy = mS.stride[1], sz = mS.stride[2];
+        const std::ptrdiff_t strides[3] = {sx, sy, sz};
+        const std::uint8_t* inside = mInside.data();
+        const int n0 = mS.cells[u0], n1 = mS.cells[u1], n2 = mS.cells[u2];
+        const std::ptrdiff_t step = strides[u2];
+        int p[3];
+        for (int i0 = 0; i0 < n0; ++i0) {
+            for (int i1 = 0; i1 < n1; ++i1) {
+                p[u0] = i0;
+                p[u1] = i1;
+                p[u2] = 0;
+                const std::uint8_t* row = inside + dense(p[0], p[1], p[2]);
+                for (int i2 = 0; i2 < n2; ++i2, row += step) {
+                    const std::uint8_t s = row[0];
+                    // Most points cross nothing: one test for all three edges.
+                    if (row[sx] == s && row[sy] == s && row[sz] == s) continue;
+                    p[u2] = i2;
+                    for (int a = 0; a < 3; ++a) {
+                        if (row[strides[a]] == s) continue;
+                        if (mAnyLevel && minNeighbourLevel(p, a) < 0) continue; // subdivided by a finer neighbour
+                        const std::int64_t q[3] = {2 * p[0], 2 * p[1], 2 * p[2]};
+                        polygon(a, q, 2, s != 0);
+                    }
+                }
+            }
+        }
+        // The seam with finer lower neighbours: their edges on this chunk's
+        // lower faces (fine lattice points with a coordinate 0).
+        if (mAnyFiner) {
+            for (p[u0] = 0; p[u0] < 2 * mS.cells[u0]; ++p[u0]) {
+                for (p[u1] = 0; p[u1] < 2 * mS.cells[u1]; ++p[u1]) {
+                    const bool all = p[u0] == 0 || p[u1] == 0;
+                    for (p[u2] = 0; p[u2] < 2 * mS.cells[u2]; p[u2] = all ? p[u2] + 1 : 2 * mS.cells[u2]) {
+                        for (int a = 0; a < 3; ++a) {
+                            if (minNeighbourLevel(p, a) != -1) continue;
+                            int e[3] = {p[0], p[1], p[2]};
+                            ++e[a];
+                            const float v0 = mS.fine(p[0], p[1], p[2]), v1 = mS.fine(e[0], e[1], e[2]);
+                            if ((v0 < mIso) == (v1 < mIso)) continue;
+                            const std::int64_t q[3] = {p[0], p[1], p[2]};
+                            polygon(a, q, 1, v0 < mIso);
+                        }
+                    }
+                }
+            }
+        }
+        return std::move(mOut);
+    }
+
+private:
+    std::size_t dense(std::int64_t x, std::int64_t y, std::int64_t z) const
+    {
+        return std::size_t((x + mS.apron) * mS.stride[0] + (y + mS.apron) * mS.stride[1] +
+                           (z + mS.apron) * mS.stride[2]);
+    }
+
+    void fillInside()
+    {
+        std::size_t count = 1;
+        for (int a = 0; a < 3; ++a) count += std::size_t(mS.size[a] - 1) * std::size_t(mS.stride[a]);
+        mInside.assign(count, 0);
+        // Memory order: rows along the axis of the smallest stride.
+        const int u0 = mOuter[0], u1 = mOuter[1], u2 = mOuter[2];
+        const std::ptrdiff_t step = mS.stride[u2];
+        const float iso = mIso;
+        for (int i0 = 0; i0 < mS.size[u0]; ++i0)
+            for (int i1 = 0; i1 < mS.size[u1]; ++i1) {
+                const std::ptrdiff_t first = i0 * mS.stride[u0] + i1 * mS.stride[u1];
+                const float* from = mS.values + first;
+                std::uint8_t* to = mInside.data() + first;
+                for (int i2 = 0, n = mS.size[u2]; i2 < n; ++i2) to[i2 * step] = from[i2 * step] < iso ? 1 : 0;
+            }
+    }
+
+    /// The level (relative to this chunk's) of the finest chunk touching the
+    /// edge from p along axis a; in {-1, 0} (the scale of p does not matter).
+    int minNeighbourLevel(const int p[3], int a) const
+    {
+        int face = 0;
+        for (int b = 0; b < 3; ++b)
+            if (b != a && p[b] == 0) face |= 1 << b;
+        int level = 0;
+        for (int sub = face; sub; sub = (sub - 1) & face) level = std::min(level, int(mS.signature[sub]));
+        return level;
+    }
+
+    /// The polygon around the edge from q along a, length h: q and h in fine
+    /// lattice units (an own-level cell is 2), lowerInside the sign at q.
+    void polygon(int a, const std::int64_t p[3], std::int64_t h, bool lowerInside)
+    {
+        static const int SB[4] = {-1, 1, 1, -1};
+        static const int SC[4] = {-1, -1, 1, 1};
+        const int b = (a + 1) % 3, c = (a + 2) % 3;
+        std::uint32_t corners[4];
+        for (int i = 0; i < 4; ++i) {
+            std::int64_t q[3] = {2 * p[0], 2 * p[1], 2 * p[2]}; // half fine units
+            q[a] += h;
+            q[b] += SB[i] * h;
+            q[c] += SC[i] * h;
+            const int mask = (q[0] < 0 ? 1 : 0) | (q[1] < 0 ? 2 : 0) | (q[2] < 0 ? 4 : 0);
+            const int level = mS.signature[mask];
+            const std::int64_t cellHalf = std::int64_t(2) << (level + 1);
+            const int cell[3] = {int(floorDiv(q[0], cellHalf)), int(floorDiv(q[1], cellHalf)),
+                                 int(floorDiv(q[2], cellHalf))};
+            int local[3] = {0, 0, 0}; // the edge's place in the cell (own level only)
+            local[b] = SB[i] < 0;
+            local[c] = SC[i] < 0;
+            corners[i] = vertexOf(level, cell, cellEdge(a, local[0], local[1], local[2]));
+        }
+        // Two cells around the edge may be the same coarse cell: a triangle.
+        std::uint32_t poly[4];
+        int n = 0;
+        for (std::uint32_t v : corners)
+            if (n == 0 || poly[n - 1] != v) poly[n++] = v;
+        if (n > 1 && poly[n - 1] == poly[0]) --n;
+        if (n < 3) return;
+        std::vector<std::uint32_t>& idx = mOut.indices;
+        if (n == 3) {
+            if (!lowerInside) std::reverse(poly, poly + 3);
+            idx.insert(idx.end(), {poly[0], poly[1], poly[2]});
+            return;
+        }
+        // Counter-clockwise seen from outside: inside at the lower end means
+        // the surface faces +a, and (b, c) turns counter-clockwise seen from +a.
+        const std::uint32_t q0 = corners[0], q1 = lowerInside ? corners[1] : corners[3], q2 = corners[2],
+                            q3 = lowerInside ? corners[3] : corners[1];
+        bool first;
+        if (mP.split == DualQuadSplit::Fixed) {
+            first = lowerInside;
+        } else {
+            first = distance2(q0, q2) <= distance2(q1, q3);
+        }
+        if (first) idx.insert(idx.end(), {q0, q1, q2, q0, q2, q3});
+        else idx.insert(idx.end(), {q1, q2, q3, q1, q3, q0});
+    }
+
+    float distance2(std::uint32_t i, std::uint32_t j) const
+    {
+        const glm::vec3 d = mChunkPosition[i] - mChunkPosition[j];
+        return d.x * d.x + d.y * d.y + d.z * d.z;
+    }
+
+    /// The vertex of cell `cell` (relative level `level`) on the surface
+    /// sheet through its edge `edge`.
+    std::uint32_t vertexOf(int level, const int cell[3], int edge)
+    {
+        if (level != 0) {
+            const std::array<int, 4> key{level, cell[0], cell[1], cell[2]};
+            const auto found = mOtherLevels.find(key);
+            if (found != mOtherLevels.end()) return found->second;
+            const std::uint32_t index = create(level, cell, 0, 0);
+            mOtherLevels.emplace(key, index);
+            return index;
+        }
+        const int cy = mS.cells[1] + 1, cz = mS.cells[2] + 1;
+        std::uint32_t& slotIndex = mCellSlot[(std::size_t(cell[0] + 1) * cy + (cell[1] + 1)) * cz + (cell[2] + 1)];
+        if (slotIndex == UNSET) { // first visit: the corner signs, once per cell
+            const std::size_t corner0 = dense(cell[0], cell[1], cell[2]);
+            int signs = signsAt(corner0);
+            if (mP.sheets == DualSheets::Separate) {
+                const int face = mTable.tunnelFace[signs];
+                if (face >= 0) {
+                    // The neighbour across that face (inside the samples: the
+                    // apron leaves room for one more cell on each side).
+                    const std::ptrdiff_t step = mS.stride[face / 2] * (face % 2 ? 1 : -1);
+                    if (mTable.tunnelFace[signsAt(std::size_t(std::ptrdiff_t(corner0) + step))] == (face ^ 1)) {
+                        signs = ~signs & 0xff; // group as the complement does
+                    }
+                }
+            }
+            slotIndex = std::uint32_t(mSlots.size());
+            mSlots.push_back({UNSET, UNSET, UNSET, UNSET, std::uint32_t(signs)});
+        }
+        const int mask = int(mSlots[slotIndex][4]);
+        const int sheet = mP.sheets == DualSheets::Separate ? mTable.component[mask][edge] : 0;
+        std::uint32_t& vertex = mSlots[slotIndex][std::size_t(sheet)];
+        if (vertex == UNSET) vertex = create(0, cell, mask, sheet);
+        return vertex;
+    }
+
+    int signsAt(std::size_t first) const
+    {
+        int signs = 0;
+        for (int k = 0; k < 8; ++k) signs |= mInside[first + std::size_t(mCornerOffset[k])] << k;
+        return signs;
+    }
+
+    std::uint32_t create(int level, const int cell[3], int mask, int sheet)
+    {
+        DualVertex v;
+        v.level = std::int8_t(level);
+        v.sheet = std::uint8_t(sheet);
+        v.cell = {cell[0], cell[1], cell[2]};
+        float f[8];
+        std::size_t corner0 = 0;
+        if (level == 0) {
+            corner0 = dense(cell[0], cell[1], cell[2]);
+            for (int k = 0; k < 8; ++k) f[k] = mS.values[corner0 + std::size_t(mCornerOffset[k])];
+        } else if (level > 0) {
+            const std::size_t c0 = dense(2 * cell[0], 2 * cell[1], 2 * cell[2]);
+            for (int k = 0; k < 8; ++k) f[k] = mS.values[c0 + 2 * std::size_t(mCornerOffset[k])];
+        } else {
+            for (int k = 0; k < 8; ++k) f[k] = mS.fine(cell[0] + (k >> 2 & 1), cell[1] + (k >> 1 & 1), cell[2] + (k & 1));
+        }
+        v.local = place(f, level == 0 ? corner0 : std::size_t(0), cell, mask, sheet);
+        if (mP.gradients == DualGradient::Cell) mOut.gradients.push_back(cellGradient(f, v.local));
+        else if (mP.gradients == DualGradient::Central) mOut.gradients.push_back(centralGradient(corner0, v.local));
+        if (mP.split == DualQuadSplit::ShorterDiagonal) {
+            const double scale = level > 0 ? 2.0 : level < 0 ? 0.5 : 1.0;
+            mChunkPosition.emplace_back(float((double(cell[0]) + v.local.x) * scale),
+                                        float((double(cell[1]) + v.local.y) * scale),
+                                        float((double(cell[2]) + v.local.z) * scale));
+        }
+        mOut.vertices.push_back(v);
+        return std::uint32_t(mOut.vertices.size() - 1);
+    }
+
+    /// Cell-local vertex position in [0,1]^3 from the corner values `f`
+    /// (corner0: the dense index of corner 0, own level only). With
+    /// Separate sheets only the crossed edges of sheet `sheet` count.
+    glm::dvec3 place(const float f[8], std::size_t corner0, const int cell[3], int mask, int sheet) const
+    {
+        const bool dual = mP.placement == DualPlacement::DualContouring;
+        const int sheets = mP.sheets == DualSheets::Separate ? mTable.count[mask] : 1;
+        if (!dual || sheets < 2) return placeSheet(f, corner0, cell, mask, sheet, true);
+        // Two sheets of one cell can clamp to the same point (a thin slab
+        // whose QEF minima both lie beyond the same corner): then every sheet
+        // of the cell goes to its mean crossing instead, which lies next to
+        // its own crossings, apart from the other sheets'. Decided from the
+        // cell alone, so every chunk that meshes the cell agrees.
+        glm::dvec3 all[4];
+        for (int s = 0; s < sheets; ++s) all[s] = placeSheet(f, corner0, cell, mask, s, true);
+        for (int a = 0; a < sheets; ++a)
+            for (int b = a + 1; b < sheets; ++b)
+                if (all[a] == all[b]) return placeSheet(f, corner0, cell, mask, sheet, false);
+        return all[sheet];
+    }
+
+    /// place() for one sheet; `qef` false: the mean crossing, without
+    /// projection (dual contouring's fallback).
+    glm::dvec3 placeSheet(const float f[8], std::size_t corner0, const int cell[3], int mask, int sheet,
+                          bool qef) const
+    {
+        const double iso = mP.isovalue;
+        const bool dual = mP.placement == DualPlacement::DualContouring;
+        if (!dual) return finish(meanCrossing(f, mask, sheet), corner0, true, 0.0);
+        const bool separate = mP.sheets == DualSheets::Separate;
+        glm::dvec3 points[12], normals[12];
+        int count = 0;
+        glm::dvec3 mean(0.0);
+        for (int n = 0; n < 12; ++n) {
+            const int e = mEdgeOrder[n];
+            const int k0 = CELL_EDGES[e][0], k1 = CELL_EDGES[e][1];
+            if (separate ? mTable.component[mask][e] != sheet : (f[k0] < mIso) == (f[k1] < mIso)) continue;
+            const double v0 = f[k0], v1 = f[k1];
+            double t = std::clamp((iso - v0) / (v1 - v0), 0.0, 1.0);
+            std::size_t i0 = 0, i1 = 0;
+            int normalAt = NO_SAMPLE; // else which end's side was trusted (0 or 1)
+            if (dual) {
+                // Near a sharp edge the field is not linear along the grid edge
+                // (the other face is nearer to the inside sample): of the
+                // linear estimate and the two one-sided extrapolations, trust
+                // the steepest, which is the one that does not cross a kink.
+                i0 = corner0 + std::size_t(mCornerOffset[k0]);
+                i1 = corner0 + std::size_t(mCornerOffset[k1]);
+                const bool in0 = mInside[i0] != 0;
+                const std::ptrdiff_t step = mS.stride[e / 4] * (in0 ? 1 : -1);
+                const std::size_t in = in0 ? i0 : i1, out = in0 ? i1 : i0;
+                const double dIn = mS.values[in] - iso, dOut = mS.values[out] - iso;
+                const double sOut = mS.values[std::ptrdiff_t(out) + step] - iso - dOut,
+                             sIn = dIn - (mS.values[std::ptrdiff_t(in) - step] - iso);
+                double best = dOut - dIn, u = -dIn / best;
+                if (sOut > 1.001 * best && dOut / sOut <= 1.0) {
+                    best = sOut;
+                    u = 1.0 - dOut / sOut;
+                    normalAt = in0 ? 1 : 0;
+                }
+                if (sIn > 1.001 * best && -dIn / sIn <= 1.0) {
+                    u = -dIn / sIn;
+                    normalAt = in0 ? 0 : 1;
+                }
+                t = in0 ? u : 1.0 - u;
+            }
+            const glm::dvec3 p0(k0 >> 2 & 1, k0 >> 1 & 1, k0 & 1);
+            const glm::dvec3 p1(k1 >> 2 & 1, k1 >> 1 & 1, k1 & 1);
+            points[count] = p0 + (p1 - p0) * t;
+            mean += points[count];
+            if (dual) {
+                if (mP.planeGradient) {
+                    normals[count] = mP.planeGradient({cell[0], cell[1], cell[2]}, points[count]);
+                } else if (normalAt != NO_SAMPLE) {
+                    normals[count] = enoGradient(normalAt == 0 ? i0 : i1);
+                } else {
+                    normals[count] = enoGradient(i0) * (1.0 - t) + enoGradient(i1) * t;
+                }
+                const double len = glm::length(normals[count]);
+                normals[count] = len > 1e-12 && std::isfinite(len) ? normals[count] / len : glm::dvec3(0.0);
+            }
+            ++count;
+        }
+        glm::dvec3 p = count > 0 ? mean / double(count) : glm::dvec3(0.5);
+
+        if (dual && qef && count > 0) {
+            // Minimise sum (n_i . (x - p_i))^2 about the mass point, ignoring
+            // near-singular directions (there x stays at the mass point).
+            double ata[3][3] = {}, atb[3] = {};
+            for (int i = 0; i < count; ++i) {
+                const glm::dvec3& n = normals[i];
+                const double d = glm::dot(n, points[i] - p);
+                for (int r = 0; r < 3; ++r) {
+                    atb[r] += n[r] * d;
+                    for (int c = 0; c < 3; ++c) ata[r][c] += n[r] * n[c];
+                }
+            }
+            double lambda[3], v[3][3];
+            symmetricEigen(ata, lambda, v);
+            const double largest = std::max({std::abs(lambda[0]), std::abs(lambda[1]), std::abs(lambda[2])});
+            glm::dvec3 x(0.0);
+            for (int e = 0; e < 3; ++e) {
+                if (largest <= 0.0 || std::abs(lambda[e]) < mP.singularThreshold * largest) continue;
+                const double proj = (v[0][e] * atb[0] + v[1][e] * atb[1] + v[2][e] * atb[2]) / lambda[e];
+                for (int r = 0; r < 3; ++r) x[r] += v[r][e] * proj;
+            }
+            p += x;
+        }
+        // Dual contouring keeps the vertex strictly inside its cell: the QEF
+        // minimum often lies outside, and clamped onto a face, edge or corner
+        // it could meet the clamped vertex of a neighbouring cell at the same
+        // point, which a reader welding by position turns into a non-manifold
+        // edge. Cells are disjoint inside, so vertices of distinct cells never
+        // coincide (and each stays where every chunk computes it).
+        const double lo = DUAL_CONTOURING_MARGIN;
+
+        return finish(p, corner0, qef, lo);
+    }
+
+    /// Surface nets: the mean of the crossings (of sheet `sheet`), the cell
+    /// centre if none.
+    glm::dvec3 meanCrossing(const float f[8], int mask, int sheet) const
+    {
+        const double iso = mP.isovalue;
+        const bool separate = mP.sheets == DualSheets::Separate;
+        glm::dvec3 sum(0.0);
+        int count = 0;
+        for (int n = 0; n < 12; ++n) {
+            const int e = mEdgeOrder[n];
+            const int k0 = CELL_EDGES[e][0], k1 = CELL_EDGES[e][1];
+            if (separate ? mTable.component[mask][e] != sheet : (f[k0] < mIso) == (f[k1] < mIso)) continue;
+            const double v0 = f[k0], v1 = f[k1];
+            glm::dvec3 q(k0 >> 2 & 1, k0 >> 1 & 1, k0 & 1);
+            q[e / 4] = std::clamp((iso - v0) / (v1 - v0), 0.0, 1.0);
+            sum += q;
+            ++count;
+        }
+        return count > 0 ? sum / double(count) : glm::dvec3(0.5);
+    }
+
+    /// Projection steps (when `project`), then the clamp into [lo, 1 − lo]
+    /// and the rounding to the quantum.
+    glm::dvec3 finish(glm::dvec3 p, std::size_t corner0, bool project, double lo) const
+    {
+        const double iso = mP.isovalue, hi = 1.0 - lo;
+        for (int s = 0; s < (project ? mP.projectionSteps : 0); ++s) {
+            const double fp = trilinear(corner0, p) - iso;
+            const glm::dvec3 g = centralGradient(corner0, p);
+            const double g2 = glm::dot(g, g);
+            if (!(g2 > 1e-12)) break;
+            p -= g * (fp / g2);
+            for (int a = 0; a < 3; ++a) p[a] = std::clamp(p[a], 0.0, 1.0);
+        }
+        for (int a = 0; a < 3; ++a) {
+            p[a] = std::clamp(p[a], lo, hi);
+            if (mP.quantum > 0.0) p[a] = std::floor(p[a] * mP.quantum + 0.5) / mP.quantum;
+        }
+        return p;
+    }
+
+    // Trilinear interpolation at `p`, relative to sample `base`, p in
+    // [-1, 2]^3 (a cell and one cell around it). Relative coordinates make
+    // the result independent of where the cell sits in the samples.
+    double trilinear(std::size_t base, const glm::dvec3& p) const
+    {
+        const int x = std::clamp(int(std::floor(p[0])), -1, 1);
+        const int y = std::clamp(int(std::floor(p[1])), -1, 1);
+        const int z = std::clamp(int(std::floor(p[2])), -1, 1);
+        const double u = p[0] - x, v = p[1] - y, w = p[2] - z;
+        const std::ptrdiff_t sx = mS.stride[0], sy = mS.stride[1], sz = mS.stride[2];
+        const std::ptrdiff_t i = std::ptrdiff_t(base) + x * sx + y * sy + z * sz;
+        const float* d = mS.values;
+        auto lerp = [](double a, double b, double t) { return a + (b - a) * t; };
+        const double c00 = lerp(d[i], d[i + sz], w), c01 = lerp(d[i + sy], d[i + sy + sz], w);
+        const double c10 = lerp(d[i + sx], d[i + sx + sz], w);
+        const double c11 = lerp(d[i + sx + sy], d[i + sx + sy + sz], w);
+        return lerp(lerp(c00, c01, v), lerp(c10, c11, v), u);
+    }
+
+    // Central differences one cell apart on the trilinear interpolant, p in
+    // [0, 1]^3 relative to sample `base`.
+    glm::dvec3 centralGradient(std::size_t base, const glm::dvec3& p) const
+    {
+        return {0.5 * (trilinear(base, p + glm::dvec3(1, 0, 0)) - trilinear(base, p - glm::dvec3(1, 0, 0))),
+                0.5 * (trilinear(base, p + glm::dvec3(0, 1, 0)) - trilinear(base, p - glm::dvec3(0, 1, 0))),
+                0.5 * (trilinear(base, p + glm::dvec3(0, 0, 1)) - trilinear(base, p - glm::dvec3(0, 0, 1)))};
+    }
+
+    // The exact gradient of the cell's trilinear interpolant at `local`,
+    // corners summed in memory order.
+    glm::dvec3 cellGradient(const float f[8], const glm::dvec3& local) const
+    {
+        glm::dvec3 g(0.0);
+        for (int m = 0; m < 8; ++m) {
+            const int k = mCornerOrder[m];
+            const int ox = k >> 2 & 1, oy = k >> 1 & 1, oz = k & 1;
+            const double wx = ox ? local.x : 1.0 - local.x;
+            const double wy = oy ? local.y : 1.0 - local.y;
+            const double wz = oz ? local.z : 1.0 - local.z;
+            const double sx = ox ? 1.0 : -1.0, sy = oy ? 1.0 : -1.0, sz = oz ? 1.0 : -1.0;
+            g.x += sx * wy * wz * f[k];
+            g.y += sy * wx * wz * f[k];
+            g.z += sz * wx * wy * f[k];
+        }
+        return g;
+    }
+
+    // Gradient at a sample, per axis: central differences where the field is
+    // smooth (small centred second difference), else the one-sided
+    // difference whose side is smoother (ENO: smaller one-sided second
+    // difference), so a kink (a sharp edge of the surface) next to the
+    // sample does not bend the estimate.
+    glm::dvec3 enoGradient(std::size_t i) const
+    {
+        glm::dvec3 g;
+        const float* d = mS.values;
+        for (int a = 0; a < 3; ++a) {
+            const std::size_t s = std::size_t(mS.stride[a]);
+            const double m2 = d[i - 2 * s], m1 = d[i - s], c = d[i], p1 = d[i + s], p2 = d[i + 2 * s];
+            const double back = c - m1, fore = p1 - c;
+            const double back2 = std::abs(c - 2.0 * m1 + m2), fore2 = std::abs(p2 - 2.0 * p1 + c);
+            if (std::abs(fore - back) < mP.smoothness) g[a] = 0.5 * (back + fore);
+            else g[a] = back2 < fore2 ? back : fore;
+        }
+        return g;
+    }
+
+    const DualSamples& mS;
+    const DualMeshSettings& mP;
+    const ComponentTable& mTable;
+    int mOuter[3] = {0, 1, 2};
+    int mBit[3] = {2, 1, 0};
+    int mCornerOrder[8];
+    int mEdgeOrder[12];
+    std::ptrdiff_t mCornerOffset[8];
+    bool mAnyFiner = false, mAnyLevel = false;
+    float mIso = 0.0f;
+    std::vector<std::uint8_t> mInside;
+    std::vector<std::uint32_t> mCellSlot;
+    std::vector<std::array<std::uint32_t, 5>> mSlots; // 4 vertices, then the corner signs
+    std::map<std::array<int, 4>, std::uint32_t> mOtherLevels;
+    std::vector<glm::vec3> mChunkPosition; // ShorterDiagonal: per vertex, in own-level cells (float, as callers store them)
+    DualMeshResult mOut;
+};
+
+} // namespace
+
+DualMeshResult dualMesh(const DualSamples& samples, const DualMeshSettings& settings)
+{
+    return Walker(samples, settings).run();
+}
+
+} // namespace strata::meshing

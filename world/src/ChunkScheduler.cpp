@@ -1,0 +1,119 @@
+#include "ChunkScheduler.h"
+
+#include <algorithm>
+
+namespace strata::world::detail {
+
+namespace {
+
+std::uint64_t mix(std::uint64_t h)
+{
+    h ^= h >> 33;
+    h *= 0xff51afd7ed558ccdull;
+    h ^= h >> 33;
+    h *= 0xc4ceb9fe1a85ec53ull;
+    h ^= h >> 33;
+    return h;
+}
+
+/// Taken around enqueue and first thing in each task: orders the job
+/// pointer's hand-over in a way ThreadSanitizer sees.
+std::mutex& handOver()
+{
+    static std::mutex m;
+    return m;
+}
+
+} // namespace
+
+ChunkScheduler::ChunkScheduler(std::shared_ptr<const terrain::DensityField> field, const SchedulerParams& params,
+                               const EditLayer& edits, ReplacementTracker& tracker, std::mutex& mutex,
+                               std::condition_variable& finishedSignal)
+    : mField(std::move(field))
+    , mParams(params)
+    , mEdits(edits)
+    , mTracker(tracker)
+    , mMutex(mutex)
+    , mFinishedSignal(finishedSignal)
+    , mParallelism(tbb::global_control::max_allowed_parallelism,
+                   std::max(tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism),
+                            std::size_t(params.threads) + 1))
+    , mArena(params.threads, 0)
+{
+}
+
+void ChunkScheduler::schedule()
+{
+    const std::size_t cap = mParams.maxInFlight;
+    if (inFlight >= cap) return;
+    std::vector<std::pair<std::pair<double, ChunkKey>, ChunkState*>> candidates;
+    for (auto& [key, state] : mTracker.chunks) {
+        if (state.inFlight || !state.dirty()) continue;
+        double order = state.distance;
+        if (mParams.taskOrderSeed != 0) {
+            const std::uint64_t h = mix(mParams.taskOrderSeed ^ mix(std::uint64_t(key.level) * 0x9e3779b97f4a7c15ull ^
+                                                                mix(std::uint64_t(std::uint32_t(key.x)) << 32 ^
+                                                                    std::uint64_t(std::uint32_t(key.y))) ^
+                                                                std::uint64_t(std::uint32_t(key.z))));
+            order = double(h >> 11);
+        }
+        candidates.push_back({{order, key}, &state});
+    }
+    const std::size_t count = std::min(candidates.size(), cap - inFlight);
+    std::partial_sort(candidates.begin(), candidates.begin() + std::ptrdiff_t(count), candidates.end(),
+                      [](const auto& a, const auto& b) { return a.first < b.first; });
+    for (std::size_t i = 0; i < count; ++i) {
+        ChunkState& state = *candidates[i].second;
+        state.inFlight = true;
+        ++inFlight;
+        launch(candidates[i].first.second, state.signature, state.generation, state.cache);
+    }
+}
+
+void ChunkScheduler::launch(const ChunkKey& key, const Signature& signature, std::uint64_t generation,
+                            std::shared_ptr<SampleCache> cache)
+{
+    Job* job = new Job{this, key, signature, generation, std::move(cache)};
+    std::lock_guard<std::mutex> fence(handOver());
+    mArena.enqueue([job] {
+        Job* mine;
+        {
+            std::lock_guard<std::mutex> fence(handOver());
+            mine = job;
+        }
+        std::unique_ptr<Job> owned(mine);
+        owned->scheduler->runTask(*owned);
+    });
+}
+
+void ChunkScheduler::runTask(Job& job)
+{
+    Finished result{job.key, job.signature, job.generation, nullptr};
+    std::exception_ptr error;
+    bool stop;
+    {
+        std::lock_guard<std::mutex> lock(mMutex);
+        stop = stopping;
+    }
+    if (!stop) {
+        try {
+            const std::unique_ptr<EditSnapshot> snapshot =
+                mEdits.snapshot(editFootprint(mParams.mesher, job.key));
+            std::unique_lock<std::mutex> cacheLock;
+            if (job.cache) cacheLock = std::unique_lock<std::mutex>(job.cache->mutex);
+            result.mesh = std::make_shared<ChunkMeshData>(
+                meshChunk(*mField, mParams.mesher, job.key, job.signature, *snapshot, job.cache.get()));
+        } catch (...) {
+            error = std::current_exception();
+        }
+    }
+    job.cache.reset(); // before the world may be destroyed
+    std::lock_guard<std::mutex> lock(mMutex);
+    if (result.mesh) finished.push_back(std::move(result));
+    else mTracker.abandoned(job.key);
+    if (error && !failure) failure = error;
+    --inFlight;
+    mFinishedSignal.notify_all();
+}
+
+} // namespace strata::world::detail
