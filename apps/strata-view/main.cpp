@@ -89,7 +89,7 @@ Loaded load(const Args& args, int width, int height)
     const auto t0 = Clock::now();
     Loaded loaded;
     loaded.mtime = args.scenePath.empty() ? std::filesystem::file_time_type{} : modificationTime(args.scenePath);
-    loaded.scene = args.scenePath.empty() ? scene::parseScene(scene::defaultSceneText(), "<default scene>")
+    loaded.scene = args.scenePath.empty() ? scene::defaultScene()
                                           : scene::loadScene(args.scenePath);
     const scene::Scene& scene = loaded.scene;
     // The same stages as `strata generate`, the grid and mesh in memory.

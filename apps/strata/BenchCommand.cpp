@@ -237,7 +237,7 @@ int runBench(const BenchArguments& args)
     const std::string machine = cpuModel();
     const BenchSize size = benchSize(args);
 
-    Scene base = parseScene(defaultSceneText(), "<default scene>");
+    Scene base = defaultScene();
     base.region.min.x = base.region.min.z = -size.halfExtent;
     base.region.max.x = base.region.max.z = size.halfExtent;
 

@@ -147,7 +147,7 @@ Command registerGenerateCommand(CLI::App& app)
                     args->offset.empty() ? glm::dvec3(0.0) : parseVec3Flag("--offset", args->offset);
                 offsetRequest(options.request, offset);
                 const Scene scene = offsetScene(args->scenePath.empty()
-                                                    ? parseScene(defaultSceneText(), "<default scene>")
+                                                    ? defaultScene()
                                                     : loadScene(args->scenePath),
                                                 offset);
 

@@ -102,7 +102,7 @@ Command registerRenderCommand(CLI::App& app)
                                 args->meshPath + "'");
                 }
                 const Scene scene = offsetScene(args->scenePath.empty()
-                                                    ? parseScene(defaultSceneText(), "<default scene>")
+                                                    ? defaultScene()
                                                     : loadScene(args->scenePath),
                                                 offset);
                 // The scene's [quality] table applies as in `strata generate`:

@@ -212,4 +212,6 @@ Scene loadScene(const std::filesystem::path& path)
     return parseScene(text.str(), path.string());
 }
 
+Scene defaultScene() { return parseScene(defaultSceneText(), "<default scene>"); }
+
 } // namespace strata::scene

@@ -15,7 +15,7 @@ endfunction()
 
 run(${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${prefix})
 foreach(path include/strata/Error.h include/strata/terrain/TerrainField.h include/strata/meshing/GridToMesh.h
-        include/strata/render/GlRenderer.h include/strata/world/World.h lib/cmake/Strata/StrataConfig.cmake bin/strata)
+        include/strata/render/GlRenderer.h include/strata/world/World.h include/strata/scene/Pipeline.h lib/cmake/Strata/StrataConfig.cmake bin/strata)
   if(NOT EXISTS ${prefix}/${path})
     message(FATAL_ERROR "install is missing ${path}")
   endif()
@@ -32,5 +32,19 @@ endif()
 run(${WORK_DIR}/build/${EXAMPLE_PROGRAM} ${EXAMPLE_ARGS})
 if(NOT EXISTS ${EXAMPLE_OUTPUT})
   message(FATAL_ERROR "the example did not write ${EXAMPLE_OUTPUT}")
+endif()
+# Optionally: the installed strata CLI writes the same bytes as the example
+# (-DCLI_ARGS=<a;b> run as `strata CLI_ARGS`, then each of -DSAME_FILES=<f;g>
+# compared between -DCLI_DIR and -DEXAMPLE_DIR_OUT).
+if(DEFINED CLI_ARGS)
+  run(${prefix}/bin/strata ${CLI_ARGS})
+  foreach(file ${SAME_FILES})
+    execute_process(COMMAND ${CMAKE_COMMAND} -E compare_files ${CLI_DIR}/${file} ${EXAMPLE_DIR_OUT}/${file}
+                    RESULT_VARIABLE differ)
+    if(NOT differ EQUAL 0)
+      message(FATAL_ERROR "${file} differs between `strata ${CLI_ARGS}` and the example")
+    endif()
+    message("${file}: the same bytes from the CLI and the example")
+  endforeach()
 endif()
 message("installed-package example OK")

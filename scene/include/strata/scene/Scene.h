@@ -77,4 +77,7 @@ Scene parseScene(std::string_view text, const std::string& source);
 /// Reads and parses a scene file. Throws strata::Error naming the file.
 Scene loadScene(const std::filesystem::path& path);
 
+/// The embedded default scene, parsed (source "<default scene>").
+Scene defaultScene();
+
 } // namespace strata::scene
