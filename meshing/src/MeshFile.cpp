@@ -280,7 +280,10 @@ TriangleMesh parseStlBytes(std::string_view bytes, const std::string& name)
     while (lines.next()) {
         const auto& t = lines.tokens();
         const int line = lines.line();
-        if (t[0] == "endsolid") return mesh;
+        if (t[0] == "endsolid") {
+            if (corners != -1) failRead(name, line, "facet " + std::to_string(facet) + ": 'endsolid' inside a facet");
+            return mesh;
+        }
         if (t[0] == "facet") {
             if (corners != -1) failRead(name, line, "facet " + std::to_string(facet) + ": 'facet' inside a facet");
             corners = 0;
