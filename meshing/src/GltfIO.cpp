@@ -8,11 +8,15 @@
 #include <glm/common.hpp>
 #include <tiny_gltf.h>
 
+#include "MeshReadSupport.h"
+
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <fstream>
 #include <sstream>
 #include <limits>
+#include <sstream>
 
 namespace strata::meshing {
 
@@ -56,51 +60,194 @@ int appendVec3Accessor(tinygltf::Model& model, const std::vector<glm::vec3>& val
     return int(model.accessors.size() - 1);
 }
 
-// Copies accessor `index` out of the model as `components` values of type T
-// per element, honouring byte strides. Throws on a layout it does not expect.
+// Copies accessor `index` out of the model as values of type T (one per
+// element), honouring byte strides. Every index, offset, stride and count is
+// checked against the buffer view and the buffer, so an accessor that
+// overruns its view is an error, not a read of the neighbouring bytes.
 template <typename T>
 std::vector<T> readAccessor(const tinygltf::Model& model, int index, int componentType, int type,
-                            const std::string& what, const std::filesystem::path& path)
+                            const std::string& what, const std::string& name)
 {
-    if (index < 0 || index >= int(model.accessors.size())) {
-        throw Error("'" + path.string() + "': " + what + " accessor is missing");
+    auto fail = [&](const std::string& why) { detail::failRead(name, 0, what + " accessor " + why); };
+    if (index < 0 || std::size_t(index) >= model.accessors.size()) fail("is missing");
+    const tinygltf::Accessor& accessor = model.accessors[std::size_t(index)];
+    if (accessor.componentType != componentType || accessor.type != type) fail("has an unsupported layout");
+    if (accessor.sparse.isSparse) fail("is sparse (not supported)");
+    if (accessor.bufferView < 0 || std::size_t(accessor.bufferView) >= model.bufferViews.size()) {
+        fail("has no valid buffer view");
     }
-    const tinygltf::Accessor& accessor = model.accessors[index];
-    if (accessor.componentType != componentType || accessor.type != type || accessor.bufferView < 0) {
-        throw Error("'" + path.string() + "': " + what + " accessor has an unsupported layout");
+    const tinygltf::BufferView& view = model.bufferViews[std::size_t(accessor.bufferView)];
+    if (view.buffer < 0 || std::size_t(view.buffer) >= model.buffers.size()) fail("has a buffer view without a buffer");
+    const std::vector<unsigned char>& data = model.buffers[std::size_t(view.buffer)].data;
+    if (view.byteOffset > data.size() || view.byteLength > data.size() - view.byteOffset) {
+        fail("has a buffer view (offset " + std::to_string(view.byteOffset) + ", length " +
+             std::to_string(view.byteLength) + ") that runs past its buffer (" + std::to_string(data.size()) +
+             " bytes)");
     }
-    const tinygltf::BufferView& view = model.bufferViews[accessor.bufferView];
-    const std::vector<unsigned char>& data = model.buffers[view.buffer].data;
     const std::size_t stride = view.byteStride ? view.byteStride : sizeof(T);
-    const std::size_t start = view.byteOffset + accessor.byteOffset;
-    if (accessor.count > 0 && start + stride * (accessor.count - 1) + sizeof(T) > data.size()) {
-        throw Error("'" + path.string() + "': " + what + " accessor runs past its buffer");
+    if (stride < sizeof(T)) fail("has a byte stride of " + std::to_string(stride) + ", smaller than an element");
+    const std::size_t count = accessor.count;
+    // The last element must end inside the view: offset + (count-1)*stride + size <= length.
+    const std::size_t length = view.byteLength;
+    if (count > 0 && (accessor.byteOffset > length || (count - 1) > (length - accessor.byteOffset) / stride ||
+                      accessor.byteOffset + (count - 1) * stride + sizeof(T) > length)) {
+        fail("(" + std::to_string(count) + " elements from offset " + std::to_string(accessor.byteOffset) +
+             ") runs past its buffer view (" + std::to_string(length) + " bytes)");
     }
-    std::vector<T> values(accessor.count);
-    for (std::size_t i = 0; i < accessor.count; ++i) {
-        std::memcpy(&values[i], data.data() + start + i * stride, sizeof(T));
+    const unsigned char* start = data.data() + view.byteOffset + accessor.byteOffset;
+    std::vector<T> values(count);
+    for (std::size_t i = 0; i < count; ++i) {
+        std::memcpy(&values[i], start + i * stride, sizeof(T));
     }
     return values;
 }
 
-// Serialises `model` as binary glTF in memory, then writes it atomically,
-// checking the stream (tinygltf's file writer does not report failed writes).
-void writeModel(const tinygltf::Model& model, const std::filesystem::path& path)
+// Image data is never needed: do not decode it.
+bool skipImage(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int, void*)
+{
+    return true;
+}
+
+// External files: only regular files, read with our checks; none at all for
+// bytes parsed from memory (user_data == nullptr).
+bool externalExists(const std::string& path, void* allow)
+{
+    std::error_code ec;
+    return allow && std::filesystem::is_regular_file(path, ec);
+}
+
+std::string externalExpand(const std::string& path, void*)
+{
+    return path;
+}
+
+bool externalRead(std::vector<unsigned char>* out, std::string* err, const std::string& path, void* allow)
+{
+    if (!allow) {
+        if (err) *err += "external file '" + path + "' is not allowed here\n";
+        return false;
+    }
+    try {
+        const std::string bytes = detail::readWholeFile(path);
+        out->assign(bytes.begin(), bytes.end());
+        return true;
+    } catch (const std::exception& e) {
+        if (err) *err += std::string(e.what()) + "\n";
+        return false;
+    }
+}
+
+bool externalWrite(std::string* err, const std::string&, const std::vector<unsigned char>&, void*)
+{
+    if (err) *err += "writing is not allowed while reading\n";
+    return false;
+}
+
+void configureLoader(tinygltf::TinyGLTF& loader, bool allowExternalFiles)
+{
+    loader.SetImageLoader(skipImage, nullptr);
+    static int allow = 1;
+    loader.SetFsCallbacks({externalExists, externalExpand, externalRead, externalWrite,
+                           allowExternalFiles ? static_cast<void*>(&allow) : nullptr});
+}
+
+void checkFinite(const std::vector<glm::vec3>& values, const std::string& what, const std::string& name)
+{
+    for (std::size_t i = 0; i < values.size(); ++i) {
+        const glm::vec3& v = values[i];
+        if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z)) {
+            detail::failRead(name, 0, what + " " + std::to_string(i) + " is not finite");
+        }
+    }
+}
+
+TriangleMesh meshFromModel(const tinygltf::Model& model, const std::string& name)
+{
+    if (model.meshes.empty() || model.meshes[0].primitives.empty()) {
+        throw Error(ErrorKind::BadInput, "'" + name + "' holds no mesh", {.file = name});
+    }
+    const tinygltf::Primitive& primitive = model.meshes[0].primitives[0];
+    if (primitive.mode != TINYGLTF_MODE_TRIANGLES && primitive.mode != -1) {
+        throw Error(ErrorKind::BadInput, "'" + name + "': only triangle primitives are supported", {.file = name});
+    }
+
+    TriangleMesh mesh;
+    const auto position = primitive.attributes.find("POSITION");
+    mesh.positions = readAccessor<glm::vec3>(model, position == primitive.attributes.end() ? -1 : position->second,
+                                             TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, "POSITION", name);
+    checkFinite(mesh.positions, "POSITION", name);
+    if (mesh.positions.size() > std::numeric_limits<std::uint32_t>::max()) {
+        detail::failRead(name, 0, "too many vertices");
+    }
+    const auto normal = primitive.attributes.find("NORMAL");
+    if (normal != primitive.attributes.end()) {
+        mesh.normals = readAccessor<glm::vec3>(model, normal->second, TINYGLTF_COMPONENT_TYPE_FLOAT,
+                                               TINYGLTF_TYPE_VEC3, "NORMAL", name);
+        checkFinite(mesh.normals, "NORMAL", name);
+        if (mesh.normals.size() != mesh.positions.size()) {
+            detail::failRead(name, 0, "NORMAL has " + std::to_string(mesh.normals.size()) + " elements, POSITION " +
+                                          std::to_string(mesh.positions.size()));
+        }
+    }
+    if (primitive.indices >= 0) {
+        if (std::size_t(primitive.indices) >= model.accessors.size()) detail::failRead(name, 0, "index accessor is missing");
+        const int componentType = model.accessors[std::size_t(primitive.indices)].componentType;
+        if (componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT) {
+            for (std::uint16_t i : readAccessor<std::uint16_t>(model, primitive.indices, componentType,
+                                                               TINYGLTF_TYPE_SCALAR, "index", name)) {
+                mesh.indices.push_back(i);
+            }
+        } else if (componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE) {
+            for (std::uint8_t i : readAccessor<std::uint8_t>(model, primitive.indices, componentType,
+                                                             TINYGLTF_TYPE_SCALAR, "index", name)) {
+                mesh.indices.push_back(i);
+            }
+        } else {
+            mesh.indices = readAccessor<std::uint32_t>(model, primitive.indices, TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT,
+                                                       TINYGLTF_TYPE_SCALAR, "index", name);
+        }
+    } else {
+        for (std::uint32_t i = 0; i < mesh.positions.size(); ++i) mesh.indices.push_back(i);
+    }
+    if (mesh.indices.size() % 3 != 0) {
+        detail::failRead(name, 0, "index count " + std::to_string(mesh.indices.size()) + " is not a multiple of 3");
+    }
+    for (std::size_t k = 0; k < mesh.indices.size(); ++k) {
+        if (mesh.indices[k] >= mesh.positions.size()) {
+            detail::failRead(name, 0, "triangle " + std::to_string(k / 3) + ": index " + std::to_string(mesh.indices[k]) +
+                                          " is out of range (" + std::to_string(mesh.positions.size()) + " vertices)");
+        }
+    }
+    for (const tinygltf::Node& node : model.nodes) {
+        if (node.mesh == 0 && node.translation.size() == 3) {
+            mesh.origin = glm::dvec3(node.translation[0], node.translation[1], node.translation[2]);
+            if (!std::isfinite(mesh.origin.x) || !std::isfinite(mesh.origin.y) || !std::isfinite(mesh.origin.z)) {
+                detail::failRead(name, 0, "the mesh node's translation is not finite");
+            }
+            break;
+        }
+    }
+    return mesh;
+}
+
+// Serialised in memory, then written with checked writes: tinygltf's file
+// writer does not report a failed stream.
+void writeGlbBytes(const tinygltf::Model& model, const std::filesystem::path& path)
 {
     std::ostringstream bytes;
     tinygltf::TinyGLTF writer;
-    if (!writer.WriteGltfSceneToStream(&model, bytes, /*prettyPrint*/ false, /*writeBinary*/ true)) {
-        throw Error(ErrorKind::Internal, "cannot encode glTF file '" + path.string() + "'", detail::filePlace(path));
+    if (!writer.WriteGltfSceneToStream(&model, bytes, /*prettyPrint*/ false, /*writeBinary*/ true) || !bytes) {
+        throw Error(ErrorKind::Internal, "cannot write glTF file '" + path.string() + "': tinygltf failed",
+                    {.file = path.string()});
     }
-    writeAtomically(path, [&](const std::filesystem::path& temporary) {
-        std::ofstream out(temporary, std::ios::binary);
-        const std::string data = std::move(bytes).str();
-        out.write(data.data(), std::streamsize(data.size()));
-        out.close();
-        if (!out) {
-            throw Error(ErrorKind::Io, "cannot write glTF file '" + path.string() + "'", detail::filePlace(path));
-        }
-    });
+    writeFileAtomically(path, bytes.view());
+}
+
+std::string oneLine(std::string text)
+{
+    while (!text.empty() && (text.back() == '\n' || text.back() == ' ')) text.pop_back();
+    std::replace(text.begin(), text.end(), '\n', ' ');
+    return text;
 }
 
 } // namespace
@@ -128,7 +275,8 @@ void writeGlb(const TriangleMesh& mesh, const std::filesystem::path& path, const
         // glTF accessors cannot be empty: an empty mesh is a node without one.
         model.buffers.clear();
         model.nodes.push_back(node);
-        return writeModel(model, path);
+        writeGlbBytes(model, path);
+        return;
     }
 
     tinygltf::Primitive primitive;
@@ -163,63 +311,51 @@ void writeGlb(const TriangleMesh& mesh, const std::filesystem::path& path, const
     node.mesh = 0;
     model.nodes.push_back(node);
 
-    writeModel(model, path);
+    writeGlbBytes(model, path);
 }
 
 TriangleMesh readGltf(const std::filesystem::path& path)
 {
+    const std::string name = path.string();
+    if (path.extension() == ".glb") return parseGlb(detail::readWholeFile(path), name);
     tinygltf::Model model;
     tinygltf::TinyGLTF loader;
+    configureLoader(loader, /*allowExternalFiles*/ true);
     std::string error, warning;
-    const bool binary = path.extension() == ".glb";
-    const bool ok = binary ? loader.LoadBinaryFromFile(&model, &error, &warning, path.string())
-                           : loader.LoadASCIIFromFile(&model, &error, &warning, path.string());
+    bool ok = false;
+    const std::string text = detail::readWholeFile(path);
+    try {
+        ok = loader.LoadASCIIFromString(&model, &error, &warning, text.data(), unsigned(text.size()),
+                                        path.parent_path().string());
+    } catch (const std::exception& e) {
+        ok = false;
+        error = e.what();
+    }
     if (!ok) {
-        throw Error("cannot read glTF file '" + path.string() + "': " + (error.empty() ? "unknown error" : error));
+        detail::failRead(name, 0, "cannot read glTF: " + (error.empty() ? std::string("unknown error") : oneLine(error)));
     }
-    if (model.meshes.empty() || model.meshes[0].primitives.empty()) {
-        throw Error("'" + path.string() + "' holds no mesh");
-    }
-    const tinygltf::Primitive& primitive = model.meshes[0].primitives[0];
-    if (primitive.mode != TINYGLTF_MODE_TRIANGLES && primitive.mode != -1) {
-        throw Error("'" + path.string() + "': only triangle primitives are supported");
-    }
+    return meshFromModel(model, name);
+}
 
-    TriangleMesh mesh;
-    const auto position = primitive.attributes.find("POSITION");
-    mesh.positions = readAccessor<glm::vec3>(model, position == primitive.attributes.end() ? -1 : position->second,
-                                             TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, "POSITION", path);
-    const auto normal = primitive.attributes.find("NORMAL");
-    if (normal != primitive.attributes.end()) {
-        mesh.normals = readAccessor<glm::vec3>(model, normal->second, TINYGLTF_COMPONENT_TYPE_FLOAT,
-                                               TINYGLTF_TYPE_VEC3, "NORMAL", path);
+TriangleMesh parseGlb(std::string_view bytes, const std::string& name)
+{
+    if (bytes.size() > std::numeric_limits<unsigned int>::max()) detail::failRead(name, 0, "file too large for glTF");
+    tinygltf::Model model;
+    tinygltf::TinyGLTF loader;
+    configureLoader(loader, /*allowExternalFiles*/ false);
+    std::string error, warning;
+    bool ok = false;
+    try {
+        ok = loader.LoadBinaryFromMemory(&model, &error, &warning, reinterpret_cast<const unsigned char*>(bytes.data()),
+                                         unsigned(bytes.size()), "");
+    } catch (const std::exception& e) {
+        ok = false;
+        error = e.what();
     }
-    if (primitive.indices >= 0) {
-        const int componentType = model.accessors.at(primitive.indices).componentType;
-        if (componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT) {
-            for (std::uint16_t i : readAccessor<std::uint16_t>(model, primitive.indices, componentType,
-                                                               TINYGLTF_TYPE_SCALAR, "index", path)) {
-                mesh.indices.push_back(i);
-            }
-        } else {
-            mesh.indices = readAccessor<std::uint32_t>(model, primitive.indices, TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT,
-                                                       TINYGLTF_TYPE_SCALAR, "index", path);
-        }
-    } else {
-        for (std::uint32_t i = 0; i < mesh.positions.size(); ++i) mesh.indices.push_back(i);
+    if (!ok) {
+        detail::failRead(name, 0, "cannot read glTF: " + (error.empty() ? std::string("unknown error") : oneLine(error)));
     }
-    for (std::uint32_t i : mesh.indices) {
-        if (i >= mesh.positions.size()) {
-            throw Error("'" + path.string() + "': index " + std::to_string(i) + " is out of range");
-        }
-    }
-    for (const tinygltf::Node& node : model.nodes) {
-        if (node.mesh == 0 && node.translation.size() == 3) {
-            mesh.origin = glm::dvec3(node.translation[0], node.translation[1], node.translation[2]);
-            break;
-        }
-    }
-    return mesh;
+    return meshFromModel(model, name);
 }
 
 } // namespace strata::meshing

@@ -3,12 +3,14 @@
 #include <strata/AtomicFile.h>
 #include <strata/Error.h>
 
+#include <openvdb/io/Archive.h>
 #include <openvdb/io/File.h>
 
 #include <cstdint>
 #include <cstdio>
-#include <fstream>
-#include <iterator>
+#include <sstream>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 namespace strata::meshing {
@@ -23,16 +25,11 @@ namespace {
 constexpr std::size_t UUID_OFFSET = 21;
 constexpr std::size_t UUID_LENGTH = 36;
 
-void makeUuidDeterministic(const std::filesystem::path& file)
+void makeUuidDeterministic(std::string& bytes)
 {
-    std::vector<char> bytes;
-    {
-        std::ifstream in(file, std::ios::binary);
-        bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-    }
     if (bytes.size() < UUID_OFFSET + UUID_LENGTH || bytes[UUID_OFFSET + 8] != '-' || bytes[UUID_OFFSET + 13] != '-' ||
         bytes[UUID_OFFSET + 18] != '-' || bytes[UUID_OFFSET + 23] != '-') {
-        return; // an unknown header layout: leave the file as OpenVDB wrote it
+        return; // an unknown header layout: leave the bytes as OpenVDB wrote them
     }
     // Two 64-bit FNV-1a hashes with different offsets: 128 bits of content hash.
     std::uint64_t h[2] = {0xcbf29ce484222325ull, 0x84222325cbf29ce4ull};
@@ -45,30 +42,40 @@ void makeUuidDeterministic(const std::filesystem::path& file)
     std::snprintf(uuid, sizeof(uuid), "%08x-%04x-4%03x-%04x-%012llx", unsigned(h[0] >> 32), unsigned(h[0] >> 16) & 0xffffu,
                   unsigned(h[0]) & 0xfffu, unsigned((h[1] >> 48) & 0x3fffu) | 0x8000u,
                   static_cast<unsigned long long>(h[1] & 0xffffffffffffull));
-    std::fstream out(file, std::ios::binary | std::ios::in | std::ios::out);
-    out.seekp(std::streamoff(UUID_OFFSET));
-    out.write(uuid, UUID_LENGTH);
-    if (!out.flush()) throw Error("cannot write VDB file '" + file.string() + "'");
+    bytes.replace(UUID_OFFSET, UUID_LENGTH, uuid, UUID_LENGTH);
 }
+
+// io::File writes through an std::ofstream whose state it never checks after
+// writing; the archive's stream writer (what io::File calls, with seeking,
+// so the bytes are the same) into memory lets us check every write ourselves.
+class MemoryArchive : public openvdb::io::Archive
+{
+public:
+    std::string bytes(const openvdb::GridCPtrVec& grids) const
+    {
+        std::ostringstream out(std::ios::out | std::ios::binary);
+        write(out, grids, /*seekable*/ true);
+        if (!out) throw std::runtime_error("the memory stream failed");
+        return std::move(out).str();
+    }
+};
 
 } // namespace
 
 void writeGrid(const openvdb::FloatGrid& grid, const std::filesystem::path& path)
 {
     openvdb::initialize();
-    writeAtomically(path, [&](const std::filesystem::path& temporary) {
-        try {
-            openvdb::io::File file(temporary.string());
-            openvdb::GridCPtrVec grids;
-            // io::File takes shared pointers; the copy shares the tree (no deep copy).
-            grids.push_back(grid.copy());
-            file.write(grids);
-            file.close();
-        } catch (const openvdb::Exception& e) {
-            throw Error("cannot write VDB file '" + path.string() + "': " + e.what());
-        }
-        makeUuidDeterministic(temporary);
-    });
+    std::string bytes;
+    try {
+        openvdb::GridCPtrVec grids;
+        // The copy shares the tree (no deep copy).
+        grids.push_back(grid.copy());
+        bytes = MemoryArchive().bytes(grids);
+    } catch (const std::exception& e) {
+        throw Error(ErrorKind::Internal, "cannot write VDB file '" + path.string() + "': " + e.what(), {.file = path.string()});
+    }
+    makeUuidDeterministic(bytes);
+    writeFileAtomically(path, bytes);
 }
 
 openvdb::FloatGrid::Ptr readLevelSet(const std::filesystem::path& path)

@@ -3,6 +3,7 @@
 #include <strata/AtomicFile.h>
 #include <strata/Error.h>
 
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
@@ -54,7 +55,7 @@ bool isLinearFormat(const std::string& formatName)
 
 [[noreturn]] void throwWriteError(const fs::path& path, const std::string& reason)
 {
-    throw Error("cannot write image '" + path.string() + "': " + reason);
+    throw Error(ErrorKind::Io, "cannot write image '" + path.string() + "': " + reason, {.file = path.string()});
 }
 
 } // namespace
@@ -67,16 +68,12 @@ void writeImage(const Image& image, const fs::path& path)
                                   " with " + std::to_string(image.pixels.size()) + " bytes");
     }
 
-    // Written beside `path` under a temporary name that keeps the extension
-    // (OpenImageIO picks the format from it), then renamed.
-    writeAtomically(path, [&](const fs::path& temporary) {
-        auto output = OIIO::ImageOutput::create(temporary.string());
-        if (!output) {
-            throwWriteError(path, oiioError({}));
-        }
-        const std::string formatName = output->format_name();
+    // Encodes into `output`, opened on `name` (the format follows its
+    // extension); false with OpenImageIO's error on failure.
+    auto encode = [&](OIIO::ImageOutput& output, const std::string& name) {
+        const std::string formatName = output.format_name();
         const bool linear = isLinearFormat(formatName);
-        const int channels = output->supports("alpha") ? 4 : 3;
+        const int channels = output.supports("alpha") ? 4 : 3;
         const std::size_t pixelCount = std::size_t(image.width) * std::size_t(image.height);
 
         OIIO::ImageSpec spec(image.width, image.height, channels,
@@ -87,7 +84,7 @@ void writeImage(const Image& image, const fs::path& path)
             spec.attribute("oiio:UnassociatedAlpha", 1);
         }
 
-        bool ok = output->open(temporary.string(), spec);
+        bool ok = output.open(name, spec);
         if (ok) {
             if (linear) {
                 std::vector<float> data(pixelCount * std::size_t(channels));
@@ -97,16 +94,44 @@ void writeImage(const Image& image, const fs::path& path)
                         data[i * std::size_t(channels) + std::size_t(c)] = c < 3 ? srgbToLinear(v) : v;
                     }
                 }
-                ok = output->write_image(OIIO::TypeDesc::FLOAT, data.data());
+                ok = output.write_image(OIIO::TypeDesc::FLOAT, data.data());
             } else {
                 // xstride 4 bytes: drops alpha when the format has none.
-                ok = output->write_image(OIIO::TypeDesc::UINT8, image.pixels.data(), 4);
+                ok = output.write_image(OIIO::TypeDesc::UINT8, image.pixels.data(), 4);
             }
-            ok = output->close() && ok;
+            ok = output.close() && ok;
         }
         if (!ok) {
-            throwWriteError(path, oiioError(output->geterror()));
+            throwWriteError(path, oiioError(output.geterror()));
         }
+    };
+
+    // PNG and EXR (the formats snapshots use) are encoded in memory and written with
+    // checked writes (OpenImageIO does not always report a failed file write);
+    // the others write beside `path` under a temporary name that keeps the
+    // extension, then are checked, synced and renamed.
+    auto output = OIIO::ImageOutput::create(path.string());
+    if (!output) {
+        throwWriteError(path, oiioError({}));
+    }
+    // Only formats whose memory output was checked to give the same file:
+    // OpenImageIO 2.4's TIFF writer produces a broken file through a proxy.
+    const std::string format = output->format_name();
+    if ((format == "png" || format == "openexr") && output->supports("ioproxy")) {
+        std::vector<unsigned char> bytes;
+        OIIO::Filesystem::IOVecOutput proxy(bytes);
+        if (output->set_ioproxy(&proxy)) {
+            encode(*output, path.string());
+            writeFileAtomically(path, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
+            return;
+        }
+    }
+    writeAtomically(path, [&](const fs::path& temporary) {
+        auto fileOutput = OIIO::ImageOutput::create(temporary.string());
+        if (!fileOutput) {
+            throwWriteError(path, oiioError({}));
+        }
+        encode(*fileOutput, temporary.string());
     });
 }
 

@@ -43,16 +43,10 @@ inline const char* errorKindName(ErrorKind kind)
 /// Where an error is about; every field is optional (empty or 0 = unknown).
 struct ErrorPlace
 {
-    ErrorPlace() = default;
-    ErrorPlace(std::string file_, int line_ = 0, std::string key_ = {}, std::string value_ = {})
-        : file(std::move(file_)), line(line_), key(std::move(key_)), value(std::move(value_))
-    {
-    }
-
-    std::string file;  ///< the file being read or written ("<default scene>" for embedded text)
+    std::string file{};  ///< the file being read or written ("<default scene>" for embedded text)
     int line = 0;      ///< 1-based line in `file`, 0 = unknown
-    std::string key;   ///< the scene key, e.g. "terrain.nodes.land.amplitude", or the flag
-    std::string value; ///< the offending value as the user wrote it
+    std::string key{};   ///< the scene key, e.g. "terrain.nodes.land.amplitude", or the flag
+    std::string value{}; ///< the offending value as the user wrote it
 };
 
 /// A failure the user can fix or must be told about. `what()` says what went

@@ -6,6 +6,7 @@
 
 #include <filesystem>
 #include <string>
+#include <string_view>
 
 namespace strata::meshing {
 
@@ -29,7 +30,14 @@ void writeGlb(const TriangleMesh& mesh, const std::filesystem::path& path, const
 
 /// Reads the first triangle primitive of the first mesh of a .glb or .gltf
 /// file. Positions stay relative to the node translation, which becomes
-/// `origin`. Throws strata::Error naming the path on failure.
+/// `origin`. Images are not decoded; a .glb reads no external files.
+/// Throws strata::Error (BadInput) naming the path on failure: a missing or
+/// sparse accessor, one that overruns its buffer view or its buffer, a stride
+/// smaller than an element, a non-finite position or normal, an index out of
+/// range, an index count that is not a multiple of 3.
 TriangleMesh readGltf(const std::filesystem::path& path);
+
+/// readGltf() of a .glb already in memory; `name` names it in messages.
+TriangleMesh parseGlb(std::string_view bytes, const std::string& name);
 
 } // namespace strata::meshing

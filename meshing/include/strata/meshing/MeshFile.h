@@ -7,6 +7,7 @@
 
 #include <filesystem>
 #include <string>
+#include <string_view>
 
 namespace strata::meshing {
 
@@ -33,8 +34,28 @@ struct MeshFileOptions
 /// a failed write (Io).
 void writeMeshFile(const TriangleMesh& mesh, const std::filesystem::path& path, const MeshFileOptions& options = {});
 
-/// Reads any of those formats (and .gltf); polygons are triangulated.
-/// Throws strata::Error naming the path.
+/// Reads any of those formats (and .gltf); polygons are fan-triangulated.
+/// The readers are strict: a count the file is too small to hold (checked
+/// before allocating), a non-numeric or non-finite coordinate, a face with an
+/// index out of range or fewer than 3 vertices, a file that ends early, or a
+/// path that is not a regular file throws strata::Error (BadInput) naming the
+/// file and, where possible, the line and the element
+/// ("m.obj:12: face 3: vertex index 9 is out of range (8 vertices so far)").
 TriangleMesh readMesh(const std::filesystem::path& path);
+
+/// readMesh() on bytes in memory; `extension` (".ply", ".obj", ".off",
+/// ".stl" or ".glb", lower case) picks the format, `name` names the bytes in
+/// messages. Throws strata::Error (BadInput).
+TriangleMesh parseMesh(std::string_view bytes, const std::string& extension, const std::string& name);
+
+/// OBJ: `v`, `vn` and `f` statements (v, v/t, v//n, v/t/n corners; negative
+/// indices count back); normals are kept when each vertex has exactly one.
+TriangleMesh parseObj(std::string_view bytes, const std::string& name);
+
+/// OFF, NOFF, COFF, CNOFF (ASCII); extra values on a line (colours) are ignored.
+TriangleMesh parseOff(std::string_view bytes, const std::string& name);
+
+/// Binary or ASCII STL; corners with bit-identical positions become one vertex.
+TriangleMesh parseStl(std::string_view bytes, const std::string& name);
 
 } // namespace strata::meshing
