@@ -1,6 +1,6 @@
 # Finds every third-party package Strata uses. Shared by the build tree and,
 # through StrataConfig.cmake, by projects that find_package(Strata).
-# Toolchain facts (Debian 12): see ../shared/DESIGN.md.
+# Debian 12 quirks are handled where they bite (comments below).
 
 # TBB's config package must come before OpenVDB's find module, which would
 # otherwise create a second set of TBB targets.

@@ -1,7 +1,7 @@
 /// \file
 /// Triplanar mapping and lighting math, written ONCE in the common subset of
-/// GLSL 4.50 and C++20 with GLM, and compiled as both (see DESIGN.md, "The
-/// shared shading header"). It is never included directly:
+/// GLSL 4.50 and C++20 with GLM, and compiled as both (README.md, "Rendering":
+/// the CPU sampler mirrors the shader). It is never included directly:
 ///  - GLSL: the build embeds it after ShadingPrelude.glsl (shaders/CMakeLists.txt);
 ///  - C++:  #include "ShadingPrelude.h", which puts it in strata::shading.
 ///

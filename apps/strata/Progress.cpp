@@ -12,13 +12,17 @@ namespace strata::app {
 namespace {
 
 std::atomic<bool> gInterrupted{false};
+/// The handler before ours: the temporary-file cleanup (installTemporaryCleanup).
+void (*gPrevious)(int) = SIG_DFL;
 
-extern "C" void onInterrupt(int)
+extern "C" void onInterrupt(int signal)
 {
-    // A second Ctrl-C while the first is being honoured ends the process at once.
+    // The first Ctrl-C asks the pipeline to stop at its next check; a second
+    // one goes to the previous handler, which removes temporaries and ends
+    // the process at once.
     if (gInterrupted.exchange(true)) {
-        std::signal(SIGINT, SIG_DFL);
-        std::raise(SIGINT);
+        std::signal(SIGINT, gPrevious == SIG_ERR ? SIG_DFL : gPrevious);
+        std::raise(signal);
     }
 }
 
@@ -28,10 +32,10 @@ TerminalProgress::TerminalProgress(std::ostream& out, bool interactive, bool qui
     : mOut(out), mInteractive(interactive && !quiet), mQuiet(quiet)
 {
     gInterrupted = false;
-    std::signal(SIGINT, onInterrupt);
+    gPrevious = std::signal(SIGINT, onInterrupt);
 }
 
-TerminalProgress::~TerminalProgress() { std::signal(SIGINT, SIG_DFL); }
+TerminalProgress::~TerminalProgress() { std::signal(SIGINT, gPrevious == SIG_ERR ? SIG_DFL : gPrevious); }
 
 void TerminalProgress::beginStage(const std::string& stage)
 {

@@ -3,6 +3,7 @@
 
 #include "Commands.h"
 
+#include <strata/AtomicFile.h>
 #include <strata/Error.h>
 
 #include <iostream>
@@ -25,6 +26,8 @@ int main(int argc, char** argv)
         registerBenchCommand(app),
     };
 
+    // SIGINT and SIGTERM remove the temporaries of writes in progress.
+    strata::installTemporaryCleanup();
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {

@@ -2,7 +2,8 @@
 
 #include <strata/Error.h>
 
-// MeshIO before the kernel header (see DESIGN.md).
+// MeshIO before the kernel header: OpenMesh registers its readers and writers
+// only when IO is included first.
 #include <OpenMesh/Core/IO/MeshIO.hh>
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 #include <OpenMesh/Core/System/omstream.hh>

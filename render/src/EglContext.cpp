@@ -299,7 +299,7 @@ void EglContext::makeCurrent()
         return;
     }
     if (!eglMakeCurrent(mHandles->display, mHandles->surface, mHandles->surface, mHandles->context)) {
-        throw Error("cannot make the EGL context current: eglMakeCurrent failed: " + lastEglError());
+        throw Error(ErrorKind::Gl, "cannot make the EGL context current: eglMakeCurrent failed: " + lastEglError());
     }
 }
 

@@ -141,7 +141,7 @@ void checkGl(const char* what)
     for (int i = 0; i < 8 && (error = glGetError()) != GL_NO_ERROR; ++i) {
         names += ", " + glErrorName(error);
     }
-    throw Error("OpenGL error while " + std::string(what) + ": " + names);
+    throw Error(ErrorKind::Gl, "OpenGL error while " + std::string(what) + ": " + names);
 }
 
 void clearGlErrors()
@@ -209,7 +209,7 @@ GlObject compileShader(GLenum stage, const std::string& source, const std::strin
     GLint ok = GL_FALSE;
     glGetShaderiv(id, GL_COMPILE_STATUS, &ok);
     if (!ok) {
-        throw Error("GLSL compile error in the " + name + " shader: " + describeShaderLog(readLog(id, false), source));
+        throw Error(ErrorKind::Gl, "GLSL compile error in the " + name + " shader: " + describeShaderLog(readLog(id, false), source));
     }
     return shader;
 }
@@ -224,7 +224,7 @@ GlObject linkProgram(const GlObject& vertex, const GlObject& fragment, const std
     GLint ok = GL_FALSE;
     glGetProgramiv(id, GL_LINK_STATUS, &ok);
     if (!ok) {
-        throw Error("GLSL link error in the " + name + " program: " + describeShaderLog(readLog(id, true), ""));
+        throw Error(ErrorKind::Gl, "GLSL link error in the " + name + " program: " + describeShaderLog(readLog(id, true), ""));
     }
     glDetachShader(id, vertex.id());
     glDetachShader(id, fragment.id());

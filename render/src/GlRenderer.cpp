@@ -104,7 +104,7 @@ RenderTarget createRenderTarget(int width, int height, int samples, bool withDep
     detail::checkGl("creating the framebuffer");
     const GLenum status = glCheckNamedFramebufferStatus(target.framebuffer.id(), GL_FRAMEBUFFER);
     if (status != GL_FRAMEBUFFER_COMPLETE) {
-        throw Error("OpenGL framebuffer " + std::to_string(width) + "x" + std::to_string(height) + " with " +
+        throw Error(ErrorKind::Gl, "OpenGL framebuffer " + std::to_string(width) + "x" + std::to_string(height) + " with " +
                     std::to_string(samples) + " samples is incomplete (status 0x" + hex(status) + ")");
     }
     return target;
@@ -300,7 +300,7 @@ struct GlRenderer::Impl
             glNamedFramebufferReadBuffer(shadowFramebuffer.id(), GL_NONE);
             const GLenum status = glCheckNamedFramebufferStatus(shadowFramebuffer.id(), GL_FRAMEBUFFER);
             if (status != GL_FRAMEBUFFER_COMPLETE) {
-                throw Error("OpenGL shadow-map framebuffer " + std::to_string(sp.resolution) + "² is incomplete (status 0x" +
+                throw Error(ErrorKind::Gl, "OpenGL shadow-map framebuffer " + std::to_string(sp.resolution) + "² is incomplete (status 0x" +
                             hex(status) + ")");
             }
             shadowResolution = sp.resolution;

@@ -135,7 +135,7 @@ Image GlfwContext::readBackBuffer()
     glReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, rows.data());
     glPixelStorei(GL_PACK_ALIGNMENT, 4);
     if (const GLenum error = glGetError(); error != GL_NO_ERROR) {
-        throw Error("OpenGL error " + std::to_string(error) + " while reading the window's back buffer");
+        throw Error(ErrorKind::Gl, "OpenGL error " + std::to_string(error) + " while reading the window's back buffer");
     }
     // GL rows run bottom to top: flip; the window may have no alpha.
     const std::size_t rowBytes = std::size_t(width) * 4;

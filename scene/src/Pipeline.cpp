@@ -270,8 +270,11 @@ public:
         : mObserver(observer)
     {
     }
+    /// Starts a stage; throws strata::Error (Interrupted) when the observer
+    /// asked to stop, so every stage boundary honours an interruption.
     void begin(const std::string& stage)
     {
+        if (!progress(0.0)) throw Error(ErrorKind::Interrupted, stage + " interrupted");
         mStage = stage;
         mStart = Clock::now();
         if (mObserver) mObserver->beginStage(stage);
@@ -317,14 +320,6 @@ GenerateResult generate(const Scene& input, const GenerateOptions& options, Pipe
     request.backend = result.quality.backend;
     if (options.snapshot) {
         checkSnapshotRequest(request); // bad flags: nothing written
-    }
-
-    std::error_code ec;
-    std::filesystem::create_directories(options.outputDir, ec);
-    if (ec || !std::filesystem::is_directory(options.outputDir)) {
-        throw Error(ErrorKind::Io,
-                    "cannot create output directory '" + options.outputDir.string() + "': " + ec.message(),
-                    {options.outputDir.string()});
     }
 
     // The GL context first: on a machine without one, fail before the long stages.
@@ -374,6 +369,15 @@ GenerateResult generate(const Scene& input, const GenerateOptions& options, Pipe
     log.end(withThousands(result.vertices) + " vertices, " + withThousands(result.triangles) + " triangles, " +
             result.mesher);
 
+    // The output folder is made only now, when there is something to put in it.
+    std::error_code ec;
+    std::filesystem::create_directories(options.outputDir, ec);
+    if (ec || !std::filesystem::is_directory(options.outputDir)) {
+        throw Error(ErrorKind::Io,
+                    "cannot create output directory '" + options.outputDir.string() + "': " +
+                        (ec ? ec.message() : "a file of that name is in the way"),
+                    {options.outputDir.string()});
+    }
     log.begin("write");
     writeTerrain(terrain, mesh, options.outputDir, options.writePly);
     log.end();

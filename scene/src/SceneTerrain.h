@@ -15,8 +15,8 @@
 ///     amplitude = 55.0
 ///     ...
 ///
-/// Every node type, its keys and defaults are listed in README.md
-/// ("Terrain nodes"). Errors name the file, line, key and value.
+/// Every node type, its keys and defaults come from terrain::NodeRegistry
+/// (`strata nodes` prints it). Errors name the file, line, key and value.
 
 #include "TableReader.h"
 

@@ -1,5 +1,7 @@
 #include <strata/world/WorldTypes.h>
 
+#include <strata/Finite.h>
+
 #include <strata/Error.h>
 #include <strata/terrain/Primitives.h>
 
@@ -14,10 +16,6 @@ namespace strata::world {
 
 namespace {
 
-bool finite(const glm::dvec3& v)
-{
-    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
-}
 
 std::string str(const glm::dvec3& v)
 {
@@ -91,12 +89,12 @@ void EditShape::validate() const
     switch (kind) {
     case Kind::SPHERE:
     case Kind::CAPSULE:
-        if (!finite(a) || (kind == Kind::CAPSULE && !finite(b))) fail({"end point ", str(a), " is not finite"});
+        if (!isFinite(a) || (kind == Kind::CAPSULE && !isFinite(b))) fail({"end point ", str(a), " is not finite"});
         if (!std::isfinite(radius) || radius <= 0.0) fail({"radius = ", std::to_string(radius), " must be > 0"});
         break;
     case Kind::BOX:
-        if (!finite(a)) fail({"box centre ", str(a), " is not finite"});
-        if (!finite(halfSize) || halfSize.x <= 0.0 || halfSize.y <= 0.0 || halfSize.z <= 0.0)
+        if (!isFinite(a)) fail({"box centre ", str(a), " is not finite"});
+        if (!isFinite(halfSize) || halfSize.x <= 0.0 || halfSize.y <= 0.0 || halfSize.z <= 0.0)
             fail({"box halfSize ", str(halfSize), " must be > 0 per axis"});
         if (!std::isfinite(radius) || radius < 0.0 || radius > std::min({halfSize.x, halfSize.y, halfSize.z}))
             fail({"box rounding = ", std::to_string(radius), " must be in [0, min(halfSize)]"});
@@ -104,7 +102,7 @@ void EditShape::validate() const
     case Kind::PATH:
         if (points.empty()) fail({"path has no points"});
         for (const glm::dvec3& p : points)
-            if (!finite(p)) fail({"path point ", str(p), " is not finite"});
+            if (!isFinite(p)) fail({"path point ", str(p), " is not finite"});
         if (!std::isfinite(radius) || radius <= 0.0) fail({"radius = ", std::to_string(radius), " must be > 0"});
         break;
     }

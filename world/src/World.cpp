@@ -1,5 +1,7 @@
 #include <strata/world/World.h>
 
+#include <strata/Finite.h>
+
 #include "ChunkScheduler.h"
 #include "EditLayer.h"
 #include "LodPartition.h"
@@ -23,10 +25,6 @@ using openvdb::Coord;
 
 namespace {
 
-bool finite(const glm::dvec3& v)
-{
-    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
-}
 
 std::string num(double v)
 {
@@ -192,7 +190,7 @@ void World::setPointsOfInterest(std::vector<glm::dvec3> points)
     const double limit = double(1 << 29) * mImpl->options.voxelSize - mImpl->options.viewRadius -
                          detail::chunkWidth(mImpl->lod, mImpl->options.levels - 1);
     for (const glm::dvec3& p : points) {
-        if (!finite(p)) throw Error("World: point of interest (" + num(p.x) + ", " + num(p.y) + ", " + num(p.z) +
+        if (!isFinite(p)) throw Error("World: point of interest (" + num(p.x) + ", " + num(p.y) + ", " + num(p.z) +
                                     ") is not finite");
         if (std::abs(p.x) > limit || std::abs(p.y) > limit || std::abs(p.z) > limit)
             throw Error("World: point of interest (" + num(p.x) + ", " + num(p.y) + ", " + num(p.z) +

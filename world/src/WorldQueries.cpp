@@ -1,5 +1,7 @@
 #include "WorldQueries.h"
 
+#include <strata/Finite.h>
+
 #include <strata/Error.h>
 
 #include <glm/common.hpp>
@@ -17,10 +19,6 @@ using openvdb::CoordBBox;
 
 namespace {
 
-bool finite(const glm::dvec3& v)
-{
-    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
-}
 
 std::string num(double v)
 {
@@ -55,7 +53,7 @@ double latticeDensity(const terrain::DensityField& field, const EditLayer& edits
 std::optional<RayHit> raycast(const terrain::DensityField& field, const EditLayer& edits, double voxelSize,
                               const glm::dvec3& origin, const glm::dvec3& direction, double maxDistance)
 {
-    if (!finite(origin) || !finite(direction) || glm::length(direction) == 0.0 || !std::isfinite(maxDistance) ||
+    if (!isFinite(origin) || !isFinite(direction) || glm::length(direction) == 0.0 || !std::isfinite(maxDistance) ||
         maxDistance < 0.0)
         throw Error("World::raycast: origin and direction must be finite, direction not zero, maxDistance >= 0 (got " +
                     num(maxDistance) + ")");
@@ -115,7 +113,7 @@ std::optional<RayHit> raycast(const terrain::DensityField& field, const EditLaye
 bool isBoxSolid(const terrain::DensityField& field, const EditLayer& edits, double voxelSize, const glm::dvec3& min,
                 const glm::dvec3& max)
 {
-    if (!finite(min) || !finite(max) || min.x > max.x || min.y > max.y || min.z > max.z)
+    if (!isFinite(min) || !isFinite(max) || min.x > max.x || min.y > max.y || min.z > max.z)
         throw Error("World::isBoxSolid: the box must be finite with min <= max");
     const double v = voxelSize;
     const glm::dvec3 lo = glm::floor(min / v), hi = glm::floor(max / v) + 1.0;
