@@ -6,7 +6,7 @@
 
 #include "Commands.h"
 #include <strata/scene/Pipeline.h>
-#include "ParetoPlot.h"
+#include <strata/scene/ParetoPlot.h>
 #include <strata/scene/Quality.h>
 #include <strata/scene/Scene.h>
 #include <strata/scene/Snapshot.h>

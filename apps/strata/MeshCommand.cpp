@@ -9,6 +9,7 @@
 #include <strata/meshing/GridToMesh.h>
 #include <strata/meshing/MeshFile.h>
 #include <strata/meshing/MeshMetrics.h>
+#include <strata/meshing/RemoveSmallComponents.h>
 #include <strata/meshing/Simplify.h>
 #include <strata/meshing/SurfaceNets.h>
 
@@ -37,6 +38,7 @@ struct MeshArguments
     std::string simplifier = "meshoptimizer";
     double maxErrorVoxels = 0.5;
     int chunk = 32;
+    double minComponent = 0.0; ///< metres: closed pieces with a smaller bounding-box diagonal are dropped
     int threads = 0;
     bool quiet = false;
 };
@@ -122,11 +124,22 @@ int runMesh(const MeshArguments& args)
             " voxel, borders kept)");
     }
 
+    if (args.minComponent > 0.0) {
+        meshing::SmallComponentOptions options;
+        options.minDiagonal = args.minComponent;
+        const meshing::ComponentRemoval removed = meshing::removeSmallComponents(mesh, options);
+        say("clean    " + std::to_string(removed.removedComponents) + " of " + std::to_string(removed.components) +
+            " components removed (closed, under " + fixed(args.minComponent, 3) + " m across): " +
+            std::to_string(removed.removedTriangles) + " triangles");
+    }
+
     const meshing::MeshTopology topology = meshing::analyzeTopology(mesh);
     say("check    " + std::string(topology.watertight() ? "watertight" : "open") + ": " +
         std::to_string(topology.boundaryEdges) + " boundary edges, " + std::to_string(topology.nonManifoldEdges) +
         " non-manifold edges, " + std::to_string(topology.nonManifoldVertices) + " non-manifold vertices, " +
-        std::to_string(topology.degenerateTriangles) + " degenerate triangles");
+        std::to_string(topology.degenerateTriangles) + " degenerate triangles, " +
+        std::to_string(topology.components) + " components, Euler characteristic " +
+        std::to_string(topology.eulerCharacteristic()) + " (vertices welded by position)");
 
     start = std::chrono::steady_clock::now();
     if (std::filesystem::path(args.output).has_parent_path()) {
@@ -164,6 +177,9 @@ Command registerMeshCommand(CLI::App& app)
     mesh->add_option("--chunk", args->chunk, "Chunk size in cells for surface-nets and dual-contouring: "
                                              "a multiple of 8, or 0 for one chunk (default 32)")
         ->check(CLI::Range(0, 512));
+    mesh->add_option("--min-component", args->minComponent,
+                     "Drop closed pieces whose bounding box is under this many metres across (default 0: keep all)")
+        ->check(CLI::Range(0.0, 1e9));
     mesh->add_option("--threads", args->threads, "Worker threads (0 = all cores); output is identical for any count")
         ->check(CLI::Range(0, 1024));
     mesh->add_flag("-q,--quiet", args->quiet, "Print nothing but errors");

@@ -6,6 +6,7 @@
 //   strata_scene_loader [SCENE.toml] OUT_DIR
 
 #include <strata/Error.h>
+#include <strata/meshing/DualContouring.h>
 #include <strata/meshing/SurfaceNets.h>
 #include <strata/scene/Pipeline.h>
 #include <strata/scene/Scene.h>

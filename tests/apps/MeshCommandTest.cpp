@@ -175,3 +175,20 @@ TEST(BenchMeshCommand, QuickRunWritesMarkdownAndCsv)
     for (std::string line; std::getline(csv, line) && !line.empty();) ++rows;
     EXPECT_EQ(rows, 2u * 2u * 5u * 3u); // shapes x resolutions x meshers x normal methods
 }
+
+TEST(MeshCommand, MinComponentDropsSmallClosedPiecesOnly)
+{
+    const auto dir = strata::test::freshTestDir();
+    const auto vdb = writeTorus(dir);
+    // The torus is one closed piece a few metres across: kept under a 1 m
+    // limit, removed under a 100 m one (and then there is nothing to write).
+    const CommandResult keep =
+        runStrata("mesh " + vdb.string() + " -o " + (dir / "keep.glb").string() + " --min-component 1", dir);
+    ASSERT_EQ(keep.exitCode, 0) << keep.output;
+    EXPECT_NE(keep.output.find("clean    0 of 1 components removed"), std::string::npos) << keep.output;
+    EXPECT_NE(keep.output.find("1 components, Euler characteristic 0"), std::string::npos) << keep.output;
+    EXPECT_GT(readMesh(dir / "keep.glb").triangleCount(), 100u);
+    const CommandResult drop =
+        runStrata("mesh " + vdb.string() + " -o " + (dir / "drop.glb").string() + " --min-component 100", dir);
+    EXPECT_NE(drop.output.find("clean    1 of 1 components removed"), std::string::npos) << drop.output;
+}

@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-namespace strata::app {
+namespace strata::scene {
 
 struct PlotPoint
 {
@@ -40,4 +40,4 @@ render::Image drawPlot(const std::vector<PlotPanel>& panels, int panelWidth, int
 /// or higher y per higherIsBetter), sorted by x.
 std::vector<std::size_t> paretoFront(const PlotPanel& panel);
 
-} // namespace strata::app
+} // namespace strata::scene

@@ -1,4 +1,4 @@
-#include "ParetoPlot.h"
+#include <strata/scene/ParetoPlot.h>
 
 #include "PlotFont.h"
 
@@ -6,7 +6,7 @@
 #include <cmath>
 #include <cstdio>
 
-namespace strata::app {
+namespace strata::scene {
 
 namespace {
 
@@ -250,4 +250,4 @@ render::Image drawPlot(const std::vector<PlotPanel>& panels, int panelWidth, int
     return image;
 }
 
-} // namespace strata::app
+} // namespace strata::scene

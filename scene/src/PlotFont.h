@@ -3,7 +3,7 @@
 /// The bitmap font of the bench plots (ParetoPlot.h): printable ASCII in
 /// fixed 8×14 cells, 4-bit coverage.
 
-namespace strata::app {
+namespace strata::scene {
 
 inline constexpr int GLYPH_WIDTH = 8;    ///< pixels per character cell, also the advance
 inline constexpr int GLYPH_HEIGHT = 14;  ///< pixels per cell
@@ -14,4 +14,4 @@ inline constexpr int GLYPH_BASELINE = 11; ///< row of the baseline inside the ce
 /// cell are 0.
 int glyphCoverage(char c, int x, int y);
 
-} // namespace strata::app
+} // namespace strata::scene

@@ -6,7 +6,7 @@
 
 #include "PlotFont.h"
 
-namespace strata::app {
+namespace strata::scene {
 
 namespace {
 
@@ -120,4 +120,4 @@ int glyphCoverage(char c, int x, int y)
     return digit <= '9' ? digit - '0' : digit - 'a' + 10;
 }
 
-} // namespace strata::app
+} // namespace strata::scene
