@@ -1,5 +1,5 @@
 // Loads a scene file (or the embedded default scene) through strata::scene,
-// samples and meshes one 32³ chunk of it as a voxel game would, then runs
+// samples and meshes a column of 32³ chunks of it as a voxel game would, then runs
 // the whole terrain through the same stages as `strata generate` and writes
 // OUT_DIR/terrain.vdb and OUT_DIR/terrain.glb: the same bytes the CLI writes.
 //
@@ -26,18 +26,19 @@ int main(int argc, char** argv)
         const scene::Scene sceneFile = argc == 3 ? scene::loadScene(argv[1]) : scene::defaultScene();
         const std::filesystem::path out = argv[argc - 1];
 
-        // One chunk: the scene's own density field over a 16 m box at the
-        // origin, at the scene's voxel size, meshed by surface nets.
+        // One column of chunks: the scene's own density field over a 16 m
+        // square at the origin, the region's full height, at the scene's
+        // voxel size, meshed by surface nets in 32³ chunks.
         terrain::SampleOptions chunk;
         chunk.voxelSize = sceneFile.voxelSize;
         chunk.halfWidth = sceneFile.halfWidth;
-        chunk.region.min = glm::dvec3(-8.0);
-        chunk.region.max = glm::dvec3(8.0);
+        chunk.region.min = glm::dvec3(-8.0, sceneFile.region.min.y, -8.0);
+        chunk.region.max = glm::dvec3(8.0, sceneFile.region.max.y, 8.0);
         const openvdb::FloatGrid::Ptr grid = terrain::sampleLevelSet(*sceneFile.field, chunk);
         meshing::DualContouringOptions meshOptions;
         meshOptions.chunkSize = 32;
         const meshing::TriangleMesh chunkMesh = meshing::surfaceNets(*grid, meshOptions);
-        std::cout << "chunk at the origin: " << grid->activeVoxelCount() << " active voxels, "
+        std::cout << "a column of chunks at the origin: " << grid->activeVoxelCount() << " active voxels, "
                   << chunkMesh.triangleCount() << " triangles\n";
 
         // The whole terrain, stage by stage, as `strata generate` runs it.
