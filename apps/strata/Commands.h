@@ -6,7 +6,10 @@
 
 #include <CLI/CLI.hpp>
 
+#include <charconv>
+#include <cstdint>
 #include <functional>
+#include <limits>
 #include <vector>
 
 #include <strata/Error.h>
@@ -42,6 +45,25 @@ inline int exitCode(ErrorKind kind)
     case ErrorKind::Interrupted: return EXIT_INTERRUPTED;
     default: return 1;
     }
+}
+
+/// The --seed check: a decimal integer in [0, 2^63 − 1], the range a scene
+/// file's `seed` takes, so every seed in a report can go back into a scene
+/// (CLI11 alone would clamp 2^64 to 2^64 − 1 and wrap −1).
+inline CLI::Validator seedValidator()
+{
+    return CLI::Validator(
+        [](std::string& text) -> std::string {
+            std::uint64_t value = 0;
+            const char* end = text.data() + text.size();
+            const auto [ptr, ec] = std::from_chars(text.data(), end, value);
+            if (text.empty() || ec != std::errc() || ptr != end ||
+                value > std::uint64_t(std::numeric_limits<std::int64_t>::max())) {
+                return "'" + text + "' is not a seed: use an integer from 0 to 9223372036854775807";
+            }
+            return {};
+        },
+        "SEED");
 }
 
 Command registerGenerateCommand(CLI::App& app);

@@ -97,7 +97,7 @@ Command registerGenerateCommand(CLI::App& app)
         ->check(CLI::ExistingFile);
     generate->add_option("-o,--output", args->outputDir, "Output directory (created if missing)")->required();
     generate->add_option("--seed", args->seed, "Override the scene's seed")
-        ->check(CLI::NonNegativeNumber); // CLI11 would wrap -1 to 2^64 - 1
+        ->check(seedValidator());
     generate->add_option("--max-memory", args->maxMemory,
                          "Refuse scenes whose grid would need more memory than this, e.g. 8GiB (default), 512MiB")
         ->capture_default_str();

@@ -78,7 +78,7 @@ Command registerRenderCommand(CLI::App& app)
     args->snapshot.add(render);
     render->add_option("--size", args->size, "Image size WIDTHxHEIGHT (default from the scene, 1280x720)");
     render->add_option("--seed", args->seed, "Override the scene's seed")
-        ->check(CLI::NonNegativeNumber); // CLI11 would wrap -1 to 2^64 - 1
+        ->check(seedValidator());
     render
         ->add_option("--threads", args->threads, "Worker threads (0 = all cores); the image is identical for any count")
         ->check(CLI::Range(0, 1024));

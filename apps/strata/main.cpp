@@ -30,9 +30,16 @@ int main(int argc, char** argv)
     strata::installTemporaryCleanup();
     try {
         app.parse(argc, argv);
+    } catch (const CLI::CallForHelp& e) {
+        return app.exit(e); // --help: CLI11 prints the help
+    } catch (const CLI::CallForAllHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::CallForVersion& e) {
+        return app.exit(e);
     } catch (const CLI::ParseError& e) {
-        const int code = app.exit(e);
-        return code == 0 ? 0 : EXIT_BAD_INPUT;
+        // Flag errors in the one-line format of every other error.
+        std::cerr << "strata: error: " << e.what() << " (see strata --help)" << std::endl;
+        return EXIT_BAD_INPUT;
     }
 
     try {

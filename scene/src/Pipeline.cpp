@@ -20,6 +20,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <fstream>
 #include <iomanip>
@@ -92,7 +93,8 @@ render::SnapshotOptions makeSnapshotOptions(const Scene& scene, const meshing::T
 
 render::SnapshotOptions makeSnapshotOptions(const Scene& scene, const meshing::TriangleMesh& mesh,
                                             std::optional<int> width, std::optional<int> height,
-                                            const SnapshotRequest& request, const std::optional<render::Camera>& cave)
+                                            const SnapshotRequest& request, const std::optional<render::Camera>& cave,
+                                            const render::Material* material)
 {
     render::SnapshotOptions snapshot;
     snapshot.width = width.value_or(scene.snapshot.width);
@@ -104,7 +106,7 @@ render::SnapshotOptions makeSnapshotOptions(const Scene& scene, const meshing::T
     snapshot.camera = snapshotCamera(scene, request, meshing::worldBounds(mesh),
                                      double(snapshot.width) / snapshot.height, cave);
     snapshot.lighting = scene.lighting;
-    snapshot.material = buildMaterial(scene.material);
+    snapshot.material = material ? *material : buildMaterial(scene.material);
     return snapshot;
 }
 
@@ -230,10 +232,11 @@ void writeTerrain(const SampledTerrain& terrain, const meshing::TriangleMesh& me
 RenderStats renderSnapshots(const Scene& scene, const meshing::TriangleMesh& mesh, const SnapshotRequest& request,
                             render::GlContext* context, int frames, std::optional<int> width,
                             std::optional<int> height, const std::optional<render::Camera>& cave,
-                            const std::function<void(int frame, const render::Image& image)>& sink)
+                            const std::function<void(int frame, const render::Image& image)>& sink,
+                            const render::Material* material)
 {
     RenderStats stats;
-    const render::SnapshotOptions snapshot = makeSnapshotOptions(scene, mesh, width, height, request, cave);
+    const render::SnapshotOptions snapshot = makeSnapshotOptions(scene, mesh, width, height, request, cave, material);
     stats.features = render::featureNames(render::materialFeatures(snapshot.material));
     const render::MeshView view = meshView(mesh);
     std::unique_ptr<render::GlRenderer> renderer;
@@ -337,6 +340,17 @@ GenerateResult generate(const Scene& input, const GenerateOptions& options, Pipe
         result.renderer = "strata CPU reference renderer";
     }
 
+    // The material's maps, decoded and checked before any long stage or
+    // write: a bad map fails the run with nothing written.
+    std::optional<render::Material> material;
+    const bool materialFiles = std::any_of(scene.material.files.begin(), scene.material.files.end(),
+                                           [](const auto& file) { return file.has_value(); });
+    if (options.snapshot || materialFiles) {
+        log.begin("material");
+        material = buildMaterial(scene.material);
+        log.end(render::featureNames(render::materialFeatures(*material)));
+    }
+
     result.voxelSize = scene.voxelSize;
     log.begin("generate");
     const SampledTerrain terrain = sampleTerrain(scene, options.seed, options.maxMemoryBytes,
@@ -394,7 +408,8 @@ GenerateResult generate(const Scene& input, const GenerateOptions& options, Pipe
                                 render::writeImage(image, paths[std::size_t(frame)]);
                                 width = image.width;
                                 height = image.height;
-                            });
+                            },
+                            material ? &*material : nullptr);
         result.programsCompiled = stats.programsCompiled;
         result.programsPossible = stats.programsPossible;
         result.shadedPixels = stats.shadedPixels;

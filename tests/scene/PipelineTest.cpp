@@ -244,3 +244,32 @@ TEST(NodeRegistry, AnUnknownTypeListsTheRegisteredOnes)
         }
     }
 }
+
+TEST(Pipeline, ABadMaterialMapFailsBeforeAnythingIsWritten)
+{
+    const std::filesystem::path dir = test::freshTestDir();
+    {
+        std::ofstream png(dir / "broken.png", std::ios::binary);
+        png << "this is not a PNG image";
+    }
+    const std::string text = std::string(SMALL_SCENE) + "[material.maps.albedo]\nfile = \"" +
+                             (dir / "broken.png").string() + "\"\n";
+    const Scene scene = parseScene(text, (dir / "maps.toml").string());
+    for (const bool snapshot : {true, false}) {
+        GenerateOptions options;
+        options.outputDir = dir / (snapshot ? "with" : "without");
+        options.snapshot = snapshot;
+        options.request.backend = "cpu";
+        RecordingObserver observer;
+        try {
+            generate(scene, options, &observer);
+            FAIL() << "a broken map was accepted (snapshot " << snapshot << ")";
+        } catch (const Error& e) {
+            EXPECT_EQ(e.kind(), ErrorKind::BadInput) << e.what();
+            EXPECT_NE(std::string(e.what()).find("broken.png"), std::string::npos) << e.what();
+        }
+        // Found before sampling: no stage ran, no folder was made.
+        EXPECT_TRUE(std::find(observer.begun.begin(), observer.begun.end(), "generate") == observer.begun.end());
+        EXPECT_FALSE(std::filesystem::exists(options.outputDir)) << options.outputDir;
+    }
+}

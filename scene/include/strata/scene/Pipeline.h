@@ -36,7 +36,7 @@ class PipelineObserver
 {
 public:
     virtual ~PipelineObserver() = default;
-    /// A stage starts: "context", "generate", "cave", "mesh", "write", "render".
+    /// A stage starts: "context", "material", "generate", "cave", "mesh", "write", "render".
     virtual void beginStage(const std::string& stage) {}
     /// Fraction of the current stage done, 0..1 (only long stages report).
     /// Return false to stop: the stage throws strata::Error of kind
@@ -97,10 +97,13 @@ struct RenderStats
 /// (null: the CPU reference renderer), and hands each to `sink` as it is
 /// done. `cave` must hold the cave view when request.view is "cave".
 /// Throws strata::Error for unreadable textures (BadInput) or GL failures.
+/// `material` may hold the scene's material already built (buildMaterial(),
+/// e.g. to check its maps before anything is written); null: built here.
 RenderStats renderSnapshots(const Scene& scene, const meshing::TriangleMesh& mesh, const SnapshotRequest& request,
                             render::GlContext* context, int frames, std::optional<int> width,
                             std::optional<int> height, const std::optional<render::Camera>& cave,
-                            const std::function<void(int frame, const render::Image& image)>& sink);
+                            const std::function<void(int frame, const render::Image& image)>& sink,
+                            const render::Material* material = nullptr);
 
 struct GenerateOptions
 {
@@ -162,7 +165,8 @@ render::SnapshotOptions makeSnapshotOptions(const Scene& scene, const meshing::T
 render::SnapshotOptions makeSnapshotOptions(const Scene& scene, const meshing::TriangleMesh& mesh,
                                             std::optional<int> width, std::optional<int> height,
                                             const SnapshotRequest& request,
-                                            const std::optional<render::Camera>& cave = std::nullopt);
+                                            const std::optional<render::Camera>& cave = std::nullopt,
+                                            const render::Material* material = nullptr);
 
 /// Meshes `grid` as `quality` says: its mesher (volume with adaptivity, or
 /// the chunk meshers in 32³ chunks), normals (grid, face, or `gradient`
@@ -181,8 +185,10 @@ void writeReport(const GenerateResult& result, const Scene& scene, int threads, 
 /// Runs the whole pipeline and writes DIR/terrain.vdb, DIR/terrain.glb,
 /// (DIR/terrain.ply), DIR/snapshot.png (or .exr; or snapshot_000.png …
 /// for a turntable) and DIR/report.json, each atomically.
-/// When a snapshot is requested the snapshot request is checked and the EGL
-/// context created first (backend gl: an error without one; auto: the CPU
+/// Every input is decoded before the first write: the scene's material maps
+/// are loaded and checked (a snapshot needs them; without one, only when the
+/// material names map files) before sampling. When a snapshot is requested
+/// the snapshot request is checked and the EGL context created first (backend gl: an error without one; auto: the CPU
 /// renderer, with a notice), so bad flags write nothing; the cave view is
 /// found before any file is written. `observer` (may be null) hears the
 /// stages and may interrupt. Throws strata::Error on bad input, an
