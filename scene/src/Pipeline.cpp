@@ -5,6 +5,7 @@
 #include <strata/AtomicFile.h>
 #include <strata/Error.h>
 #include <strata/Format.h>
+#include <strata/OutputLock.h>
 #include <strata/meshing/GltfIO.h>
 #include <strata/meshing/GridIO.h>
 #include <strata/meshing/DualContouring.h>
@@ -392,6 +393,8 @@ GenerateResult generate(const Scene& input, const GenerateOptions& options, Pipe
                         (ec ? ec.message() : "a file of that name is in the way"),
                     {options.outputDir.string()});
     }
+    // A run's outputs are a set: one run at a time writes into a folder.
+    const OutputLock lock(options.outputDir);
     log.begin("write");
     writeTerrain(terrain, mesh, options.outputDir, options.writePly);
     log.end();

@@ -3,6 +3,7 @@
 #include <strata/Error.h>
 #include <strata/terrain/Transforms.h>
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -19,6 +20,21 @@ Scene offsetScene(Scene scene, const glm::dvec3& offset)
         }
     }
     if (offset == glm::dvec3(0.0)) return scene;
+    // The sampler indexes voxels with 32-bit coordinates (at most 2^30 voxels
+    // from the origin): refuse an offset that moves the region past that now,
+    // naming the flag, rather than in the sampler.
+    const double reach = scene.voxelSize * double(1 << 30);
+    for (int axis = 0; axis < 3; ++axis) {
+        const double far = std::max(std::abs(scene.region.min[axis] + offset[axis]),
+                                    std::abs(scene.region.max[axis] + offset[axis]));
+        if (!(far < reach)) {
+            std::ostringstream text;
+            text << "--offset '" << offset.x << "," << offset.y << "," << offset.z
+                 << "' moves the region beyond what voxel_size = " << scene.voxelSize
+                 << " can sample (|coordinate| < " << reach << " m)";
+            throw Error(ErrorKind::BadInput, text.str(), {"", 0, "--offset", ""});
+        }
+    }
     if (scene.field) scene.field = std::make_shared<terrain::TranslateField>(scene.field, offset);
     if (scene.buildField) {
         scene.buildField = [build = scene.buildField, offset](std::uint64_t seed) -> terrain::DensityFieldPtr {

@@ -591,6 +591,7 @@ TEST(Extremes, BadValuesExitWithTwoAndWriteNothing)
         {"", "--offset 0,inf,0", "--offset '0,inf,0'"},
         {"", "--offset 1e400,0,0", "--offset '1e400,0,0'", true},
         {"", "--offset 2e9,0,0", "--offset '2e9,0,0'"},
+        {"", "--offset 6e8,0,0", "--offset '6e+08,0,0' moves the region beyond what voxel_size", true},
         {"", "--offset=-1,2", "--offset '-1,2'"},
         {"", "--offset x,y,z", "--offset 'x,y,z'"},
         {"", "--seed -1", "--seed", true},

@@ -190,7 +190,9 @@ void writeReport(const GenerateResult& result, const Scene& scene, int threads, 
 /// material names map files) before sampling. When a snapshot is requested
 /// the snapshot request is checked and the EGL context created first (backend gl: an error without one; auto: the CPU
 /// renderer, with a notice), so bad flags write nothing; the cave view is
-/// found before any file is written. `observer` (may be null) hears the
+/// found before any file is written. While it writes, the run holds a lock
+/// on the output folder (OutputLock): a second run into the same folder at
+/// the same time fails (BadInput) naming the holder. `observer` (may be null) hears the
 /// stages and may interrupt. Throws strata::Error on bad input, an
 /// unavailable GL context, a failed write or an interruption.
 GenerateResult generate(const Scene& scene, const GenerateOptions& options, PipelineObserver* observer = nullptr);
