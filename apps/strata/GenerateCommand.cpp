@@ -99,7 +99,7 @@ Command registerGenerateCommand(CLI::App& app)
     generate->add_option("--seed", args->seed, "Override the scene's seed")
         ->check(seedValidator());
     generate->add_option("--max-memory", args->maxMemory,
-                         "Refuse scenes whose grid would need more memory than this, e.g. 8GiB (default), 512MiB")
+                         "Memory budget: the material maps count first, then a grid that would need more than the rest is refused, e.g. 8GiB (default), 512MiB")
         ->capture_default_str();
     generate->add_option("--threads", args->threads, "Worker threads (0 = all cores); output is identical for any count")
         ->check(CLI::Range(0, 1024));

@@ -194,6 +194,15 @@ void flipGreen(Image& image)
     }
 }
 
+std::uint64_t textureBytes(const TexturePtr& texture)
+{
+    std::uint64_t bytes = 0;
+    if (texture) {
+        for (const Texture::Level& level : texture->levels) bytes += level.texels.size();
+    }
+    return bytes;
+}
+
 Image loadMapImage(const std::filesystem::path& path, MapKind kind, int minChannels, const std::string& what)
 {
     auto fail = [&](const std::string& why) -> Error { return Error(what + ": '" + path.string() + "': " + why); };
@@ -211,6 +220,10 @@ Image loadMapImage(const std::filesystem::path& path, MapKind kind, int minChann
     const int channels = spec.nchannels;
     if (spec.width <= 0 || spec.height <= 0 || spec.depth > 1 || channels <= 0) {
         throw fail("unsupported image size");
+    }
+    if (spec.width > MAX_MAP_SIZE || spec.height > MAX_MAP_SIZE) {
+        throw fail("is " + std::to_string(spec.width) + "x" + std::to_string(spec.height) +
+                   " pixels: maps may be at most " + std::to_string(MAX_MAP_SIZE) + " on a side");
     }
     if (channels < minChannels) {
         throw fail("has " + std::to_string(channels) + " channel(s), the map needs " + std::to_string(minChannels));

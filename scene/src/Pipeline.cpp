@@ -27,6 +27,7 @@
 #include <iomanip>
 #include <iostream>
 #include <map>
+#include <set>
 #include <memory>
 #include <sstream>
 
@@ -346,15 +347,35 @@ GenerateResult generate(const Scene& input, const GenerateOptions& options, Pipe
     std::optional<render::Material> material;
     const bool materialFiles = std::any_of(scene.material.files.begin(), scene.material.files.end(),
                                            [](const auto& file) { return file.has_value(); });
+    std::uint64_t gridBudget = options.maxMemoryBytes;
     if (options.snapshot || materialFiles) {
         log.begin("material");
         material = buildMaterial(scene.material);
-        log.end(render::featureNames(render::materialFeatures(*material)));
+        // The maps count against the memory budget; the grid gets the rest.
+        std::set<const render::Texture*> counted;
+        std::uint64_t mapBytes = 0;
+        for (const render::TexturePtr& map :
+             {material->albedo, material->mask, material->normal, material->topAlbedo, material->topMask,
+              material->topNormal, material->detail, material->detailNormal, material->emission}) {
+            if (map && counted.insert(map.get()).second) mapBytes += render::textureBytes(map);
+        }
+        if (gridBudget > 0) {
+            if (mapBytes >= gridBudget) {
+                throw Error(ErrorKind::BadInput,
+                            scene.source + ": the material's maps take " + withThousands(mapBytes >> 20) +
+                                " MiB, the whole memory budget (" + withThousands(gridBudget >> 20) +
+                                " MiB): use smaller maps or raise --max-memory",
+                            {scene.source});
+            }
+            gridBudget -= mapBytes;
+        }
+        log.end(render::featureNames(render::materialFeatures(*material)) + ", " +
+                withThousands((mapBytes + (1u << 19)) >> 20) + " MiB of maps");
     }
 
     result.voxelSize = scene.voxelSize;
     log.begin("generate");
-    const SampledTerrain terrain = sampleTerrain(scene, options.seed, options.maxMemoryBytes,
+    const SampledTerrain terrain = sampleTerrain(scene, options.seed, gridBudget,
                                                  [&log](double fraction) { return log.progress(fraction); });
     result.seed = terrain.seed;
     result.activeVoxels = terrain.grid->activeVoxelCount();

@@ -9,6 +9,7 @@
 #include <strata/Error.h>
 #include <strata/terrain/NodeRegistry.h>
 
+#include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 
 #include <fstream>
@@ -272,4 +273,52 @@ TEST(Pipeline, ABadMaterialMapFailsBeforeAnythingIsWritten)
         EXPECT_TRUE(std::find(observer.begun.begin(), observer.begun.end(), "generate") == observer.begun.end());
         EXPECT_FALSE(std::filesystem::exists(options.outputDir)) << options.outputDir;
     }
+}
+
+TEST(Pipeline, MaterialMapsCountAgainstTheMemoryBudget)
+{
+    const std::filesystem::path dir = test::freshTestDir();
+    const Scene scene = parseScene(SMALL_SCENE, "small.toml");
+    GenerateOptions options;
+    options.outputDir = dir / "out";
+    options.request.backend = "cpu";
+    options.maxMemoryBytes = 4u << 20; // the built-in 512² maps alone take more than 4 MiB
+    try {
+        generate(scene, options);
+        FAIL() << "the maps fit a 4 MiB budget?";
+    } catch (const Error& e) {
+        EXPECT_EQ(e.kind(), ErrorKind::BadInput);
+        EXPECT_NE(std::string(e.what()).find("the material's maps take"), std::string::npos) << e.what();
+    }
+    EXPECT_FALSE(std::filesystem::exists(options.outputDir));
+}
+
+TEST(Pipeline, AMapLargerThanTheLimitIsRefusedBeforeDecoding)
+{
+    const std::filesystem::path dir = test::freshTestDir();
+    // A valid PNG header that claims 20000 x 20000 pixels: only the header is read.
+    const std::filesystem::path huge = dir / "huge.png";
+    {
+        auto out = OIIO::ImageOutput::create(huge.string());
+        ASSERT_TRUE(out);
+        OIIO::ImageSpec spec(20000, 20000, 1, OIIO::TypeDesc::UINT8);
+        ASSERT_TRUE(out->open(huge.string(), spec));
+        std::vector<unsigned char> row(20000, 128);
+        for (int y = 0; y < 20000; ++y) ASSERT_TRUE(out->write_scanline(y, 0, OIIO::TypeDesc::UINT8, row.data()));
+        out->close();
+    }
+    const std::string text = std::string(SMALL_SCENE) + "[material.maps.albedo]\nfile = \"" + huge.string() + "\"\n";
+    const Scene scene = parseScene(text, "huge.toml");
+    GenerateOptions options;
+    options.outputDir = dir / "out";
+    options.snapshot = false;
+    try {
+        generate(scene, options);
+        FAIL() << "a 20000² map was accepted";
+    } catch (const Error& e) {
+        EXPECT_EQ(e.kind(), ErrorKind::BadInput);
+        EXPECT_NE(std::string(e.what()).find("20000x20000 pixels: maps may be at most 8192"), std::string::npos)
+            << e.what();
+    }
+    EXPECT_FALSE(std::filesystem::exists(options.outputDir));
 }

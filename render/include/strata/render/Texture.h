@@ -99,12 +99,20 @@ Image remapChannels(const Image& image, const ChannelMapping& mapping);
 /// Flips the green channel (DirectX −Y normal maps to OpenGL +Y).
 void flipGreen(Image& image);
 
+/// The largest map side, in pixels: 8192 (the RGBA8 mip chain of an
+/// 8192² map takes 358 MB). Larger maps are refused before decoding.
+inline constexpr int MAX_MAP_SIZE = 8192;
+
+/// Bytes the texels of `texture`'s mip chain take (0 for null).
+std::uint64_t textureBytes(const TexturePtr& texture);
+
 /// Loads a map through OpenImageIO (PNG, TGA, JPEG, EXR, TIFF...), keeping
 /// alpha unassociated (oiio:UnassociatedAlpha = 1); linear maps keep their
 /// stored values, sRGB maps are sRGB-encoded. `minChannels` is the number
 /// of channels the map needs (a height from alpha needs 4). Throws
 /// strata::Error "material M, map K: FILE: why" when the file is missing,
-/// unreadable or has too few channels.
+/// unreadable, larger than MAX_MAP_SIZE on a side (checked from the header,
+/// before any pixel is decoded) or has too few channels.
 Image loadMapImage(const std::filesystem::path& path, MapKind kind, int minChannels, const std::string& what);
 
 /// Packs a MOHS map from separate single-channel images (their R channel;

@@ -116,8 +116,10 @@ struct GenerateOptions
     SnapshotRequest request;
     bool writePly = false;               ///< also write terrain.ply
     int threads = 0;                     ///< 0 = all cores; recorded in the report
-    /// Refuse to sample a grid whose estimated memory exceeds this (bytes;
-    /// 0 = no limit): strata::Error with the estimate, before the long stages.
+    /// The memory budget in bytes (0 = no limit): the material's maps
+    /// (RGBA8 mip chains, at most render::MAX_MAP_SIZE on a side) count
+    /// first, and a grid whose estimated memory exceeds the rest is refused
+    /// with the estimate (strata::Error, BadInput) before the long stages.
     std::uint64_t maxMemoryBytes = 8ull << 30;
     /// Quality (Quality.h): `--preset` (else the scene's [quality] preset,
     /// else balanced) and `--quality KEY=VALUE` overrides, which win over
