@@ -405,6 +405,7 @@ GenerateResult generate(const Scene& input, const GenerateOptions& options, Pipe
     log.end(withThousands(result.vertices) + " vertices, " + withThousands(result.triangles) + " triangles, " +
             result.mesher);
 
+    log.begin("write");
     // The output folder is made only now, when there is something to put in it.
     std::error_code ec;
     std::filesystem::create_directories(options.outputDir, ec);
@@ -416,7 +417,6 @@ GenerateResult generate(const Scene& input, const GenerateOptions& options, Pipe
     }
     // A run's outputs are a set: one run at a time writes into a folder.
     const OutputLock lock(options.outputDir);
-    log.begin("write");
     writeTerrain(terrain, mesh, options.outputDir, options.writePly);
     log.end();
 

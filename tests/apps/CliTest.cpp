@@ -118,3 +118,22 @@ TEST(Cli, BadSceneExitsWithTwoAndWritesNothing)
     const CommandResult missing = runStrata("generate /nonexistent.toml -o " + (dir / "out").string(), dir);
     EXPECT_EQ(missing.exitCode, 2);
 }
+
+TEST(Cli, CtrlCStopsTheRunWritesNothingAndExits130)
+{
+    const auto dir = strata::test::freshTestDir();
+    const auto out = dir / "out";
+    // SIGINT one second in: the default scene is still being sampled (the
+    // first file is written after about 2.5 s on this machine), so the run
+    // stops at its next check, before any file or folder is made.
+    const std::string command = "timeout --preserve-status -s INT 1 " + std::string(STRATA_EXECUTABLE) +
+                                " generate -o " + out.string() + " --backend cpu -q > " +
+                                (dir / "log.txt").string() + " 2>&1";
+    const int status = std::system(command.c_str());
+    std::ifstream in(dir / "log.txt");
+    const std::string log((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    ASSERT_TRUE(WIFEXITED(status)) << log;
+    EXPECT_EQ(WEXITSTATUS(status), 130) << log;
+    EXPECT_NE(log.find("interrupted"), std::string::npos) << log;
+    EXPECT_FALSE(std::filesystem::exists(out)) << "an interrupted run left " << out;
+}
