@@ -3,6 +3,7 @@
 #include <glm/geometric.hpp>
 
 #include <algorithm>
+#include <bit>
 #include <cassert>
 #include <cmath>
 #include <map>
@@ -38,11 +39,6 @@ int cellEdge(int axis, int x, int y, int z)
     }
 }
 
-std::int64_t floorDiv(std::int64_t a, std::int64_t b)
-{
-    return a >= 0 ? a / b : -((-a + b - 1) / b);
-}
-
 // Surface components of a cell, per corner sign mask (bit k: corner k
 // inside): which crossed edges belong to the same sheet of the surface, as
 // in marching cubes. Crossed edges on one face are joined; on an ambiguous
@@ -53,6 +49,8 @@ struct ComponentTable
 {
     std::int8_t component[256][12]; // -1 where the edge does not cross
     std::uint8_t count[256];
+    std::uint16_t edges[256][4]; // per component, its edges (bit e: edge e)
+    std::uint16_t crossed[256];  // all crossed edges
     // The one ambiguous face (0..5: x-, x+, y-, y+, z-, z+) that a single
     // sheet crosses twice (a tunnel through the face), else -1. Two such
     // cells facing each other would share a dual edge four times: both then
@@ -98,12 +96,16 @@ struct ComponentTable
             count[mask] = 0;
             int label[12];
             for (int e = 0; e < 12; ++e) label[e] = -1;
+            crossed[mask] = 0;
+            for (std::uint16_t& bits : edges[mask]) bits = 0;
             for (int e = 0; e < 12; ++e) {
                 component[mask][e] = -1;
                 if (inside(CELL_EDGES[e][0]) == inside(CELL_EDGES[e][1])) continue;
                 const int root = find(e);
                 if (label[root] < 0) label[root] = count[mask]++;
                 component[mask][e] = std::int8_t(label[root]);
+                edges[mask][label[root]] |= std::uint16_t(1 << e);
+                crossed[mask] |= std::uint16_t(1 << e);
             }
             tunnelFace[mask] = -1;
             int ambiguous = 0, tunnel = -1;
@@ -198,6 +200,13 @@ public:
                 mEdgeOrder[n++] = cellEdge(a, o[0], o[1], o[2]);
             }
         }
+        for (int half = 0; half < 2; ++half) {
+            for (int bits = 0; bits < 64; ++bits) {
+                mMemoryOrderBits[half][bits] = 0;
+                for (int m = 0; m < 12; ++m)
+                    if ((bits << 6 * half) >> mEdgeOrder[m] & 1) mMemoryOrderBits[half][bits] |= std::uint16_t(1 << m);
+            }
+        }
         for (int k = 0; k < 8; ++k) {
             const std::ptrdiff_t d[3] = {k >> 2 & 1, k >> 1 & 1, k & 1};
             mCornerOffset[k] = d[0] * mS.stride[0] + d[1] * mS.stride[1] + d[2] * mS.stride[2];
@@ -210,6 +219,11 @@ public:
         assert(!mAnyFiner || mS.fine);
         assert(!mAnyLevel || (mP.sheets == DualSheets::One && mP.placement == DualPlacement::SurfaceNets));
         mIso = float(mP.isovalue);
+        mQuantum = mP.quantum;
+        // Dividing by a power of two is multiplying by its exact inverse.
+        int exponent = 0;
+        if (mQuantum > 0.0 && std::frexp(mQuantum, &exponent) == 0.5) mQuantumInverse = std::ldexp(1.0, 1 - exponent);
+        if (!std::isfinite(mQuantumInverse)) mQuantumInverse = 0.0;
     }
 
     DualMeshResult run()
@@ -321,9 +335,9 @@ private:
             q[c] += SC[i] * h;
             const int mask = (q[0] < 0 ? 1 : 0) | (q[1] < 0 ? 2 : 0) | (q[2] < 0 ? 4 : 0);
             const int level = mS.signature[mask];
-            const std::int64_t cellHalf = std::int64_t(2) << (level + 1);
-            const int cell[3] = {int(floorDiv(q[0], cellHalf)), int(floorDiv(q[1], cellHalf)),
-                                 int(floorDiv(q[2], cellHalf))};
+            // Cells are 2^(level + 2) half fine units: floor division by a shift.
+            const int shift = level + 2;
+            const int cell[3] = {int(q[0] >> shift), int(q[1] >> shift), int(q[2] >> shift)};
             int local[3] = {0, 0, 0}; // the edge's place in the cell (own level only)
             local[b] = SB[i] < 0;
             local[c] = SC[i] < 0;
@@ -409,10 +423,6 @@ private:
 
     std::uint32_t create(int level, const int cell[3], int mask, int sheet)
     {
-        DualVertex v;
-        v.level = std::int8_t(level);
-        v.sheet = std::uint8_t(sheet);
-        v.cell = {cell[0], cell[1], cell[2]};
         float f[8];
         std::size_t corner0 = 0;
         if (level == 0) {
@@ -424,16 +434,15 @@ private:
         } else {
             for (int k = 0; k < 8; ++k) f[k] = mS.fine(cell[0] + (k >> 2 & 1), cell[1] + (k >> 1 & 1), cell[2] + (k & 1));
         }
-        v.local = place(f, level == 0 ? corner0 : std::size_t(0), cell, mask, sheet);
-        if (mP.gradients == DualGradient::Cell) mOut.gradients.push_back(cellGradient(f, v.local));
-        else if (mP.gradients == DualGradient::Central) mOut.gradients.push_back(centralGradient(corner0, v.local));
-        if (mP.split == DualQuadSplit::ShorterDiagonal) {
-            const double scale = level > 0 ? 2.0 : level < 0 ? 0.5 : 1.0;
-            mChunkPosition.emplace_back(float((double(cell[0]) + v.local.x) * scale),
-                                        float((double(cell[1]) + v.local.y) * scale),
-                                        float((double(cell[2]) + v.local.z) * scale));
-        }
-        mOut.vertices.push_back(v);
+        const glm::dvec3 local = place(f, level == 0 ? corner0 : std::size_t(0), cell, mask, sheet);
+        if (mP.gradients == DualGradient::Cell) mOut.gradients.push_back(cellGradient(f, local));
+        else if (mP.gradients == DualGradient::Central) mOut.gradients.push_back(centralGradient(corner0, local));
+        const double scale = level > 0 ? 2.0 : level < 0 ? 0.5 : 1.0;
+        const glm::dvec3 position((double(cell[0]) + local.x) * scale, (double(cell[1]) + local.y) * scale,
+                                  (double(cell[2]) + local.z) * scale);
+        if (mP.split == DualQuadSplit::ShorterDiagonal) mChunkPosition.emplace_back(position);
+        mOut.positions.push_back(position);
+        mOut.vertices.push_back({std::int8_t(level), std::uint8_t(sheet), {cell[0], cell[1], cell[2]}});
         return std::uint32_t(mOut.vertices.size() - 1);
     }
 
@@ -442,9 +451,10 @@ private:
     /// Separate sheets only the crossed edges of sheet `sheet` count.
     glm::dvec3 place(const float f[8], std::size_t corner0, const int cell[3], int mask, int sheet) const
     {
-        const bool dual = mP.placement == DualPlacement::DualContouring;
+        // Surface nets (the common case) straight to the mean crossing.
+        if (mP.placement == DualPlacement::SurfaceNets) return finish(meanCrossing(f, mask, sheet), corner0, true, 0.0);
         const int sheets = mP.sheets == DualSheets::Separate ? mTable.count[mask] : 1;
-        if (!dual || sheets < 2) return placeSheet(f, corner0, cell, mask, sheet, true);
+        if (sheets < 2) return placeSheet(f, corner0, cell, mask, sheet, true);
         // Two sheets of one cell can clamp to the same point (a thin slab
         // whose QEF minima both lie beyond the same corner): then every sheet
         // of the cell goes to its mean crossing instead, which lies next to
@@ -458,14 +468,12 @@ private:
         return all[sheet];
     }
 
-    /// place() for one sheet; `qef` false: the mean crossing, without
-    /// projection (dual contouring's fallback).
+    /// place() for one sheet, dual contouring; `qef` false: the mean
+    /// crossing, without projection (the fallback).
     glm::dvec3 placeSheet(const float f[8], std::size_t corner0, const int cell[3], int mask, int sheet,
                           bool qef) const
     {
         const double iso = mP.isovalue;
-        const bool dual = mP.placement == DualPlacement::DualContouring;
-        if (!dual) return finish(meanCrossing(f, mask, sheet), corner0, true, 0.0);
         const bool separate = mP.sheets == DualSheets::Separate;
         glm::dvec3 points[12], normals[12];
         int count = 0;
@@ -474,55 +482,48 @@ private:
             const int e = mEdgeOrder[n];
             const int k0 = CELL_EDGES[e][0], k1 = CELL_EDGES[e][1];
             if (separate ? mTable.component[mask][e] != sheet : (f[k0] < mIso) == (f[k1] < mIso)) continue;
-            const double v0 = f[k0], v1 = f[k1];
-            double t = std::clamp((iso - v0) / (v1 - v0), 0.0, 1.0);
-            std::size_t i0 = 0, i1 = 0;
             int normalAt = NO_SAMPLE; // else which end's side was trusted (0 or 1)
-            if (dual) {
-                // Near a sharp edge the field is not linear along the grid edge
-                // (the other face is nearer to the inside sample): of the
-                // linear estimate and the two one-sided extrapolations, trust
-                // the steepest, which is the one that does not cross a kink.
-                i0 = corner0 + std::size_t(mCornerOffset[k0]);
-                i1 = corner0 + std::size_t(mCornerOffset[k1]);
-                const bool in0 = mInside[i0] != 0;
-                const std::ptrdiff_t step = mS.stride[e / 4] * (in0 ? 1 : -1);
-                const std::size_t in = in0 ? i0 : i1, out = in0 ? i1 : i0;
-                const double dIn = mS.values[in] - iso, dOut = mS.values[out] - iso;
-                const double sOut = mS.values[std::ptrdiff_t(out) + step] - iso - dOut,
-                             sIn = dIn - (mS.values[std::ptrdiff_t(in) - step] - iso);
-                double best = dOut - dIn, u = -dIn / best;
-                if (sOut > 1.001 * best && dOut / sOut <= 1.0) {
-                    best = sOut;
-                    u = 1.0 - dOut / sOut;
-                    normalAt = in0 ? 1 : 0;
-                }
-                if (sIn > 1.001 * best && -dIn / sIn <= 1.0) {
-                    u = -dIn / sIn;
-                    normalAt = in0 ? 0 : 1;
-                }
-                t = in0 ? u : 1.0 - u;
+            // Near a sharp edge the field is not linear along the grid edge
+            // (the other face is nearer to the inside sample): of the
+            // linear estimate and the two one-sided extrapolations, trust
+            // the steepest, which is the one that does not cross a kink.
+            const std::size_t i0 = corner0 + std::size_t(mCornerOffset[k0]);
+            const std::size_t i1 = corner0 + std::size_t(mCornerOffset[k1]);
+            const bool in0 = mInside[i0] != 0;
+            const std::ptrdiff_t step = mS.stride[e / 4] * (in0 ? 1 : -1);
+            const std::size_t in = in0 ? i0 : i1, out = in0 ? i1 : i0;
+            const double dIn = mS.values[in] - iso, dOut = mS.values[out] - iso;
+            const double sOut = mS.values[std::ptrdiff_t(out) + step] - iso - dOut,
+                         sIn = dIn - (mS.values[std::ptrdiff_t(in) - step] - iso);
+            double best = dOut - dIn, u = -dIn / best;
+            if (sOut > 1.001 * best && dOut / sOut <= 1.0) {
+                best = sOut;
+                u = 1.0 - dOut / sOut;
+                normalAt = in0 ? 1 : 0;
             }
+            if (sIn > 1.001 * best && -dIn / sIn <= 1.0) {
+                u = -dIn / sIn;
+                normalAt = in0 ? 0 : 1;
+            }
+            const double t = in0 ? u : 1.0 - u;
             const glm::dvec3 p0(k0 >> 2 & 1, k0 >> 1 & 1, k0 & 1);
             const glm::dvec3 p1(k1 >> 2 & 1, k1 >> 1 & 1, k1 & 1);
             points[count] = p0 + (p1 - p0) * t;
             mean += points[count];
-            if (dual) {
-                if (mP.planeGradient) {
-                    normals[count] = mP.planeGradient({cell[0], cell[1], cell[2]}, points[count]);
-                } else if (normalAt != NO_SAMPLE) {
-                    normals[count] = enoGradient(normalAt == 0 ? i0 : i1);
-                } else {
-                    normals[count] = enoGradient(i0) * (1.0 - t) + enoGradient(i1) * t;
-                }
-                const double len = glm::length(normals[count]);
-                normals[count] = len > 1e-12 && std::isfinite(len) ? normals[count] / len : glm::dvec3(0.0);
+            if (mP.planeGradient) {
+                normals[count] = mP.planeGradient({cell[0], cell[1], cell[2]}, points[count]);
+            } else if (normalAt != NO_SAMPLE) {
+                normals[count] = enoGradient(normalAt == 0 ? i0 : i1);
+            } else {
+                normals[count] = enoGradient(i0) * (1.0 - t) + enoGradient(i1) * t;
             }
+            const double len = glm::length(normals[count]);
+            normals[count] = len > 1e-12 && std::isfinite(len) ? normals[count] / len : glm::dvec3(0.0);
             ++count;
         }
         glm::dvec3 p = count > 0 ? mean / double(count) : glm::dvec3(0.5);
 
-        if (dual && qef && count > 0) {
+        if (qef && count > 0) {
             // Minimise sum (n_i . (x - p_i))^2 about the mass point, ignoring
             // near-singular directions (there x stays at the mass point).
             double ata[3][3] = {}, atb[3] = {};
@@ -561,17 +562,28 @@ private:
     glm::dvec3 meanCrossing(const float f[8], int mask, int sheet) const
     {
         const double iso = mP.isovalue;
-        const bool separate = mP.sheets == DualSheets::Separate;
+        int edges = 0; // the edges to average, bit e: CELL_EDGES[e]
+        if (mP.sheets == DualSheets::Separate) {
+            edges = mTable.edges[mask][sheet];
+        } else {
+            int signs = 0;
+            for (int k = 0; k < 8; ++k) signs |= int(f[k] < mIso) << k;
+            edges = mTable.crossed[signs];
+        }
+        // Visited in memory order, set bits only (bit n: mEdgeOrder[n]).
+        unsigned order = unsigned(mMemoryOrderBits[0][edges & 63] | mMemoryOrderBits[1][edges >> 6]);
         glm::dvec3 sum(0.0);
         int count = 0;
-        for (int n = 0; n < 12; ++n) {
-            const int e = mEdgeOrder[n];
+        for (; order != 0; order &= order - 1) {
+            const int e = mEdgeOrder[std::countr_zero(order)];
             const int k0 = CELL_EDGES[e][0], k1 = CELL_EDGES[e][1];
-            if (separate ? mTable.component[mask][e] != sheet : (f[k0] < mIso) == (f[k1] < mIso)) continue;
             const double v0 = f[k0], v1 = f[k1];
-            glm::dvec3 q(k0 >> 2 & 1, k0 >> 1 & 1, k0 & 1);
-            q[e / 4] = std::clamp((iso - v0) / (v1 - v0), 0.0, 1.0);
-            sum += q;
+            const double t = std::clamp((iso - v0) / (v1 - v0), 0.0, 1.0);
+            // The crossing: corner k0, moved by t along the edge's axis.
+            const int axis = e / 4;
+            sum.x += axis == 0 ? t : double(k0 >> 2 & 1);
+            sum.y += axis == 1 ? t : double(k0 >> 1 & 1);
+            sum.z += axis == 2 ? t : double(k0 & 1);
             ++count;
         }
         return count > 0 ? sum / double(count) : glm::dvec3(0.5);
@@ -581,18 +593,29 @@ private:
     /// and the rounding to the quantum.
     glm::dvec3 finish(glm::dvec3 p, std::size_t corner0, bool project, double lo) const
     {
-        const double iso = mP.isovalue, hi = 1.0 - lo;
-        for (int s = 0; s < (project ? mP.projectionSteps : 0); ++s) {
+        if (project && mP.projectionSteps > 0) p = projected(p, corner0);
+        const double hi = 1.0 - lo;
+        for (int a = 0; a < 3; ++a) {
+            p[a] = std::clamp(p[a], lo, hi);
+            if (mQuantum > 0.0) {
+                const double r = std::floor(p[a] * mQuantum + 0.5);
+                p[a] = mQuantumInverse > 0.0 ? r * mQuantumInverse : r / mQuantum;
+            }
+        }
+        return p;
+    }
+
+    /// Newton steps along the trilinear gradient towards the isosurface.
+    glm::dvec3 projected(glm::dvec3 p, std::size_t corner0) const
+    {
+        const double iso = mP.isovalue;
+        for (int s = 0; s < mP.projectionSteps; ++s) {
             const double fp = trilinear(corner0, p) - iso;
             const glm::dvec3 g = centralGradient(corner0, p);
             const double g2 = glm::dot(g, g);
             if (!(g2 > 1e-12)) break;
             p -= g * (fp / g2);
             for (int a = 0; a < 3; ++a) p[a] = std::clamp(p[a], 0.0, 1.0);
-        }
-        for (int a = 0; a < 3; ++a) {
-            p[a] = std::clamp(p[a], lo, hi);
-            if (mP.quantum > 0.0) p[a] = std::floor(p[a] * mP.quantum + 0.5) / mP.quantum;
         }
         return p;
     }
@@ -671,9 +694,11 @@ private:
     int mBit[3] = {2, 1, 0};
     int mCornerOrder[8];
     int mEdgeOrder[12];
+    std::uint16_t mMemoryOrderBits[2][64]; // edge bits 0-5 and 6-11 (CELL_EDGES) to bits of mEdgeOrder
     std::ptrdiff_t mCornerOffset[8];
     bool mAnyFiner = false, mAnyLevel = false;
     float mIso = 0.0f;
+    double mQuantum = 0.0, mQuantumInverse = 0.0; // the inverse only when exact (a power of two)
     std::vector<std::uint8_t> mInside;
     std::vector<std::uint32_t> mCellSlot;
     std::vector<std::array<std::uint32_t, 5>> mSlots; // 4 vertices, then the corner signs

@@ -201,14 +201,16 @@ ChunkData GridChunkMesher::mesh(const Coord& min, const Coord& dim) const
     if (perVertexNormals) out.normals.reserve(result.vertices.size());
     for (std::size_t i = 0; i < result.vertices.size(); ++i) {
         const DualVertex& v = result.vertices[i];
-        const glm::dvec3& p = v.local;
-        out.local.emplace_back(float(v.cell[0] + p[0]), float(v.cell[1] + p[1]), float(v.cell[2] + p[2]));
+        const glm::dvec3& q = result.positions[i];
+        out.local.emplace_back(float(q.x), float(q.y), float(q.z));
         const Coord cell = min + Coord(v.cell[0], v.cell[1], v.cell[2]);
         out.cells.push_back(cell);
         out.components.push_back(v.sheet);
         if (perVertexNormals) {
             glm::dvec3 g;
             if (normalMethod == NormalMethod::Gradient) {
+                // Inside the cell; exact, as the offset is a multiple of 1/QUANTUM.
+                const glm::dvec3 p = q - glm::dvec3(v.cell[0], v.cell[1], v.cell[2]);
                 g = options.gradient(mFrame.world(openvdb::Vec3d(cell.x(), cell.y(), cell.z()) +
                                                   openvdb::Vec3d(p.x, p.y, p.z)));
             } else {

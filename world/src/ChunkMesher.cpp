@@ -203,8 +203,8 @@ public:
             const meshing::DualVertex& v = result.vertices[i];
             const glm::dvec3& g = result.gradients[i];
             const int level = mL + v.level;
-            const double cell = double(std::int64_t(1) << level) * mParams.voxelSize;
-            const glm::dvec3 position = (glm::dvec3{double(v.cell[0]), double(v.cell[1]), double(v.cell[2])} + v.local) * cell;
+            // Scaling by the power of two 2^mL is exact: one rounding, as from the cell.
+            const glm::dvec3 position = result.positions[i] * (double(mS) * mParams.voxelSize);
             const double len = glm::length(g);
             const glm::dvec3 n = len > 0.0 ? g / len : glm::dvec3(0.0, 1.0, 0.0);
             out.mesh.positions.emplace_back(float(position.x), float(position.y), float(position.z));

@@ -66,7 +66,7 @@ enum class DualSheets
     Separate, ///< one per surface sheet, as marching cubes separates them (ChunkMesh.h); own level only
 };
 
-/// Which gradient dualMesh() reports per vertex (DualVertex::gradient).
+/// Which gradient dualMesh() reports per vertex (DualMeshResult::gradients).
 enum class DualGradient
 {
     None,
@@ -149,18 +149,24 @@ struct DualMeshSettings
     double quantum = 0.0;
 };
 
-/// One vertex: the cell it belongs to, and where in it.
+/// One vertex: the cell it belongs to (where in it: DualMeshResult::positions).
 struct DualVertex
 {
     std::int8_t level = 0;           ///< the cell's level relative to the chunk: −1, 0 or +1
     std::uint8_t sheet = 0;          ///< which surface sheet of the cell (0 with DualSheets::One)
     std::array<int, 3> cell{0, 0, 0}; ///< relative to the chunk minimum, in cells of its level
-    glm::dvec3 local{0.5};           ///< position inside the cell, each in [0, 1]
 };
 
+/// Structure of arrays, one entry per vertex in each per-vertex array, each
+/// written once as the vertex is created (callers move them out, no copy).
 struct DualMeshResult
 {
     std::vector<DualVertex> vertices; ///< in order of first use
+    /// Per vertex, `(cell + local) · 2^level` in double: its position in
+    /// own-level cells relative to the chunk minimum, where `local` (each in
+    /// [0, 1]) is its place inside its cell. `float(positions[i])` is the
+    /// single rounding a float mesh stores.
+    std::vector<glm::dvec3> positions;
     /// Per vertex, as DualMeshSettings::gradients asks (empty with None).
     std::vector<glm::dvec3> gradients;
     /// Triangles, counter-clockwise seen from outside (value >= isovalue).
