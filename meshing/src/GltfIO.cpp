@@ -314,19 +314,20 @@ void writeGlb(const TriangleMesh& mesh, const std::filesystem::path& path, const
     writeGlbBytes(model, path);
 }
 
-TriangleMesh readGltf(const std::filesystem::path& path)
+namespace {
+
+/// Runs one tinygltf load (`load(model, error, warning)`) and turns any
+/// failure, reported or thrown, into one BadInput error naming the file.
+template <typename LoadFn>
+TriangleMesh loadModel(const std::string& name, bool allowExternalFiles, LoadFn&& load)
 {
-    const std::string name = path.string();
-    if (path.extension() == ".glb") return parseGlb(detail::readWholeFile(path), name);
     tinygltf::Model model;
     tinygltf::TinyGLTF loader;
-    configureLoader(loader, /*allowExternalFiles*/ true);
+    configureLoader(loader, allowExternalFiles);
     std::string error, warning;
     bool ok = false;
-    const std::string text = detail::readWholeFile(path);
     try {
-        ok = loader.LoadASCIIFromString(&model, &error, &warning, text.data(), unsigned(text.size()),
-                                        path.parent_path().string());
+        ok = load(loader, model, error, warning);
     } catch (const std::exception& e) {
         ok = false;
         error = e.what();
@@ -337,25 +338,29 @@ TriangleMesh readGltf(const std::filesystem::path& path)
     return meshFromModel(model, name);
 }
 
+} // namespace
+
+TriangleMesh readGltf(const std::filesystem::path& path)
+{
+    const std::string name = path.string();
+    if (path.extension() == ".glb") return parseGlb(detail::readWholeFile(path), name);
+    const std::string text = detail::readWholeFile(path);
+    return loadModel(name, /*allowExternalFiles*/ true,
+                     [&](tinygltf::TinyGLTF& loader, tinygltf::Model& model, std::string& error, std::string& warning) {
+                         return loader.LoadASCIIFromString(&model, &error, &warning, text.data(),
+                                                           unsigned(text.size()), path.parent_path().string());
+                     });
+}
+
 TriangleMesh parseGlb(std::string_view bytes, const std::string& name)
 {
     if (bytes.size() > std::numeric_limits<unsigned int>::max()) detail::failRead(name, 0, "file too large for glTF");
-    tinygltf::Model model;
-    tinygltf::TinyGLTF loader;
-    configureLoader(loader, /*allowExternalFiles*/ false);
-    std::string error, warning;
-    bool ok = false;
-    try {
-        ok = loader.LoadBinaryFromMemory(&model, &error, &warning, reinterpret_cast<const unsigned char*>(bytes.data()),
-                                         unsigned(bytes.size()), "");
-    } catch (const std::exception& e) {
-        ok = false;
-        error = e.what();
-    }
-    if (!ok) {
-        detail::failRead(name, 0, "cannot read glTF: " + (error.empty() ? std::string("unknown error") : oneLine(error)));
-    }
-    return meshFromModel(model, name);
+    return loadModel(name, /*allowExternalFiles*/ false,
+                     [&](tinygltf::TinyGLTF& loader, tinygltf::Model& model, std::string& error, std::string& warning) {
+                         return loader.LoadBinaryFromMemory(&model, &error, &warning,
+                                                            reinterpret_cast<const unsigned char*>(bytes.data()),
+                                                            unsigned(bytes.size()), "");
+                     });
 }
 
 } // namespace strata::meshing

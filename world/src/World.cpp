@@ -1,6 +1,7 @@
 #include <strata/world/World.h>
 
 #include <strata/Finite.h>
+#include <strata/Format.h>
 
 #include "ChunkScheduler.h"
 #include "EditLayer.h"
@@ -22,18 +23,6 @@
 namespace strata::world {
 
 using openvdb::Coord;
-
-namespace {
-
-
-std::string num(double v)
-{
-    char buffer[64];
-    std::snprintf(buffer, sizeof(buffer), "%g", v);
-    return buffer;
-}
-
-} // namespace
 
 /// The World's coordination: one mutex over the resident chunks (tracker)
 /// and the tasks (scheduler), the partition thread that turns points of
@@ -141,7 +130,7 @@ World::World(std::shared_ptr<const terrain::DensityField> field, const WorldOpti
     if (!field) throw Error("World: the density field is null");
     WorldOptions o = options;
     if (!std::isfinite(o.voxelSize) || o.voxelSize <= 0.0)
-        throw Error("WorldOptions: voxelSize = " + num(o.voxelSize) + " must be finite and > 0");
+        throw Error("WorldOptions: voxelSize = " + formatNumber(o.voxelSize) + " must be finite and > 0");
     if (o.chunkSize < 8 || o.chunkSize > 128 || (o.chunkSize & (o.chunkSize - 1)) != 0)
         throw Error("WorldOptions: chunkSize = " + std::to_string(o.chunkSize) + " must be a power of two in [8, 128]");
     if (o.levels < 1 || o.levels > 8)
@@ -150,11 +139,11 @@ World::World(std::shared_ptr<const terrain::DensityField> field, const WorldOpti
     if (o.lodDistance == 0.0) o.lodDistance = 4.0 * w0;
     const double minLod = 2.0 * std::sqrt(3.0) * w0;
     if (!std::isfinite(o.lodDistance) || (o.levels > 1 && o.lodDistance < minLod) || o.lodDistance < 0.0)
-        throw Error("WorldOptions: lodDistance = " + num(o.lodDistance) + " must be at least 2·sqrt(3) chunk widths (" +
-                    num(minLod) + " m)");
+        throw Error("WorldOptions: lodDistance = " + formatNumber(o.lodDistance) + " must be at least 2·sqrt(3) chunk widths (" +
+                    formatNumber(minLod) + " m)");
     if (o.viewRadius == 0.0) o.viewRadius = 3.0 * w0 * double(1 << (o.levels - 1));
     if (!std::isfinite(o.viewRadius) || o.viewRadius <= 0.0)
-        throw Error("WorldOptions: viewRadius = " + num(o.viewRadius) + " must be finite and > 0");
+        throw Error("WorldOptions: viewRadius = " + formatNumber(o.viewRadius) + " must be finite and > 0");
     if (o.threads < 0) throw Error("WorldOptions: threads = " + std::to_string(o.threads) + " must be >= 0");
     if (o.threads == 0) o.threads = int(std::max(1u, std::thread::hardware_concurrency()));
     if (o.editBand < 1 || o.editBand > 16)
@@ -190,11 +179,11 @@ void World::setPointsOfInterest(std::vector<glm::dvec3> points)
     const double limit = double(1 << 29) * mImpl->options.voxelSize - mImpl->options.viewRadius -
                          detail::chunkWidth(mImpl->lod, mImpl->options.levels - 1);
     for (const glm::dvec3& p : points) {
-        if (!isFinite(p)) throw Error("World: point of interest (" + num(p.x) + ", " + num(p.y) + ", " + num(p.z) +
+        if (!isFinite(p)) throw Error("World: point of interest (" + formatNumber(p.x) + ", " + formatNumber(p.y) + ", " + formatNumber(p.z) +
                                     ") is not finite");
         if (std::abs(p.x) > limit || std::abs(p.y) > limit || std::abs(p.z) > limit)
-            throw Error("World: point of interest (" + num(p.x) + ", " + num(p.y) + ", " + num(p.z) +
-                        ") is farther than " + num(limit) + " m from the origin");
+            throw Error("World: point of interest (" + formatNumber(p.x) + ", " + formatNumber(p.y) + ", " + formatNumber(p.z) +
+                        ") is farther than " + formatNumber(limit) + " m from the origin");
     }
     std::vector<ChunkKey> interest = detail::interestChunks(points, mImpl->lod);
     std::lock_guard<std::mutex> lock(mImpl->mutex);
@@ -236,7 +225,7 @@ EditResult World::apply(const Edit& edit)
 {
     edit.shape.validate();
     if (!std::isfinite(edit.smoothRadius) || edit.smoothRadius < 0.0)
-        throw Error("edit: smoothRadius = " + num(edit.smoothRadius) + " must be finite and >= 0");
+        throw Error("edit: smoothRadius = " + formatNumber(edit.smoothRadius) + " must be finite and >= 0");
     const std::vector<Coord> changed = mImpl->edits.apply(edit, *mImpl->field, mImpl->options.editBand);
     return mImpl->mark(changed);
 }

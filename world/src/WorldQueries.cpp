@@ -1,6 +1,7 @@
 #include "WorldQueries.h"
 
 #include <strata/Finite.h>
+#include <strata/Format.h>
 
 #include <strata/Error.h>
 
@@ -16,18 +17,6 @@ namespace strata::world::detail {
 
 using openvdb::Coord;
 using openvdb::CoordBBox;
-
-namespace {
-
-
-std::string num(double v)
-{
-    char buffer[64];
-    std::snprintf(buffer, sizeof(buffer), "%g", v);
-    return buffer;
-}
-
-} // namespace
 
 double latticeDensity(const terrain::DensityField& field, const EditLayer& edits, double voxelSize,
                       const glm::dvec3& p)
@@ -56,7 +45,7 @@ std::optional<RayHit> raycast(const terrain::DensityField& field, const EditLaye
     if (!isFinite(origin) || !isFinite(direction) || glm::length(direction) == 0.0 || !std::isfinite(maxDistance) ||
         maxDistance < 0.0)
         throw Error("World::raycast: origin and direction must be finite, direction not zero, maxDistance >= 0 (got " +
-                    num(maxDistance) + ")");
+                    formatNumber(maxDistance) + ")");
     const glm::dvec3 d = glm::normalize(direction);
     const double v = voxelSize;
     const double minStep = 0.25 * v;
