@@ -10,7 +10,7 @@ PACKAGES=(
   libopenimageio-dev openimageio-tools
   libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri libepoxy-dev libglfw3-dev
   libcli11-dev libtomlplusplus-dev nlohmann-json3-dev libfmt-dev
-  libgtest-dev libbenchmark-dev
+  libgtest-dev libbenchmark-dev libssl-dev
   xvfb xauth
 )
 # Node.js and npm run the Khronos glTF validator test (npm installs

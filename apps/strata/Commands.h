@@ -72,6 +72,7 @@ Command registerNodesCommand(CLI::App& app);     // NodesCommand.cpp
 Command registerRenderCommand(CLI::App& app);    // RenderCommand.cpp
 Command registerMeshCommand(CLI::App& app);      // MeshCommand.cpp
 Command registerInfoCommand(CLI::App& app);      // InfoCommand.cpp
+Command registerBakeCommand(CLI::App& app);      // BakeCommand.cpp
 Command registerBenchCommand(CLI::App& app);      // BenchCommand.cpp: `bench`, with `bench mesh` under it
 Command registerBenchMeshCommand(CLI::App& bench); // BenchMeshCommand.cpp: `bench mesh`, added to `bench`
 

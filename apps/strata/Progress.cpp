@@ -41,6 +41,25 @@ void TerminalProgress::beginStage(const std::string& stage)
 {
     mStage = stage;
     mShownPercent = -1;
+    mStageStart = std::chrono::steady_clock::now();
+}
+
+bool TerminalProgress::progressCount(std::uint64_t done, std::uint64_t total, const std::string& unit)
+{
+    if (gInterrupted) return false;
+    if (!mInteractive || mStage.empty()) return true;
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - mStageStart).count();
+    mOut << "\r\033[K  " << std::left << std::setw(10) << mStage << std::right << done << "/" << total << " " << unit;
+    if (done > 0 && seconds > 0.0) {
+        const double perMinute = 60.0 * double(done) / seconds;
+        const double left = seconds / double(done) * double(total - done);
+        mOut << std::fixed << std::setprecision(1) << "  " << perMinute << " " << unit << "/min  ";
+        if (left >= 60.0) mOut << int(left / 60.0) << " min " << int(left) % 60 << " s left";
+        else mOut << int(left + 0.5) << " s left";
+        mOut << std::defaultfloat;
+    }
+    mOut << std::flush;
+    return true;
 }
 
 bool TerminalProgress::progress(double fraction)

@@ -7,6 +7,7 @@
 
 #include <strata/scene/Pipeline.h>
 
+#include <chrono>
 #include <ostream>
 #include <string>
 
@@ -23,6 +24,8 @@ public:
     /// Shows "stage  NN%" in place (redraws at most once per percent);
     /// false once SIGINT arrived.
     bool progress(double fraction) override;
+    /// Shows "stage  DONE/TOTAL UNIT  RATE UNIT/min  T left" in place.
+    bool progressCount(std::uint64_t done, std::uint64_t total, const std::string& unit) override;
     void endStage(const std::string& stage, double seconds, const std::string& detail) override;
     /// Notices go to stderr, even when quiet.
     void notice(const std::string& line) override;
@@ -33,6 +36,7 @@ private:
     bool mQuiet;
     std::string mStage;
     int mShownPercent = -1;
+    std::chrono::steady_clock::time_point mStageStart;
 };
 
 /// True when file descriptor 1 is a terminal.

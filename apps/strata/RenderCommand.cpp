@@ -5,6 +5,7 @@
 #include "Commands.h"
 #include <strata/scene/Pipeline.h>
 #include <strata/scene/Quality.h>
+#include <strata/scene/Bake.h>
 #include <strata/scene/CaveView.h>
 #include <strata/scene/Scene.h>
 #include <strata/scene/SceneOffset.h>
@@ -42,7 +43,45 @@ struct RenderArguments
     std::optional<std::uint64_t> seed;
     int threads = 0;
     bool quiet = false;
+    double maxScreenError = 2.0;
 };
+
+/// `strata render DIR`: the baked world from its tiles.
+int renderWorld(const RenderArguments& args, SnapshotRequest request, const std::filesystem::path& output)
+{
+    for (const auto& [given, flag] : {std::pair{!args.meshPath.empty(), "--mesh"}, std::pair{!args.offset.empty(), "--offset"},
+                                      std::pair{args.seed.has_value(), "--seed"}, std::pair{request.turntable > 0, "--turntable"},
+                                      std::pair{request.view == "cave", "--view cave"}})
+        if (given) throw Error(std::string(flag) + " cannot be used when rendering a bake folder ('" + args.scenePath + "')");
+    const Scene scene = loadBakedScene(args.scenePath);
+    const QualitySettings quality = resolveQuality(scene, std::nullopt, {});
+    const Scene shading = applyQuality(scene, quality);
+    if (request.backend == "auto") request.backend = quality.backend;
+    WorldSnapshotOptions options;
+    options.request = request;
+    options.maxScreenError = args.maxScreenError;
+    if (!args.size.empty()) std::tie(options.width, options.height) = parseSizeFlag(args.size);
+    std::unique_ptr<tbb::global_control> threadLimit;
+    if (args.threads > 0)
+        threadLimit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
+                                                            std::size_t(args.threads));
+    std::string renderer;
+    std::unique_ptr<render::EglContext> context = openBackend(request, std::cerr, renderer);
+    Stopwatch clock;
+    render::Image image;
+    const WorldSnapshotStats stats = renderBakedWorld(shading, args.scenePath, options, context.get(),
+                                                      [&](const render::Image& frame) { image = frame; });
+    render::writeImage(image, output);
+    if (!args.quiet) {
+        std::cout << "strata render: " << args.scenePath << " (baked world) → " << output.string() << "\n  tiles    ";
+        for (std::size_t l = 0; l < stats.tilesPerLevel.size(); ++l)
+            std::cout << " L" << l << ": " << stats.tilesPerLevel[l];
+        std::cout << std::fixed << std::setprecision(3) << "\n  render    " << std::setw(8) << clock.seconds() << " s   "
+                  << stats.triangles << " triangles, " << image.width << "x" << image.height << ", "
+                  << (context ? "gl" : "cpu") << std::defaultfloat << std::endl;
+    }
+    return 0;
+}
 
 /// A mesh file to render: any format meshing reads, with face-averaged
 /// normals where the file has none.
@@ -65,8 +104,16 @@ Command registerRenderCommand(CLI::App& app)
         "render",
         "Render one image (or --turntable N frames) of a scene's terrain (or of --mesh FILE) with the scene's "
         "material, camera and light");
-    render->add_option("scene", args->scenePath, "Scene file (TOML); without one, the embedded default scene")
-        ->check(CLI::ExistingFile);
+    render
+        ->add_option("scene", args->scenePath,
+                     "Scene file (TOML), or a `strata bake` folder (the whole world from its tiles); without one, "
+                     "the embedded default scene")
+        ->check(CLI::ExistingPath);
+    render->add_option("--max-screen-error", args->maxScreenError,
+                       "Bake folders: per tile, the coarsest level whose geometric error stays within this many "
+                       "pixels (the 3D Tiles rule)")
+        ->capture_default_str()
+        ->check(CLI::PositiveNumber);
     render
         ->add_option("--mesh", args->meshPath,
                      "Render this mesh (.glb, .gltf, .ply, .obj, .stl) instead of the scene's terrain")
@@ -97,6 +144,7 @@ Command registerRenderCommand(CLI::App& app)
                     throw Error("--snapshot-format '" + request.format + "' does not match the output name '" +
                                 args->output + "' (use a ." + request.format + " name)");
                 }
+                if (std::filesystem::is_directory(args->scenePath)) return renderWorld(*args, request, output);
                 if (request.view == "cave" && !args->meshPath.empty()) {
                     throw Error("--view cave needs the scene's terrain grid: it cannot be used with --mesh '" +
                                 args->meshPath + "'");

@@ -21,6 +21,7 @@ int main(int argc, char** argv)
         registerSceneCommand(app),
         registerNodesCommand(app),
         registerRenderCommand(app),
+        registerBakeCommand(app),
         registerMeshCommand(app),
         registerInfoCommand(app),
         registerBenchCommand(app),

@@ -14,8 +14,8 @@
 #include <cmath>
 #include <cstring>
 #include <fstream>
-#include <sstream>
 #include <limits>
+#include <map>
 #include <sstream>
 
 namespace strata::meshing {
@@ -161,12 +161,9 @@ void checkFinite(const std::vector<glm::vec3>& values, const std::string& what, 
     }
 }
 
-TriangleMesh meshFromModel(const tinygltf::Model& model, const std::string& name)
+/// One triangle primitive, read and checked.
+TriangleMesh primitiveMesh(const tinygltf::Model& model, const tinygltf::Primitive& primitive, const std::string& name)
 {
-    if (model.meshes.empty() || model.meshes[0].primitives.empty()) {
-        throw Error(ErrorKind::BadInput, "'" + name + "' holds no mesh", {.file = name});
-    }
-    const tinygltf::Primitive& primitive = model.meshes[0].primitives[0];
     if (primitive.mode != TINYGLTF_MODE_TRIANGLES && primitive.mode != -1) {
         throw Error(ErrorKind::BadInput, "'" + name + "': only triangle primitives are supported", {.file = name});
     }
@@ -218,6 +215,30 @@ TriangleMesh meshFromModel(const tinygltf::Model& model, const std::string& name
                                           " is out of range (" + std::to_string(mesh.positions.size()) + " vertices)");
         }
     }
+    return mesh;
+}
+
+/// Every triangle primitive of the first mesh, appended in order (a
+/// primitive without normals drops the normals of the whole mesh).
+TriangleMesh meshFromModel(const tinygltf::Model& model, const std::string& name)
+{
+    if (model.meshes.empty() || model.meshes[0].primitives.empty()) {
+        throw Error(ErrorKind::BadInput, "'" + name + "' holds no mesh", {.file = name});
+    }
+    TriangleMesh mesh;
+    bool normals = true;
+    for (const tinygltf::Primitive& primitive : model.meshes[0].primitives) {
+        TriangleMesh part = primitiveMesh(model, primitive, name);
+        if (mesh.positions.size() + part.positions.size() > std::numeric_limits<std::uint32_t>::max()) {
+            detail::failRead(name, 0, "too many vertices");
+        }
+        const auto base = std::uint32_t(mesh.positions.size());
+        for (std::uint32_t i : part.indices) mesh.indices.push_back(base + i);
+        mesh.positions.insert(mesh.positions.end(), part.positions.begin(), part.positions.end());
+        normals = normals && part.normals.size() == part.positions.size();
+        if (normals) mesh.normals.insert(mesh.normals.end(), part.normals.begin(), part.normals.end());
+    }
+    if (!normals) mesh.normals.clear();
     for (const tinygltf::Node& node : model.nodes) {
         if (node.mesh == 0 && node.translation.size() == 3) {
             mesh.origin = glm::dvec3(node.translation[0], node.translation[1], node.translation[2]);
@@ -230,19 +251,6 @@ TriangleMesh meshFromModel(const tinygltf::Model& model, const std::string& name
     return mesh;
 }
 
-// Serialised in memory, then written with checked writes: tinygltf's file
-// writer does not report a failed stream.
-void writeGlbBytes(const tinygltf::Model& model, const std::filesystem::path& path)
-{
-    std::ostringstream bytes;
-    tinygltf::TinyGLTF writer;
-    if (!writer.WriteGltfSceneToStream(&model, bytes, /*prettyPrint*/ false, /*writeBinary*/ true) || !bytes) {
-        throw Error(ErrorKind::Internal, "cannot write glTF file '" + path.string() + "': tinygltf failed",
-                    {.file = path.string()});
-    }
-    writeFileAtomically(path, bytes.view());
-}
-
 std::string oneLine(std::string text)
 {
     while (!text.empty() && (text.back() == '\n' || text.back() == ' ')) text.pop_back();
@@ -252,11 +260,9 @@ std::string oneLine(std::string text)
 
 } // namespace
 
-void writeGlb(const TriangleMesh& mesh, const std::filesystem::path& path, const GlbOptions& options)
+std::string encodeGlb(const std::vector<GlbPart>& parts, const glm::dvec3& origin, const std::string& name,
+                      bool compactIndices)
 {
-    std::string name = options.name.empty() ? path.stem().string() : options.name;
-    if (name.empty()) name = "terrain";
-
     tinygltf::Model model;
     model.asset.version = "2.0";
     model.asset.generator = "Strata";
@@ -264,54 +270,77 @@ void writeGlb(const TriangleMesh& mesh, const std::filesystem::path& path, const
 
     tinygltf::Node node;
     node.name = name;
-    if (mesh.origin != glm::dvec3(0.0)) {
-        node.translation = {mesh.origin.x, mesh.origin.y, mesh.origin.z};
-    }
+    if (origin != glm::dvec3(0.0)) node.translation = {origin.x, origin.y, origin.z};
     tinygltf::Scene scene;
     scene.nodes.push_back(0);
     model.scenes.push_back(scene);
     model.defaultScene = 0;
-    if (mesh.indices.empty() || mesh.positions.empty()) {
-        // glTF accessors cannot be empty: an empty mesh is a node without one.
-        model.buffers.clear();
-        model.nodes.push_back(node);
-        writeGlbBytes(model, path);
-        return;
-    }
-
-    tinygltf::Primitive primitive;
-    primitive.mode = TINYGLTF_MODE_TRIANGLES;
-    primitive.attributes["POSITION"] = appendVec3Accessor(model, mesh.positions, true);
-    if (!mesh.normals.empty()) {
-        primitive.attributes["NORMAL"] = appendVec3Accessor(model, mesh.normals, false);
-    }
-    tinygltf::Accessor indices;
-    indices.bufferView = appendView(model, mesh.indices.data(), mesh.indices.size() * sizeof(std::uint32_t),
-                                    TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
-    indices.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
-    indices.count = mesh.indices.size();
-    indices.type = TINYGLTF_TYPE_SCALAR;
-    model.accessors.push_back(indices);
-    primitive.indices = int(model.accessors.size() - 1);
-
-    // A neutral rough dielectric instead of glTF's default (metallic 1).
-    tinygltf::Material material;
-    material.name = "strata-neutral";
-    material.pbrMetallicRoughness.baseColorFactor = {0.8, 0.8, 0.8, 1.0};
-    material.pbrMetallicRoughness.metallicFactor = 0.0;
-    material.pbrMetallicRoughness.roughnessFactor = 0.9;
-    model.materials.push_back(material);
-    primitive.material = 0;
 
     tinygltf::Mesh gltfMesh;
     gltfMesh.name = name;
-    gltfMesh.primitives.push_back(primitive);
-    model.meshes.push_back(gltfMesh);
+    std::map<std::pair<std::string, bool>, int> materials;
+    for (const GlbPart& part : parts) {
+        const TriangleMesh& mesh = *part.mesh;
+        // glTF accessors cannot be empty: an empty part has no primitive.
+        if (mesh.indices.empty() || mesh.positions.empty()) continue;
+        tinygltf::Primitive primitive;
+        primitive.mode = TINYGLTF_MODE_TRIANGLES;
+        primitive.attributes["POSITION"] = appendVec3Accessor(model, mesh.positions, true);
+        if (!mesh.normals.empty()) primitive.attributes["NORMAL"] = appendVec3Accessor(model, mesh.normals, false);
+        tinygltf::Accessor indices;
+        if (compactIndices && mesh.positions.size() <= 0xffff) {
+            const std::vector<std::uint16_t> small(mesh.indices.begin(), mesh.indices.end());
+            indices.bufferView = appendView(model, small.data(), small.size() * sizeof(std::uint16_t),
+                                            TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
+            indices.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT;
+        } else {
+            indices.bufferView = appendView(model, mesh.indices.data(), mesh.indices.size() * sizeof(std::uint32_t),
+                                            TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
+            indices.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
+        }
+        indices.count = mesh.indices.size();
+        indices.type = TINYGLTF_TYPE_SCALAR;
+        model.accessors.push_back(indices);
+        primitive.indices = int(model.accessors.size() - 1);
 
-    node.mesh = 0;
+        // A neutral rough dielectric instead of glTF's default (metallic 1).
+        const auto [found, added] = materials.emplace(std::make_pair(part.material, part.doubleSided),
+                                                      int(model.materials.size()));
+        if (added) {
+            tinygltf::Material material;
+            material.name = part.material;
+            material.pbrMetallicRoughness.baseColorFactor = {0.8, 0.8, 0.8, 1.0};
+            material.pbrMetallicRoughness.metallicFactor = 0.0;
+            material.pbrMetallicRoughness.roughnessFactor = 0.9;
+            material.doubleSided = part.doubleSided;
+            model.materials.push_back(material);
+        }
+        primitive.material = found->second;
+        gltfMesh.primitives.push_back(primitive);
+    }
+    if (gltfMesh.primitives.empty()) {
+        model.buffers.clear();
+    } else {
+        model.meshes.push_back(gltfMesh);
+        node.mesh = 0;
+    }
     model.nodes.push_back(node);
 
-    writeGlbBytes(model, path);
+    // Serialised in memory: the caller writes the bytes with checked writes
+    // (tinygltf's file writer does not report a failed stream).
+    std::ostringstream bytes;
+    tinygltf::TinyGLTF writer;
+    if (!writer.WriteGltfSceneToStream(&model, bytes, /*prettyPrint*/ false, /*writeBinary*/ true) || !bytes) {
+        throw Error(ErrorKind::Internal, "cannot encode glTF mesh '" + name + "': tinygltf failed");
+    }
+    return std::move(bytes).str();
+}
+
+void writeGlb(const TriangleMesh& mesh, const std::filesystem::path& path, const GlbOptions& options)
+{
+    std::string name = options.name.empty() ? path.stem().string() : options.name;
+    if (name.empty()) name = "terrain";
+    writeFileAtomically(path, encodeGlb({GlbPart{&mesh}}, mesh.origin, name, /*compactIndices*/ false));
 }
 
 namespace {

@@ -105,6 +105,7 @@ Scene parseScene(std::string_view text, const std::string& source)
 
     Scene scene;
     scene.source = source;
+    scene.text = std::string(text);
     TableReader root(&document, "", source);
     scene.terrain.seed = std::uint64_t(root.integer("seed", 1, 0, std::numeric_limits<std::int64_t>::max()));
 

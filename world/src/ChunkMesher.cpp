@@ -15,126 +15,6 @@ using openvdb::CoordBBox;
 
 namespace {
 
-constexpr int BLOCK = 8;
-
-/// The lattice points origin + i·step (voxels), i in [0, dim)³, filled lazily
-/// in 8³ blocks. A block whose every point is provably farther than `margin`
-/// voxels from the base surface, with no edit within the margin, is filled
-/// with values of the right sign only: no sign-changing edge of length
-/// <= margin can end in it, so its values are only ever compared with 0.
-class SampleArray
-{
-public:
-    void init(const terrain::DensityField* field, const EditSnapshot* edits, double voxelSize, const std::int64_t origin[3],
-              std::int64_t step, int dim, std::int64_t margin, SampleCache* cache = nullptr)
-    {
-        mCache = cache;
-        mField = field;
-        mEdits = edits;
-        mVoxelSize = voxelSize;
-        for (int a = 0; a < 3; ++a) mOrigin[a] = origin[a];
-        mStep = step;
-        mDim = dim;
-        mMargin = margin;
-        mBlocks = (dim + BLOCK - 1) / BLOCK;
-        mValues.assign(std::size_t(dim) * dim * dim, 0.0f);
-        mFilled.assign(std::size_t(mBlocks) * mBlocks * mBlocks, 0);
-        if (mCache && mCache->blockDone.size() != mFilled.size()) {
-            mCache->blockDone.assign(mFilled.size(), 0);
-            mCache->values.clear();
-        }
-    }
-
-    float at(int i, int j, int k)
-    {
-        assert(i >= 0 && j >= 0 && k >= 0 && i < mDim && j < mDim && k < mDim);
-        const std::size_t b = (std::size_t(k / BLOCK) * mBlocks + j / BLOCK) * mBlocks + i / BLOCK;
-        if (!mFilled[b]) fill(i / BLOCK, j / BLOCK, k / BLOCK, b);
-        return mValues[(std::size_t(k) * mDim + j) * mDim + i];
-    }
-
-    /// Fills every block not filled yet (the same values as on demand).
-    void fillAll()
-    {
-        for (int bk = 0; bk < mBlocks; ++bk)
-            for (int bj = 0; bj < mBlocks; ++bj)
-                for (int bi = 0; bi < mBlocks; ++bi) {
-                    const std::size_t b = (std::size_t(bk) * mBlocks + bj) * mBlocks + bi;
-                    if (!mFilled[b]) fill(bi, bj, bk, b);
-                }
-    }
-
-    /// The values, x fastest, then y, then z (fillAll() first).
-    const float* data() const { return mValues.data(); }
-    int dim() const { return mDim; }
-
-private:
-    void fill(int bi, int bj, int bk, std::size_t b)
-    {
-        mFilled[b] = 1;
-        const int lo[3] = {bi * BLOCK, bj * BLOCK, bk * BLOCK};
-        const int hi[3] = {std::min(lo[0] + BLOCK, mDim), std::min(lo[1] + BLOCK, mDim), std::min(lo[2] + BLOCK, mDim)};
-        std::int64_t v0[3], v1[3];
-        for (int a = 0; a < 3; ++a) {
-            v0[a] = mOrigin[a] + lo[a] * mStep;
-            v1[a] = mOrigin[a] + (hi[a] - 1) * mStep;
-        }
-        const CoordBBox box(Coord(int(v0[0] - mMargin), int(v0[1] - mMargin), int(v0[2] - mMargin)),
-                            Coord(int(v1[0] + mMargin), int(v1[1] + mMargin), int(v1[2] + mMargin)));
-        const bool edited = !mEdits->empty() && mEdits->overlaps(box);
-        if (!edited) {
-            const glm::dvec3 c0{double(v0[0]), double(v0[1]), double(v0[2])};
-            const glm::dvec3 c1{double(v1[0]), double(v1[1]), double(v1[2])};
-            const glm::dvec3 centre = 0.5 * (c0 + c1) * mVoxelSize;
-            const double radius = 0.5 * glm::length(c1 - c0) * mVoxelSize;
-            const double bound = mField->distanceBound(centre);
-            if (std::abs(bound) > radius + double(mMargin) * mVoxelSize) {
-                const float value = bound > 0.0 ? float(bound - radius) : float(bound + radius);
-                for (int k = lo[2]; k < hi[2]; ++k)
-                    for (int j = lo[1]; j < hi[1]; ++j)
-                        for (int i = lo[0]; i < hi[0]; ++i) mValues[(std::size_t(k) * mDim + j) * mDim + i] = value;
-                return;
-            }
-        }
-        const bool cached = mCache && mCache->blockDone[b];
-        if (mCache && mCache->values.empty()) mCache->values.assign(mValues.size(), 0.0f);
-        for (int k = lo[2]; k < hi[2]; ++k) {
-            for (int j = lo[1]; j < hi[1]; ++j) {
-                for (int i = lo[0]; i < hi[0]; ++i) {
-                    const std::size_t at = (std::size_t(k) * mDim + j) * mDim + i;
-                    const std::int64_t x = mOrigin[0] + i * mStep, y = mOrigin[1] + j * mStep,
-                                       z = mOrigin[2] + k * mStep;
-                    float value;
-                    if (edited && mEdits->lookup(Coord(int(x), int(y), int(z)), value)) {
-                        mValues[at] = value;
-                        if (!mCache || cached) continue;
-                    }
-                    if (cached) {
-                        mValues[at] = mCache->values[at];
-                        continue;
-                    }
-                    value = baseSample(*mField, x, y, z, mVoxelSize);
-                    if (mCache) mCache->values[at] = value;
-                    if (!(edited && mEdits->lookup(Coord(int(x), int(y), int(z)), mValues[at]))) mValues[at] = value;
-                }
-            }
-        }
-        if (mCache) mCache->blockDone[b] = 1;
-    }
-
-    const terrain::DensityField* mField = nullptr;
-    const EditSnapshot* mEdits = nullptr;
-    SampleCache* mCache = nullptr;
-    double mVoxelSize = 1.0;
-    std::int64_t mOrigin[3] = {0, 0, 0};
-    std::int64_t mStep = 1;
-    int mDim = 0;
-    int mBlocks = 0;
-    std::int64_t mMargin = 0;
-    std::vector<float> mValues;
-    std::vector<std::uint8_t> mFilled;
-};
-
 /// Gathers one chunk's samples (the field and the edits through
 /// SampleArray) and meshes them with meshing::dualMesh(): surface nets, one
 /// vertex per cell, the cells of lower neighbours at their own levels.
@@ -175,18 +55,20 @@ public:
         // any (they read this array too).
         bool coarser = false;
         for (int m = 1; m < 8; ++m) coarser = coarser || mSig[m] > 0;
-        mCoarse.init(&mField, &mEdits, mParams.voxelSize, origin, mS, int(mN) + 3, coarser ? 2 * mS : mS, mCache);
+        const int dim = int(mN) + 3;
+        mCoarse.init(&mField, &mEdits, mParams.voxelSize, origin, mS, {dim, dim, dim}, coarser ? 2 * mS : mS, mCache);
         mCoarse.fillAll(); // the walk reads every block of it anyway
         meshing::DualSamples samples;
         samples.values = mCoarse.data();
         samples.cells = {int(mN), int(mN), int(mN)};
-        samples.size = {mCoarse.dim(), mCoarse.dim(), mCoarse.dim()};
-        samples.stride = {1, mCoarse.dim(), std::ptrdiff_t(mCoarse.dim()) * mCoarse.dim()};
+        samples.size = mCoarse.dims();
+        samples.stride = {1, dim, std::ptrdiff_t(dim) * dim};
         samples.apron = 2;
         samples.signature = mSig;
         if (mHasFiner) {
             for (int a = 0; a < 3; ++a) origin[a] = mMin[a] - mS;
-            mFine.init(&mField, &mEdits, mParams.voxelSize, origin, mS / 2, 2 * int(mN) + 3, mS / 2);
+            const int fineDim = 2 * int(mN) + 3;
+            mFine.init(&mField, &mEdits, mParams.voxelSize, origin, mS / 2, {fineDim, fineDim, fineDim}, mS / 2);
             samples.fine = [this](int x, int y, int z) { return mFine.at(x + 2, y + 2, z + 2); };
         } else {
             // Level 0 has no finer level: a finer entry cannot occur.

@@ -7,6 +7,7 @@
 
 #include "EditLayer.h"
 #include "Lattice.h"
+#include "SampleArray.h"
 
 #include <mutex>
 #include <vector>
@@ -17,17 +18,6 @@ struct MesherParams
 {
     double voxelSize = 0.5;
     int chunkSize = 32;
-};
-
-/// The procedural samples of one chunk's own-level lattice, kept between
-/// re-meshes (after an edit only the edits are looked up again). Used by one
-/// task at a time (`mutex`); the values are the same whether cached or not.
-struct SampleCache
-{
-    std::mutex mutex;
-    std::vector<float> values;          ///< empty until a block is evaluated
-    std::vector<std::uint8_t> blockDone; ///< per 8³ block: values hold the procedural samples
-    std::size_t bytes() const { return values.capacity() * sizeof(float) + blockDone.capacity(); }
 };
 
 /// The voxel box of edits a chunk's mesh can depend on (its sample footprint

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace strata::meshing {
 
@@ -28,8 +29,27 @@ struct GlbOptions
 /// Throws strata::Error (ErrorKind::Io) naming the path on failure.
 void writeGlb(const TriangleMesh& mesh, const std::filesystem::path& path, const GlbOptions& options = {});
 
-/// Reads the first triangle primitive of the first mesh of a .glb or .gltf
-/// file. Positions stay relative to the node translation, which becomes
+/// One primitive of encodeGlb(): a mesh (positions relative to the
+/// shared origin) and its material. Parts with the same material name and
+/// sidedness share one material (neutral grey, as writeGlb()).
+struct GlbPart
+{
+    const TriangleMesh* mesh = nullptr;
+    std::string material = "strata-neutral";
+    bool doubleSided = false;
+};
+
+/// The bytes of a .glb holding one mesh named `name` with a primitive per
+/// non-empty part (POSITION, NORMAL if present, indices), under one node
+/// translated to `origin` (double precision). `compactIndices`: uint16
+/// indices for parts of at most 65535 vertices, else uint32.
+/// Throws strata::Error (Internal) if tinygltf fails.
+std::string encodeGlb(const std::vector<GlbPart>& parts, const glm::dvec3& origin, const std::string& name,
+                      bool compactIndices = true);
+
+/// Reads every triangle primitive of the first mesh of a .glb or .gltf
+/// file, appended in order into one mesh (normals kept only when every
+/// primitive has them). Positions stay relative to the node translation, which becomes
 /// `origin`. Images are not decoded; a .glb reads no external files.
 /// Throws strata::Error (BadInput) naming the path on failure: a missing or
 /// sparse accessor, one that overruns its buffer view or its buffer, a stride

@@ -42,6 +42,12 @@ public:
     /// Return false to stop: the stage throws strata::Error of kind
     /// Interrupted, and nothing more is written.
     virtual bool progress(double fraction) { return true; }
+    /// Progress of a stage that counts items (the bake's tiles): `done` of
+    /// `total` `unit`s. Same contract as progress(), which it calls by default.
+    virtual bool progressCount(std::uint64_t done, std::uint64_t total, const std::string& unit)
+    {
+        return progress(total ? double(done) / double(total) : 1.0);
+    }
     /// The current stage ended after `seconds`; `detail` sums it up in words.
     virtual void endStage(const std::string& stage, double seconds, const std::string& detail) {}
     /// A one-line notice for the user (e.g. the GL fallback to the CPU).

@@ -46,6 +46,7 @@ struct SnapshotSettings
 struct Scene
 {
     std::string source; ///< file path, or "<default scene>"
+    std::string text;   ///< the TOML text it was parsed from (the bake hashes it)
     /// The seed (terrain.seed) and, for the [terrain.height]/[terrain.caves]
     /// shorthand, its options.
     terrain::TerrainOptions terrain;

@@ -1,0 +1,154 @@
+#pragma once
+/// \file
+/// `strata bake`: a scene's region cut into tiles, each meshed at several
+/// levels of detail and written as glTF, with a manifest, an OGC 3D Tiles
+/// 1.1 tileset and (optionally) each tile's level-0 grid.
+///
+/// Tiles. The region's corner is snapped down to the coarsest level's cell
+/// (2^(lods−1) voxels) and its far corner up; the box between is cut into
+/// tiles of `tileSize` metres over x and z (the last row and column
+/// shorter where the region is not a whole number of tiles) and into slabs
+/// of `tileSize` over y where the region is taller than one tile. Tile
+/// index i = (y·nz + z)·nx + x. A tile is a pure function of the scene and
+/// its index (world::meshTile(): the field sampled on the voxel lattice,
+/// meshed with the World's dual mesher at each level, clipped exactly to
+/// the tile's box, skirts on faces with a neighbour), so a tile baked alone,
+/// in a full bake, or on any thread count is the same bytes.
+///
+/// Files (all written atomically):
+/// - `tiles/L/X_Z.glb` (`X_Y_Z` when there are several slabs): level L of
+///   the tile, positions relative to the tile's corner (the node's
+///   translation, double), normals, uint16 indices where they fit; two
+///   primitives, the surface and the skirt (material "strata-skirt",
+///   double-sided). A tile with no surface at a level has no file.
+/// - `grids/X_Z.vdb`: the tile's level-0 narrow-band level set (open box).
+/// - `manifest.json`: scene hash, seed, settings, per tile and level the
+///   bounds, triangles, bytes, SHA-256 and measured error.
+/// - `tileset.json`: 3D Tiles 1.1 (see Tileset.h).
+///
+/// Resume. A bake into a folder that holds a manifest of the same bake
+/// (scene hash, seed and settings) keeps every tile whose files match the
+/// manifest's sizes and hashes and redoes the rest; a manifest of another
+/// bake is refused unless `force`.
+
+#include <strata/scene/Pipeline.h>
+#include <strata/scene/Scene.h>
+
+#include <strata/world/TileMesh.h>
+
+#include <array>
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace strata::scene {
+
+struct BakeOptions
+{
+    std::filesystem::path outputDir;
+    double tileSize = 0.0; ///< metres; 0 = 256 voxels
+    int lods = 3;          ///< levels of detail, 1..8: level l has cells of 2^l voxels
+    /// Which tiles: "all", an index "I", or a range "A-B" (inclusive).
+    std::string tiles = "all";
+    bool grids = true;                 ///< write grids/X_Z.vdb
+    bool force = false;                ///< bake over another scene's bake
+    std::optional<std::uint64_t> seed; ///< overrides the scene's seed
+    int threads = 0;                   ///< tiles baked at once; 0 = all cores
+    /// Memory budget per tile in bytes (0 = none): a tile whose sample
+    /// arrays and grid estimate exceed it is refused before anything runs.
+    std::uint64_t maxMemoryBytes = 8ull << 30;
+    /// Skirt depth in metres; 0 = two cells of the coarsest level.
+    double skirtDepth = 0.0;
+};
+
+/// One tile of a plan.
+struct BakeTile
+{
+    int index = 0;
+    std::array<int, 3> cell{0, 0, 0}; ///< x, y, z position in the tile grid
+    world::TileBox box;               ///< voxels; neighbourFaces set
+    std::string name;                 ///< "X_Z" or "X_Y_Z"
+};
+
+/// Where the tiles are and what the bake will do; checked, nothing written.
+struct BakePlan
+{
+    double voxelSize = 1.0;
+    double tileSize = 0.0; ///< metres
+    int lods = 1;
+    std::uint64_t seed = 0;
+    std::string sceneHash;                  ///< SHA-256 of the scene text
+    std::array<std::int64_t, 3> minVoxel{}; ///< the snapped region corner (voxels)
+    std::array<std::int64_t, 3> maxVoxel{}; ///< the snapped far corner (voxels)
+    std::array<int, 3> counts{1, 1, 1};     ///< tiles per axis
+    double skirtDepth = 0.0;                ///< metres
+    std::vector<int> selected;              ///< the indices to bake, ascending
+    std::uint64_t tileMemoryBytes = 0;      ///< estimated peak per tile
+    int tileCount() const { return counts[0] * counts[1] * counts[2]; }
+    BakeTile tile(int index) const;
+};
+
+/// Checks the options against the scene and plans the tiles. Throws
+/// strata::Error (BadInput) naming the flag and value: a tile size that is
+/// not a positive multiple of the coarsest cell (voxelSize · 2^(lods−1)) or
+/// holds more than 1024 voxels, a region smaller than one tile over x or z,
+/// `lods` out of range, a tile selection that does not parse or is out of
+/// range (naming the count), a tile over the memory budget.
+BakePlan planBake(const Scene& scene, const BakeOptions& options);
+
+/// What a bake did.
+struct BakeSummary
+{
+    int tiles = 0;   ///< tiles in the world
+    int baked = 0;   ///< tiles made by this run
+    int kept = 0;    ///< selected tiles whose files matched the manifest
+    int missing = 0; ///< tiles of the world not baked yet (other selections)
+    std::vector<std::uint64_t> trianglesPerLevel;
+    std::vector<std::uint64_t> filesPerLevel, bytesPerLevel;
+    std::vector<double> errorPerLevel; ///< the tileset's geometric error per level (metres)
+    double seconds = 0.0;
+};
+
+/// Bakes the selected tiles of `plan` (tiles in parallel, each a pure
+/// function of the scene and its index), then rewrites manifest.json and
+/// tileset.json from every tile present. `observer` hears the stage "bake"
+/// with progress per tile and may interrupt (strata::Error, Interrupted:
+/// finished tiles stay, the manifest is written for them). Holds the
+/// output folder's lock. Throws strata::Error: BadInput for another bake's
+/// folder (both hashes named) without `force`, Io naming a file that could
+/// not be written.
+BakeSummary bake(const Scene& scene, const BakeOptions& options, const BakePlan& plan,
+                 PipelineObserver* observer = nullptr);
+
+/// A whole-world snapshot from a bake folder: for each tile the coarsest
+/// level whose geometric error, projected from the camera, stays within
+/// `maxScreenError` pixels (the 3D Tiles rule), merged and rendered as
+/// renderSnapshots() does. The scene comes from `scene` (its material,
+/// lighting and camera); the camera frames the whole world.
+struct WorldSnapshotOptions
+{
+    SnapshotRequest request;
+    std::optional<int> width, height;
+    double maxScreenError = 2.0; ///< pixels
+};
+
+struct WorldSnapshotStats
+{
+    std::vector<int> tilesPerLevel; ///< tiles drawn at each level
+    std::uint64_t triangles = 0;
+    RenderStats render;
+};
+
+/// Reads DIR/manifest.json and the chosen tiles; throws strata::Error
+/// (BadInput) naming a missing or damaged file.
+WorldSnapshotStats renderBakedWorld(const Scene& scene, const std::filesystem::path& bakeDir,
+                                    const WorldSnapshotOptions& options, render::GlContext* context,
+                                    const std::function<void(const render::Image& image)>& sink);
+
+/// The scene a bake folder was made from: DIR/scene.toml (a copy the bake
+/// writes), parsed with the original source name for messages.
+Scene loadBakedScene(const std::filesystem::path& bakeDir);
+
+} // namespace strata::scene

@@ -1,0 +1,329 @@
+#include <strata/scene/Bake.h>
+
+#include "BakeManifest.h"
+
+#include <strata/AtomicFile.h>
+#include <strata/Error.h>
+#include <strata/Format.h>
+#include <strata/OutputLock.h>
+#include <strata/Sha256.h>
+#include <strata/Stopwatch.h>
+#include <strata/meshing/GltfIO.h>
+#include <strata/meshing/GridIO.h>
+#include <strata/terrain/SampleLevelSet.h>
+
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <atomic>
+#include <condition_variable>
+#include <fstream>
+#include <mutex>
+#include <thread>
+
+namespace strata::scene {
+
+namespace fs = std::filesystem;
+using detail::BakeFile;
+using detail::BakeManifest;
+using detail::TileLevelRecord;
+using detail::TileRecord;
+
+namespace {
+
+/// Largest distance of a surface vertex from the field's zero set, to first
+/// order: |f| / |∇f| (central differences half a voxel apart; the gradient's
+/// length is floored at 0.1 so a flat spot of the field cannot blow it up).
+double measureError(const terrain::DensityField& field, const meshing::TriangleMesh& mesh, double voxelSize)
+{
+    const double h = 0.5 * voxelSize;
+    double worst = 0.0;
+    for (const glm::vec3& q : mesh.positions) {
+        const glm::dvec3 p = mesh.origin + glm::dvec3(q);
+        glm::dvec3 g;
+        for (int a = 0; a < 3; ++a) {
+            glm::dvec3 d(0.0);
+            d[a] = h;
+            g[a] = (field.density(p + d) - field.density(p - d)) / (2.0 * h);
+        }
+        worst = std::max(worst, std::abs(field.density(p)) / std::max(glm::length(g), 0.1));
+    }
+    return worst;
+}
+
+void addBounds(const meshing::TriangleMesh& mesh, glm::dvec3& lo, glm::dvec3& hi)
+{
+    for (const glm::vec3& q : mesh.positions) {
+        const glm::dvec3 p = mesh.origin + glm::dvec3(q);
+        lo = glm::min(lo, p);
+        hi = glm::max(hi, p);
+    }
+}
+
+BakeFile writeBakeFile(const fs::path& dir, const std::string& relative, std::string_view bytes)
+{
+    writeFileAtomically(dir / relative, bytes);
+    return BakeFile{relative, bytes.size(), sha256Hex(bytes)};
+}
+
+/// Bakes one tile: every level's mesh and (optionally) the level-0 grid.
+TileRecord bakeTile(const terrain::DensityField& field, const Scene& scene, const BakePlan& plan, bool grids,
+                    std::uint64_t maxMemoryBytes, const BakeTile& tile, const fs::path& dir)
+{
+    TileRecord record;
+    record.index = tile.index;
+    record.cell = tile.cell;
+    record.name = tile.name;
+    for (int a = 0; a < 3; ++a) {
+        record.boxMin[a] = double(tile.box.min[a]) * plan.voxelSize;
+        record.boxMax[a] = double(tile.box.min[a] + tile.box.size[a]) * plan.voxelSize;
+    }
+    for (int level = 0; level < plan.lods; ++level) {
+        world::TileMeshOptions options;
+        options.voxelSize = plan.voxelSize;
+        options.level = level;
+        options.skirtDepth = plan.skirtDepth;
+        const world::TileMeshData mesh = world::meshTile(field, tile.box, options);
+        TileLevelRecord out;
+        out.level = level;
+        out.triangles = mesh.surface.triangleCount();
+        out.skirtTriangles = mesh.skirt.triangleCount();
+        out.vertices = mesh.surface.vertexCount();
+        if (out.triangles > 0) {
+            out.error = measureError(field, mesh.surface, plan.voxelSize);
+            out.min = glm::dvec3(std::numeric_limits<double>::max());
+            out.max = glm::dvec3(std::numeric_limits<double>::lowest());
+            addBounds(mesh.surface, out.min, out.max);
+            addBounds(mesh.skirt, out.min, out.max);
+            const std::string name = "tile " + tile.name + " level " + std::to_string(level);
+            const std::string bytes =
+                meshing::encodeGlb({meshing::GlbPart{&mesh.surface, "strata-terrain", false},
+                                    meshing::GlbPart{&mesh.skirt, "strata-skirt", true}},
+                                   mesh.surface.origin, name);
+            out.file = writeBakeFile(dir, "tiles/" + std::to_string(level) + "/" + tile.name + ".glb", bytes);
+        }
+        record.levels.push_back(out);
+    }
+    if (grids) {
+        terrain::SampleOptions sampling;
+        sampling.voxelSize = plan.voxelSize;
+        sampling.halfWidth = scene.halfWidth;
+        sampling.closed = false;
+        sampling.maxMemoryBytes = maxMemoryBytes;
+        sampling.region.min = record.boxMin;
+        sampling.region.max = record.boxMax;
+        openvdb::FloatGrid::Ptr grid = terrain::sampleLevelSet(field, sampling);
+        grid->setName("terrain");
+        const std::string relative = "grids/" + tile.name + ".vdb";
+        meshing::writeGrid(*grid, dir / relative);
+        record.grid = BakeFile{relative, std::uint64_t(fs::file_size(dir / relative)), sha256File(dir / relative)};
+    }
+    return record;
+}
+
+bool fileMatches(const fs::path& dir, const BakeFile& file, bool hash)
+{
+    std::error_code ec;
+    const fs::path path = dir / file.path;
+    if (!fs::is_regular_file(path, ec) || fs::file_size(path, ec) != file.bytes || ec) return false;
+    return !hash || sha256File(path) == file.sha256;
+}
+
+/// Every file of the record is there with its size (and, when `hash`, its
+/// SHA-256), and the record has every level.
+bool tileMatches(const fs::path& dir, const TileRecord& tile, int lods, bool grids, bool hash)
+{
+    if (int(tile.levels.size()) != lods || grids != tile.grid.has_value()) return false;
+    for (const TileLevelRecord& level : tile.levels)
+        if (level.file && !fileMatches(dir, *level.file, hash)) return false;
+    return !tile.grid || fileMatches(dir, *tile.grid, hash);
+}
+
+/// Refuses another bake's folder unless `force`: names what differs.
+void checkSameBake(const BakeManifest& old, const BakeManifest& now, const fs::path& dir, bool force)
+{
+    std::string differs;
+    if (old.sceneHash != now.sceneHash)
+        differs = "another scene (its scene hash " + old.sceneHash.substr(0, 16) + "…, this scene's " +
+                  now.sceneHash.substr(0, 16) + "…)";
+    else if (old.seed != now.seed)
+        differs = "seed " + std::to_string(old.seed) + " (this bake: " + std::to_string(now.seed) + ")";
+    else if (old.tileSize != now.tileSize || old.lods != now.lods || old.voxelSize != now.voxelSize ||
+             old.counts != now.counts || old.min != now.min || old.skirtDepth != now.skirtDepth)
+        differs = "other settings (tile size " + formatNumber(old.tileSize) + " m, " + std::to_string(old.lods) +
+                  " levels, skirt depth " + formatNumber(old.skirtDepth) + " m; this bake: " +
+                  formatNumber(now.tileSize) + " m, " + std::to_string(now.lods) + " levels, " +
+                  formatNumber(now.skirtDepth) + " m)";
+    if (differs.empty() || force) return;
+    throw Error(ErrorKind::BadInput,
+                "output folder '" + dir.string() + "' holds a bake of " + differs + ": use another folder, or --force to replace it",
+                {dir.string()});
+}
+
+/// With --force over another bake: removes the files its manifest lists.
+void removeOldBake(const BakeManifest& old, const fs::path& dir)
+{
+    std::error_code ec;
+    for (const auto& [index, tile] : old.tiles) {
+        for (const TileLevelRecord& level : tile.levels)
+            if (level.file) fs::remove(dir / level.file->path, ec);
+        if (tile.grid) fs::remove(dir / tile.grid->path, ec);
+    }
+}
+
+} // namespace
+
+BakeSummary bake(const Scene& scene, const BakeOptions& options, const BakePlan& plan, PipelineObserver* observer)
+{
+    const Stopwatch clock;
+    const fs::path& dir = options.outputDir;
+    std::shared_ptr<const terrain::DensityField> field =
+        options.seed && *options.seed != scene.terrain.seed && scene.buildField ? scene.buildField(*options.seed)
+                                                                                : scene.field;
+    if (!field) throw Error(ErrorKind::BadInput, scene.source + ": the scene has no terrain", {scene.source});
+
+    BakeManifest manifest = detail::manifestFor(plan, scene, options.grids);
+    // Check the folder before creating anything in it.
+    std::optional<BakeManifest> old = detail::readManifest(dir);
+    if (old) checkSameBake(*old, manifest, dir, options.force);
+    if (observer && !observer->progress(0.0)) throw Error(ErrorKind::Interrupted, "interrupted before the bake");
+
+    std::error_code ec;
+    fs::create_directories(dir, ec);
+    if (ec) throw Error(ErrorKind::Io, "cannot create output folder '" + dir.string() + "': " + ec.message(), {dir.string()});
+    const OutputLock lock(dir);
+    if (old && !options.force) {
+        // Tiles outside this selection: kept when their files are still there.
+        for (const auto& [index, tile] : old->tiles)
+            if (tileMatches(dir, tile, plan.lods, options.grids, /*hash*/ false)) manifest.tiles[index] = tile;
+    } else if (old) {
+        removeOldBake(*old, dir);
+    }
+    for (int level = 0; level < plan.lods; ++level) fs::create_directories(dir / "tiles" / std::to_string(level), ec);
+    if (options.grids) fs::create_directories(dir / "grids", ec);
+    if (ec) throw Error(ErrorKind::Io, "cannot create folders in '" + dir.string() + "': " + ec.message(), {dir.string()});
+
+    BakeSummary summary;
+    summary.tiles = plan.tileCount();
+    std::vector<int> todo;
+    for (int index : plan.selected) {
+        const auto found = manifest.tiles.find(index);
+        if (found != manifest.tiles.end() && tileMatches(dir, found->second, plan.lods, options.grids, /*hash*/ true)) {
+            ++summary.kept;
+            continue;
+        }
+        manifest.tiles.erase(index);
+        todo.push_back(index);
+    }
+
+    // Tiles in parallel: each worker takes the next index; the calling
+    // thread reports progress and hears Ctrl-C.
+    if (observer) observer->beginStage("bake");
+    std::mutex mutex;
+    std::condition_variable changed;
+    std::size_t next = 0, finished = 0;
+    bool stop = false;
+    std::vector<std::string> failures;
+    std::map<int, TileRecord> made;
+    const int threads = std::max(1, std::min<int>(options.threads > 0 ? options.threads
+                                                                      : int(std::max(1u, std::thread::hardware_concurrency())),
+                                                  int(todo.size())));
+    std::vector<std::thread> workers;
+    for (int w = 0; w < threads && !todo.empty(); ++w) {
+        workers.emplace_back([&] {
+            for (;;) {
+                int index;
+                {
+                    std::lock_guard<std::mutex> hold(mutex);
+                    if (stop || next >= todo.size()) return;
+                    index = todo[next++];
+                }
+                const BakeTile tile = plan.tile(index);
+                std::optional<TileRecord> record;
+                std::string failure;
+                try {
+                    record = bakeTile(*field, scene, plan, options.grids, options.maxMemoryBytes, tile, dir);
+                } catch (const std::exception& e) {
+                    failure = "tile " + std::to_string(index) + " (" + tile.name + "): " + e.what();
+                    // No half-made tile: its finished files go too.
+                    std::error_code ignored;
+                    for (int level = 0; level < plan.lods; ++level)
+                        fs::remove(dir / "tiles" / std::to_string(level) / (tile.name + ".glb"), ignored);
+                    fs::remove(dir / "grids" / (tile.name + ".vdb"), ignored);
+                }
+                std::lock_guard<std::mutex> hold(mutex);
+                if (record) made.emplace(index, std::move(*record));
+                else failures.push_back(failure);
+                ++finished;
+                changed.notify_all();
+            }
+        });
+    }
+    {
+        std::unique_lock<std::mutex> hold(mutex);
+        while (finished < todo.size() && !(stop && finished == next)) {
+            changed.wait(hold);
+            const std::size_t done = finished;
+            hold.unlock();
+            const bool go = !observer || observer->progressCount(done, todo.size(), "tiles");
+            hold.lock();
+            if (!go) stop = true;
+        }
+    }
+    for (std::thread& worker : workers) worker.join();
+    for (auto& [index, record] : made) manifest.tiles[index] = std::move(record);
+    summary.baked = int(made.size());
+
+    // The manifest and tileset describe every tile present, even after a
+    // failure or an interruption, so the next run resumes from them.
+    writeFileAtomically(dir / "scene.toml", scene.text);
+    writeFileAtomically(dir / "manifest.json", detail::toJson(manifest).dump(1) + "\n");
+    writeFileAtomically(dir / "tileset.json", detail::makeTileset(manifest).dump(1) + "\n");
+
+    summary.missing = summary.tiles - int(manifest.tiles.size());
+    summary.trianglesPerLevel.assign(std::size_t(plan.lods), 0);
+    summary.filesPerLevel.assign(std::size_t(plan.lods), 0);
+    summary.bytesPerLevel.assign(std::size_t(plan.lods), 0);
+    for (const auto& [index, tile] : manifest.tiles)
+        for (const TileLevelRecord& level : tile.levels) {
+            const auto l = std::size_t(level.level);
+            summary.trianglesPerLevel[l] += level.triangles;
+            if (level.file) {
+                ++summary.filesPerLevel[l];
+                summary.bytesPerLevel[l] += level.file->bytes;
+            }
+        }
+    summary.errorPerLevel = manifest.geometricErrors();
+    summary.seconds = clock.seconds();
+    if (observer) observer->endStage("bake", summary.seconds, std::to_string(summary.baked) + " tiles baked");
+    if (stop) throw Error(ErrorKind::Interrupted, "bake interrupted: " + std::to_string(summary.baked) +
+                                                     " tiles baked, the manifest lists every finished tile");
+    if (!failures.empty()) {
+        std::sort(failures.begin(), failures.end());
+        std::string message = std::to_string(failures.size()) + " of " + std::to_string(todo.size()) +
+                              " tiles failed (their files were not written); the first: " + failures.front();
+        throw Error(ErrorKind::Io, message, {dir.string()});
+    }
+    return summary;
+}
+
+Scene loadBakedScene(const fs::path& bakeDir)
+{
+    const std::optional<BakeManifest> manifest = detail::readManifest(bakeDir);
+    if (!manifest)
+        throw Error(ErrorKind::BadInput, "'" + bakeDir.string() + "' holds no manifest.json: not a bake folder",
+                    {bakeDir.string()});
+    const fs::path copy = bakeDir / "scene.toml";
+    std::ifstream in(copy, std::ios::binary);
+    if (!in) throw Error(ErrorKind::BadInput, "cannot read '" + copy.string() + "'", {copy.string()});
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (sha256Hex(text) != manifest->sceneHash)
+        throw Error(ErrorKind::BadInput, "'" + copy.string() + "' does not match the manifest's scene hash", {copy.string()});
+    // Parsed under the original name, so relative texture paths resolve
+    // from the original scene's folder.
+    if (manifest->sceneSource == "<default scene>") return defaultScene();
+    return parseScene(text, manifest->sceneSource);
+}
+
+} // namespace strata::scene

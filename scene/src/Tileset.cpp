@@ -1,0 +1,133 @@
+// The bake's OGC 3D Tiles 1.1 tileset. A quadtree over the tile columns
+// (x, z): inner nodes have no content and group their children; each column
+// ends in a chain, one node per level of detail from the coarsest down to
+// level 0, each holding that level's .glb of every slab of the column, with
+// REPLACE refinement, so a client shows one level per column and refines it
+// as the camera comes closer. geometricError of a chain node is the level's
+// measured error (BakeManifest::geometricErrors(): the largest distance of
+// a vertex from the surface over all tiles), 0 at level 0; an inner node's
+// is its box's diagonal (a client refines it unless the whole node would
+// be a few pixels across), never less than its children's.
+//
+// Frames: glTF content is y-up and 3D Tiles z-up; a client turns content by
+// x' = x, y' = −z, z' = y, so the bounding boxes here are given in that
+// turned frame.
+
+#include "BakeManifest.h"
+
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <limits>
+
+namespace strata::scene::detail {
+
+namespace {
+
+using nlohmann::json;
+
+struct Box
+{
+    glm::dvec3 min{std::numeric_limits<double>::max()};
+    glm::dvec3 max{std::numeric_limits<double>::lowest()};
+    bool empty() const { return min.x > max.x; }
+    void add(const glm::dvec3& lo, const glm::dvec3& hi)
+    {
+        min = glm::min(min, lo);
+        max = glm::max(max, hi);
+    }
+    void add(const Box& b)
+    {
+        if (!b.empty()) add(b.min, b.max);
+    }
+};
+
+/// A 3D Tiles box (centre, three half axes) of a y-up box, in the z-up frame.
+json boxVolume(const Box& b)
+{
+    const glm::dvec3 c = 0.5 * (b.min + b.max), h = 0.5 * (b.max - b.min);
+    return {{"box", json::array({c.x, -c.z, c.y, h.x, 0.0, 0.0, 0.0, h.z, 0.0, 0.0, 0.0, h.y})}};
+}
+
+class Builder
+{
+public:
+    explicit Builder(const BakeManifest& m)
+        : mManifest(m)
+        , mErrors(m.geometricErrors())
+    {
+        for (const auto& [index, tile] : m.tiles) mColumns[{tile.cell[0], tile.cell[2]}].push_back(&tile);
+    }
+
+    /// The node for columns [x0, x1) × [z0, z1), or null when nothing in it has content.
+    json node(int x0, int x1, int z0, int z1, Box& bounds) const
+    {
+        if (x1 - x0 == 1 && z1 - z0 == 1) return column(x0, z0, bounds);
+        json children = json::array();
+        double childError = 0.0;
+        const int xm = x1 - x0 > 1 ? (x0 + x1) / 2 : x1, zm = z1 - z0 > 1 ? (z0 + z1) / 2 : z1;
+        for (const auto& [a0, a1] : {std::pair{x0, xm}, std::pair{xm, x1}})
+            for (const auto& [b0, b1] : {std::pair{z0, zm}, std::pair{zm, z1}}) {
+                if (a0 >= a1 || b0 >= b1) continue;
+                Box childBounds;
+                json child = node(a0, a1, b0, b1, childBounds);
+                if (child.is_null()) continue;
+                childError = std::max(childError, child["geometricError"].get<double>());
+                bounds.add(childBounds);
+                children.push_back(std::move(child));
+            }
+        if (children.empty()) return nullptr;
+        if (children.size() == 1) return children[0];
+        return {{"boundingVolume", boxVolume(bounds)},
+                {"geometricError", std::max(glm::length(bounds.max - bounds.min), childError)},
+                {"children", children}};
+    }
+
+private:
+    json column(int x, int z, Box& bounds) const
+    {
+        const auto found = mColumns.find({x, z});
+        if (found == mColumns.end()) return nullptr;
+        for (const TileRecord* tile : found->second)
+            for (const TileLevelRecord& level : tile->levels)
+                if (level.file) bounds.add(level.min, level.max);
+        if (bounds.empty()) return nullptr;
+        json below = nullptr;
+        for (int l = 0; l < mManifest.lods; ++l) {
+            json contents = json::array();
+            for (const TileRecord* tile : found->second)
+                for (const TileLevelRecord& level : tile->levels)
+                    if (level.level == l && level.file) contents.push_back({{"uri", level.file->path}});
+            json node = {{"boundingVolume", boxVolume(bounds)}, {"geometricError", mErrors[std::size_t(l)]}};
+            if (contents.size() == 1) node["content"] = contents[0];
+            if (contents.size() > 1) node["contents"] = contents;
+            if (!below.is_null()) node["children"] = json::array({below});
+            below = std::move(node);
+        }
+        return below;
+    }
+
+    const BakeManifest& mManifest;
+    std::vector<double> mErrors;
+    std::map<std::pair<int, int>, std::vector<const TileRecord*>> mColumns;
+};
+
+} // namespace
+
+json makeTileset(const BakeManifest& manifest)
+{
+    Builder builder(manifest);
+    Box bounds;
+    json root = builder.node(0, manifest.counts[0], 0, manifest.counts[2], bounds);
+    if (root.is_null()) {
+        // No tile has a surface: an empty root over the baked box.
+        bounds.add(manifest.min, manifest.max);
+        root = {{"boundingVolume", boxVolume(bounds)}, {"geometricError", 0.0}};
+    }
+    root["refine"] = "REPLACE";
+    return {{"asset", {{"version", "1.1"}, {"generator", "Strata"}}},
+            {"geometricError", root["geometricError"]},
+            {"root", root}};
+}
+
+} // namespace strata::scene::detail

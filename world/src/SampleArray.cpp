@@ -1,0 +1,106 @@
+#include "SampleArray.h"
+
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+namespace strata::world::detail {
+
+using openvdb::Coord;
+using openvdb::CoordBBox;
+
+void SampleArray::init(const terrain::DensityField* field, const EditSnapshot* edits, double voxelSize,
+                       const std::int64_t origin[3], std::int64_t step, const std::array<int, 3>& dims,
+                       std::int64_t margin, SampleCache* cache)
+{
+    mCache = cache;
+    mField = field;
+    mEdits = edits;
+    mVoxelSize = voxelSize;
+    for (int a = 0; a < 3; ++a) {
+        mOrigin[a] = origin[a];
+        mBlocks[a] = (dims[a] + BLOCK - 1) / BLOCK;
+    }
+    mStep = step;
+    mDims = dims;
+    mMargin = margin;
+    mValues.assign(std::size_t(dims[0]) * dims[1] * dims[2], 0.0f);
+    mFilled.assign(std::size_t(mBlocks[0]) * mBlocks[1] * mBlocks[2], 0);
+    if (mCache && mCache->blockDone.size() != mFilled.size()) {
+        mCache->blockDone.assign(mFilled.size(), 0);
+        mCache->values.clear();
+    }
+}
+
+std::size_t SampleArray::bytesFor(const std::array<int, 3>& dims)
+{
+    const std::size_t blocks = std::size_t((dims[0] + BLOCK - 1) / BLOCK) * ((dims[1] + BLOCK - 1) / BLOCK) *
+                               ((dims[2] + BLOCK - 1) / BLOCK);
+    return std::size_t(dims[0]) * dims[1] * dims[2] * sizeof(float) + blocks;
+}
+
+void SampleArray::fillAll()
+{
+    for (int bk = 0; bk < mBlocks[2]; ++bk)
+        for (int bj = 0; bj < mBlocks[1]; ++bj)
+            for (int bi = 0; bi < mBlocks[0]; ++bi) {
+                const std::size_t b = (std::size_t(bk) * mBlocks[1] + bj) * mBlocks[0] + bi;
+                if (!mFilled[b]) fill(bi, bj, bk, b);
+            }
+}
+
+void SampleArray::fill(int bi, int bj, int bk, std::size_t b)
+{
+    mFilled[b] = 1;
+    const int lo[3] = {bi * BLOCK, bj * BLOCK, bk * BLOCK};
+    const int hi[3] = {std::min(lo[0] + BLOCK, mDims[0]), std::min(lo[1] + BLOCK, mDims[1]),
+                       std::min(lo[2] + BLOCK, mDims[2])};
+    std::int64_t v0[3], v1[3];
+    for (int a = 0; a < 3; ++a) {
+        v0[a] = mOrigin[a] + lo[a] * mStep;
+        v1[a] = mOrigin[a] + (hi[a] - 1) * mStep;
+    }
+    const CoordBBox box(Coord(int(v0[0] - mMargin), int(v0[1] - mMargin), int(v0[2] - mMargin)),
+                        Coord(int(v1[0] + mMargin), int(v1[1] + mMargin), int(v1[2] + mMargin)));
+    const bool edited = mEdits && !mEdits->empty() && mEdits->overlaps(box);
+    if (!edited) {
+        const glm::dvec3 c0{double(v0[0]), double(v0[1]), double(v0[2])};
+        const glm::dvec3 c1{double(v1[0]), double(v1[1]), double(v1[2])};
+        const glm::dvec3 centre = 0.5 * (c0 + c1) * mVoxelSize;
+        const double radius = 0.5 * glm::length(c1 - c0) * mVoxelSize;
+        const double bound = mField->distanceBound(centre);
+        if (std::abs(bound) > radius + double(mMargin) * mVoxelSize) {
+            const float value = bound > 0.0 ? float(bound - radius) : float(bound + radius);
+            for (int k = lo[2]; k < hi[2]; ++k)
+                for (int j = lo[1]; j < hi[1]; ++j)
+                    for (int i = lo[0]; i < hi[0]; ++i) mValues[index(i, j, k)] = value;
+            return;
+        }
+    }
+    const bool cached = mCache && mCache->blockDone[b];
+    if (mCache && mCache->values.empty()) mCache->values.assign(mValues.size(), 0.0f);
+    for (int k = lo[2]; k < hi[2]; ++k) {
+        for (int j = lo[1]; j < hi[1]; ++j) {
+            for (int i = lo[0]; i < hi[0]; ++i) {
+                const std::size_t at = index(i, j, k);
+                const std::int64_t x = mOrigin[0] + i * mStep, y = mOrigin[1] + j * mStep, z = mOrigin[2] + k * mStep;
+                float value;
+                if (edited && mEdits->lookup(Coord(int(x), int(y), int(z)), value)) {
+                    mValues[at] = value;
+                    if (!mCache || cached) continue;
+                }
+                if (cached) {
+                    mValues[at] = mCache->values[at];
+                    continue;
+                }
+                value = baseSample(*mField, x, y, z, mVoxelSize);
+                if (mCache) mCache->values[at] = value;
+                if (!(edited && mEdits->lookup(Coord(int(x), int(y), int(z)), mValues[at]))) mValues[at] = value;
+            }
+        }
+    }
+    if (mCache) mCache->blockDone[b] = 1;
+}
+
+} // namespace strata::world::detail

@@ -1,0 +1,75 @@
+#pragma once
+// Internal: a box of lattice samples filled lazily in 8³ blocks, pruned by
+// the field's distance bound. Shared by the World's chunk mesher and the
+// bake's tile mesher, so both read the same floats for the same point.
+
+#include "EditLayer.h"
+#include "Lattice.h"
+
+#include <array>
+#include <cstdint>
+#include <mutex>
+#include <vector>
+
+namespace strata::world::detail {
+
+/// The procedural samples of one chunk's own-level lattice, kept between
+/// re-meshes (after an edit only the edits are looked up again). Used by one
+/// task at a time (`mutex`); the values are the same whether cached or not.
+struct SampleCache
+{
+    std::mutex mutex;
+    std::vector<float> values;          ///< empty until a block is evaluated
+    std::vector<std::uint8_t> blockDone; ///< per 8³ block: values hold the procedural samples
+    std::size_t bytes() const { return values.capacity() * sizeof(float) + blockDone.capacity(); }
+};
+
+/// The lattice points origin + i·step (voxels), i in [0, dims), filled lazily
+/// in 8³ blocks. A block whose every point is provably farther than `margin`
+/// voxels from the base surface, with no edit within the margin, is filled
+/// with values of the right sign only: no sign-changing edge of length
+/// <= margin can end in it, so its values are only ever compared with 0.
+class SampleArray
+{
+public:
+    static constexpr int BLOCK = 8;
+
+    /// `edits` and `cache` may be null (no edits; no cache).
+    void init(const terrain::DensityField* field, const EditSnapshot* edits, double voxelSize,
+              const std::int64_t origin[3], std::int64_t step, const std::array<int, 3>& dims, std::int64_t margin,
+              SampleCache* cache = nullptr);
+
+    float at(int i, int j, int k)
+    {
+        const std::size_t b = (std::size_t(k / BLOCK) * mBlocks[1] + j / BLOCK) * mBlocks[0] + i / BLOCK;
+        if (!mFilled[b]) fill(i / BLOCK, j / BLOCK, k / BLOCK, b);
+        return mValues[index(i, j, k)];
+    }
+
+    /// Fills every block not filled yet (the same values as on demand).
+    void fillAll();
+
+    /// The values, x fastest, then y, then z (fillAll() first).
+    const float* data() const { return mValues.data(); }
+    const std::array<int, 3>& dims() const { return mDims; }
+    /// Heap bytes an array of `dims` takes.
+    static std::size_t bytesFor(const std::array<int, 3>& dims);
+
+private:
+    std::size_t index(int i, int j, int k) const { return (std::size_t(k) * mDims[1] + j) * mDims[0] + i; }
+    void fill(int bi, int bj, int bk, std::size_t b);
+
+    const terrain::DensityField* mField = nullptr;
+    const EditSnapshot* mEdits = nullptr;
+    SampleCache* mCache = nullptr;
+    double mVoxelSize = 1.0;
+    std::int64_t mOrigin[3] = {0, 0, 0};
+    std::int64_t mStep = 1;
+    std::array<int, 3> mDims{0, 0, 0};
+    std::array<int, 3> mBlocks{0, 0, 0};
+    std::int64_t mMargin = 0;
+    std::vector<float> mValues;
+    std::vector<std::uint8_t> mFilled;
+};
+
+} // namespace strata::world::detail
