@@ -10,6 +10,8 @@
 #include <strata/Stopwatch.h>
 #include <strata/meshing/GltfIO.h>
 #include <strata/meshing/GridIO.h>
+#include <strata/meshing/MeshMetrics.h>
+#include <strata/meshing/SurfaceError.h>
 #include <strata/terrain/SampleLevelSet.h>
 
 #include <glm/common.hpp>
@@ -32,24 +34,30 @@ using detail::TileRecord;
 
 namespace {
 
-/// Largest distance of a surface vertex from the field's zero set, to first
-/// order: |f| / |∇f| (central differences half a voxel apart; the gradient's
-/// length is floored at 0.1 so a flat spot of the field cannot blow it up).
-double measureError(const terrain::DensityField& field, const meshing::TriangleMesh& mesh, double voxelSize)
+/// The geometric error of rendering `coarse` instead of `fine` (metres):
+/// the larger one-sided Hausdorff distance, each vertex of one mesh to the
+/// nearest triangle of the other (SurfaceError's surface-to-mesh measure,
+/// exact point-to-triangle). A level with no surface where the other has
+/// one errs by the size of what it lost.
+double levelError(const meshing::TriangleMesh& fine, const meshing::TriangleMesh& coarse, double voxelSize)
 {
-    const double h = 0.5 * voxelSize;
-    double worst = 0.0;
-    for (const glm::vec3& q : mesh.positions) {
-        const glm::dvec3 p = mesh.origin + glm::dvec3(q);
-        glm::dvec3 g;
-        for (int a = 0; a < 3; ++a) {
-            glm::dvec3 d(0.0);
-            d[a] = h;
-            g[a] = (field.density(p + d) - field.density(p - d)) / (2.0 * h);
-        }
-        worst = std::max(worst, std::abs(field.density(p)) / std::max(glm::length(g), 0.1));
-    }
-    return worst;
+    const auto diagonal = [](const meshing::TriangleMesh& mesh) {
+        const meshing::Bounds b = meshing::worldBounds(mesh);
+        return glm::length(b.max - b.min);
+    };
+    if (fine.triangleCount() == 0 || coarse.triangleCount() == 0)
+        return std::max(fine.triangleCount() ? diagonal(fine) : 0.0, coarse.triangleCount() ? diagonal(coarse) : 0.0);
+    const auto oneWay = [voxelSize](const meshing::TriangleMesh& from, const meshing::TriangleMesh& to) {
+        meshing::SurfaceErrorOptions options;
+        options.voxelSize = voxelSize;
+        options.surfacePoints.reserve(from.positions.size());
+        for (const glm::vec3& p : from.positions) options.surfacePoints.push_back(from.origin + glm::dvec3(p));
+        // Only the point-to-mesh direction is used: the analytic side is a stub distance.
+        const meshing::SurfaceError error =
+            meshing::measureSurfaceError(to, [](const glm::dvec3&) { return 0.0; }, options);
+        return error.surfaceToMeshMax * voxelSize;
+    };
+    return std::max(oneWay(fine, coarse), oneWay(coarse, fine));
 }
 
 void addBounds(const meshing::TriangleMesh& mesh, glm::dvec3& lo, glm::dvec3& hi)
@@ -79,6 +87,7 @@ TileRecord bakeTile(const terrain::DensityField& field, const Scene& scene, cons
         record.boxMin[a] = double(tile.box.min[a]) * plan.voxelSize;
         record.boxMax[a] = double(tile.box.min[a] + tile.box.size[a]) * plan.voxelSize;
     }
+    meshing::TriangleMesh finest;
     for (int level = 0; level < plan.lods; ++level) {
         world::TileMeshOptions options;
         options.voxelSize = plan.voxelSize;
@@ -90,8 +99,9 @@ TileRecord bakeTile(const terrain::DensityField& field, const Scene& scene, cons
         out.triangles = mesh.surface.triangleCount();
         out.skirtTriangles = mesh.skirt.triangleCount();
         out.vertices = mesh.surface.vertexCount();
+        if (level == 0) finest = mesh.surface;
+        else out.error = levelError(finest, mesh.surface, plan.voxelSize);
         if (out.triangles > 0) {
-            out.error = measureError(field, mesh.surface, plan.voxelSize);
             out.min = glm::dvec3(std::numeric_limits<double>::max());
             out.max = glm::dvec3(std::numeric_limits<double>::lowest());
             addBounds(mesh.surface, out.min, out.max);

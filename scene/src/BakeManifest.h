@@ -28,7 +28,7 @@ struct TileLevelRecord
     int level = 0;
     std::optional<BakeFile> file; ///< none when the level has no surface in the tile
     std::uint64_t triangles = 0, skirtTriangles = 0, vertices = 0;
-    double error = 0.0;            ///< measured: max distance of a vertex from the surface (metres)
+    double error = 0.0;            ///< measured against level 0: two-sided Hausdorff distance (metres)
     glm::dvec3 min{0.0}, max{0.0}; ///< bounds of surface and skirt (metres); valid with a file
 };
 
