@@ -1,0 +1,457 @@
+// strata::scene::bake(): tiles are pure functions of the scene and their
+// index, a level's tiles weld with boundary only on the region's border,
+// cross-level seams are covered by skirts, the tileset is valid 3D Tiles
+// 1.1, resume redoes exactly the missing or damaged tiles, bad input is
+// refused before anything is written, and the world renders from its tiles.
+
+#include <strata/scene/Bake.h>
+#include <strata/scene/Scene.h>
+#include "RunStrata.h"
+#include "TestDir.h"
+
+#include <strata/Error.h>
+#include <strata/world/TileMesh.h>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <array>
+#include <fstream>
+#include <iterator>
+#include <map>
+#include <set>
+#include <string>
+
+using namespace strata;
+using namespace strata::scene;
+namespace fs = std::filesystem;
+
+namespace {
+
+/// Hills minus worm tunnels over 40 × 20 × 40 m at 0.5 m: with 16 m tiles,
+/// 3 × 3 columns (the last 8 m wide) of two slabs (16 m and 4 m).
+const char* CAVE_SCENE = R"(
+seed = 11
+[terrain]
+root = "world"
+[terrain.nodes.world]
+type = "subtract"
+children = ["land", "tunnels"]
+[terrain.nodes.land]
+type = "heightfield"
+amplitude = 10.0
+wavelength = 25.0
+[terrain.nodes.tunnels]
+type = "worms"
+cell_size = 16.0
+min_y = -8.0
+max_y = 2.0
+radius = 2.0
+[region]
+min = [-20.0, -12.0, -20.0]
+max = [20.0, 8.0, 20.0]
+[sampling]
+voxel_size = 0.5
+)";
+
+/// Hills only (every vertical line meets the surface once).
+const char* HILL_SCENE = R"(
+seed = 5
+[terrain]
+root = "land"
+[terrain.nodes.land]
+type = "heightfield"
+amplitude = 5.0
+wavelength = 20.0
+[region]
+min = [-16.0, -8.0, -16.0]
+max = [16.0, 8.0, 16.0]
+[sampling]
+voxel_size = 0.5
+)";
+
+std::string readBytes(const fs::path& path)
+{
+    std::ifstream in(path, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+/// Every file under `dir` (relative path → bytes).
+std::map<std::string, std::string> filesUnder(const fs::path& dir)
+{
+    std::map<std::string, std::string> out;
+    for (const auto& entry : fs::recursive_directory_iterator(dir))
+        if (entry.is_regular_file() && entry.path().filename() != ".strata.lock")
+            out[fs::relative(entry.path(), dir).string()] = readBytes(entry.path());
+    return out;
+}
+
+BakeSummary bakeInto(const Scene& scene, const fs::path& dir, BakeOptions options)
+{
+    options.outputDir = dir;
+    return bake(scene, options, planBake(scene, options));
+}
+
+BakeOptions smallBake(int threads = 0)
+{
+    BakeOptions options;
+    options.tileSize = 16.0;
+    options.lods = 3;
+    options.threads = threads;
+    return options;
+}
+
+nlohmann::json readJson(const fs::path& path) { return nlohmann::json::parse(readBytes(path)); }
+
+} // namespace
+
+TEST(Bake, PlansTilesSlabsAndNamesFromTheRegion)
+{
+    const Scene scene = parseScene(CAVE_SCENE, "caves.toml");
+    const BakePlan plan = planBake(scene, smallBake());
+    EXPECT_EQ(plan.counts, (std::array<int, 3>{3, 2, 3}));
+    EXPECT_EQ(plan.tileCount(), 18);
+    EXPECT_EQ(plan.selected.size(), 18u);
+    const BakeTile last = plan.tile(17);
+    EXPECT_EQ(last.cell, (std::array<int, 3>{2, 1, 2}));
+    EXPECT_EQ(last.name, "2_1_2");
+    EXPECT_EQ(last.box.size, (std::array<std::int64_t, 3>{16, 8, 16})) << "8 m and 4 m at 0.5 m voxels";
+    EXPECT_EQ(last.box.neighbourFaces, 1u | 4u | 16u) << "lower faces only";
+    EXPECT_EQ(plan.tile(4).box.neighbourFaces, 1u | 2u | 8u | 16u | 32u) << "both x and z faces, the top of y";
+}
+
+TEST(Bake, EveryTileIsTheSameBytesAloneInAFullBakeAndOnAnyThreadCount)
+{
+    const fs::path dir = test::freshTestDir();
+    const Scene scene = parseScene(CAVE_SCENE, "caves.toml");
+    const BakeSummary one = bakeInto(scene, dir / "one", smallBake(1));
+    bakeInto(scene, dir / "two", smallBake(2));
+    BakeOptions alone = smallBake(1);
+    alone.tiles = "4";
+    bakeInto(scene, dir / "alone", alone);
+
+    EXPECT_EQ(one.baked, 18);
+    const auto full = filesUnder(dir / "one");
+    EXPECT_EQ(full, filesUnder(dir / "two")) << "thread count changed a byte";
+    std::size_t compared = 0;
+    for (const auto& [path, bytes] : filesUnder(dir / "alone")) {
+        if (path.find("1_0_1") == std::string::npos) continue; // tile 4 = (1, 0, 1)
+        ASSERT_TRUE(full.count(path)) << path;
+        EXPECT_EQ(bytes, full.at(path)) << path << " differs when baked alone";
+        ++compared;
+    }
+    EXPECT_EQ(compared, 4u) << "three levels and the grid of tile 4";
+}
+
+TEST(Bake, ALevelsTilesWeldWithBoundaryOnlyOnTheRegionBorder)
+{
+    const Scene scene = parseScene(CAVE_SCENE, "caves.toml");
+    const BakePlan plan = planBake(scene, smallBake());
+    const glm::dvec3 lo = glm::dvec3(plan.minVoxel[0], plan.minVoxel[1], plan.minVoxel[2]) * plan.voxelSize;
+    const glm::dvec3 hi = glm::dvec3(plan.maxVoxel[0], plan.maxVoxel[1], plan.maxVoxel[2]) * plan.voxelSize;
+    for (int level = 0; level < plan.lods; ++level) {
+        std::map<std::array<double, 3>, std::uint32_t> index;
+        std::vector<std::array<double, 3>> positions;
+        std::map<std::pair<std::uint32_t, std::uint32_t>, int> uses;
+        for (int i = 0; i < plan.tileCount(); ++i) {
+            world::TileMeshOptions options;
+            options.voxelSize = plan.voxelSize;
+            options.level = level;
+            options.skirtDepth = plan.skirtDepth;
+            const meshing::TriangleMesh mesh = world::meshTile(*scene.field, plan.tile(i).box, options).surface;
+            std::vector<std::uint32_t> local;
+            for (const glm::vec3& p : mesh.positions) {
+                const std::array<double, 3> key{mesh.origin.x + p.x, mesh.origin.y + p.y, mesh.origin.z + p.z};
+                local.push_back(index.emplace(key, std::uint32_t(positions.size())).first->second);
+                if (local.back() == positions.size()) positions.push_back(key);
+            }
+            for (std::size_t t = 0; t + 2 < mesh.indices.size(); t += 3)
+                for (int k = 0; k < 3; ++k)
+                    ++uses[std::minmax(local[mesh.indices[t + k]], local[mesh.indices[t + (k + 1) % 3]])];
+        }
+        std::size_t boundary = 0, inside = 0;
+        for (const auto& [edge, count] : uses) {
+            if (count != 1) continue;
+            ++boundary;
+            const auto& p = positions[edge.first];
+            const auto& q = positions[edge.second];
+            bool onBorder = false;
+            for (int a = 0; a < 3; ++a)
+                onBorder = onBorder || (p[a] == lo[a] && q[a] == lo[a]) || (p[a] == hi[a] && q[a] == hi[a]);
+            inside += !onBorder;
+        }
+        EXPECT_GT(boundary, 0u) << "the terrain leaves the region through its sides";
+        EXPECT_EQ(inside, 0u) << "level " << level << ": boundary edges inside the region (cracks between tiles)";
+    }
+}
+
+TEST(Bake, SkirtsCoverTheGapBetweenLevelsOnASharedFace)
+{
+    // Tile (0, 0) at level 0 beside tile (1, 0) at its coarsest level: on the
+    // shared face x = X the two cut polylines differ by less than the skirt
+    // depth everywhere, so the deeper skirt closes the gap from any view.
+    const Scene scene = parseScene(HILL_SCENE, "hills.toml");
+    const BakePlan plan = planBake(scene, smallBake());
+    const BakeTile left = plan.tile(0), right = plan.tile(1);
+    ASSERT_EQ(plan.counts[1], 1);
+    const auto meshAt = [&](const BakeTile& tile, int level) {
+        world::TileMeshOptions options;
+        options.voxelSize = plan.voxelSize;
+        options.level = level;
+        options.skirtDepth = plan.skirtDepth;
+        return world::meshTile(*scene.field, tile.box, options);
+    };
+    const double x = double(right.box.min[0]) * plan.voxelSize;
+    /// The cut polyline on x = X: boundary edges of the surface lying on it, as (z, y) segments.
+    const auto cut = [&](const world::TileMeshData& tile) {
+        std::vector<std::array<double, 4>> segments;
+        const meshing::TriangleMesh& m = tile.surface;
+        for (std::size_t t = 0; t + 2 < m.indices.size(); t += 3)
+            for (int k = 0; k < 3; ++k) {
+                const glm::dvec3 p = m.origin + glm::dvec3(m.positions[m.indices[t + k]]);
+                const glm::dvec3 q = m.origin + glm::dvec3(m.positions[m.indices[t + (k + 1) % 3]]);
+                if (p.x == x && q.x == x) segments.push_back({p.z, p.y, q.z, q.y});
+            }
+        return segments;
+    };
+    const world::TileMeshData fine = meshAt(left, 0), coarse = meshAt(right, plan.lods - 1);
+    const auto fineCut = cut(fine), coarseCut = cut(coarse);
+    ASSERT_GT(fineCut.size(), 10u);
+    ASSERT_GT(coarseCut.size(), 2u);
+    EXPECT_GT(fine.skirt.triangleCount(), 0u);
+    EXPECT_GT(coarse.skirt.triangleCount(), 0u);
+    const auto heightAt = [](const std::vector<std::array<double, 4>>& segments, double z) {
+        for (const auto& s : segments) {
+            const double z0 = std::min(s[0], s[2]), z1 = std::max(s[0], s[2]);
+            if (z < z0 || z > z1) continue;
+            const double t = s[2] == s[0] ? 0.0 : (z - s[0]) / (s[2] - s[0]);
+            return s[1] + t * (s[3] - s[1]);
+        }
+        return std::nan("");
+    };
+    double worst = 0.0;
+    int compared = 0;
+    const double z0 = double(left.box.min[2]) * plan.voxelSize, z1 = z0 + double(left.box.size[2]) * plan.voxelSize;
+    for (double z = z0 + 0.05; z < z1; z += 0.1) {
+        const double a = heightAt(fineCut, z), b = heightAt(coarseCut, z);
+        if (std::isnan(a) || std::isnan(b)) continue;
+        worst = std::max(worst, std::abs(a - b));
+        ++compared;
+    }
+    EXPECT_GT(compared, 100);
+    EXPECT_GT(worst, 0.0) << "the levels differ on the face";
+    EXPECT_LT(worst, plan.skirtDepth) << "a gap deeper than the skirts";
+}
+
+TEST(Bake, TheTilesetIsValid3DTilesAndNamesEveryTileOnce)
+{
+    const fs::path dir = test::freshTestDir();
+    const Scene scene = parseScene(CAVE_SCENE, "caves.toml");
+    bakeInto(scene, dir, smallBake());
+    const nlohmann::json tileset = readJson(dir / "tileset.json");
+    EXPECT_EQ(tileset["asset"]["version"], "1.1");
+    ASSERT_TRUE(tileset.contains("geometricError"));
+    ASSERT_TRUE(tileset.contains("root"));
+    EXPECT_EQ(tileset["root"]["refine"], "REPLACE");
+
+    std::multiset<std::string> uris;
+    // Walks the tree: every node has a box (12 finite numbers, half axes
+    // >= 0), a geometric error no larger than its parent's, and a box inside
+    // its parent's (axis-aligned boxes: centre ± half extents).
+    std::function<void(const nlohmann::json&, double, const std::array<double, 6>*)> walk =
+        [&](const nlohmann::json& node, double parentError, const std::array<double, 6>* parent) {
+            ASSERT_TRUE(node.contains("boundingVolume"));
+            const nlohmann::json& box = node["boundingVolume"]["box"];
+            ASSERT_EQ(box.size(), 12u);
+            std::array<double, 6> extent{};
+            for (int a = 0; a < 3; ++a) {
+                const double half = box[3 + 4 * a].get<double>(); // diagonal entries
+                ASSERT_GE(half, 0.0);
+                extent[a] = box[a].get<double>() - half;
+                extent[3 + a] = box[a].get<double>() + half;
+            }
+            const double error = node["geometricError"].get<double>();
+            EXPECT_GE(error, 0.0);
+            EXPECT_LE(error, parentError) << "geometric error grows with depth";
+            if (parent)
+                for (int a = 0; a < 3; ++a) {
+                    EXPECT_GE(extent[a], (*parent)[a] - 1e-9);
+                    EXPECT_LE(extent[3 + a], (*parent)[3 + a] + 1e-9);
+                }
+            if (node.contains("content")) uris.insert(node["content"]["uri"].get<std::string>());
+            if (node.contains("contents"))
+                for (const auto& c : node["contents"]) uris.insert(c["uri"].get<std::string>());
+            if (node.contains("children"))
+                for (const auto& child : node["children"]) walk(child, error, &extent);
+            else
+                EXPECT_EQ(error, 0.0) << "a leaf is level 0";
+        };
+    walk(tileset["root"], tileset["geometricError"].get<double>(), nullptr);
+
+    // Exactly the .glb files of the bake, each once.
+    std::multiset<std::string> files;
+    for (const auto& entry : fs::recursive_directory_iterator(dir / "tiles"))
+        if (entry.is_regular_file()) files.insert(fs::relative(entry.path(), dir).string());
+    EXPECT_EQ(uris, files);
+    // The manifest's per-level errors grow with the level.
+    const nlohmann::json manifest = readJson(dir / "manifest.json");
+    const auto errors = manifest["geometric_error"].get<std::vector<double>>();
+    ASSERT_EQ(errors.size(), 3u);
+    EXPECT_EQ(errors[0], 0.0);
+    EXPECT_GT(errors[1], 0.0);
+    EXPECT_GE(errors[2], errors[1]);
+}
+
+TEST(Bake, ResumeRedoesExactlyTheMissingAndDamagedTiles)
+{
+    const fs::path dir = test::freshTestDir();
+    const Scene scene = parseScene(CAVE_SCENE, "caves.toml");
+    BakeOptions options = smallBake();
+    const BakeSummary first = bakeInto(scene, dir, options);
+    const auto before = filesUnder(dir);
+
+    const BakeSummary again = bakeInto(scene, dir, options);
+    EXPECT_EQ(again.baked, 0);
+    EXPECT_EQ(again.kept, 18);
+
+    fs::remove(dir / "tiles/1/0_0_0.glb");              // missing
+    std::string damaged = readBytes(dir / "tiles/0/2_0_2.glb");
+    damaged[damaged.size() / 2] ^= 0x40;                  // same size, one bit flipped
+    std::ofstream(dir / "tiles/0/2_0_2.glb", std::ios::binary) << damaged;
+    const BakeSummary resumed = bakeInto(scene, dir, options);
+    EXPECT_EQ(resumed.baked, 2);
+    EXPECT_EQ(resumed.kept, 16);
+    EXPECT_EQ(filesUnder(dir), before) << "the resumed bake is the same bytes";
+    EXPECT_EQ(first.trianglesPerLevel, resumed.trianglesPerLevel);
+}
+
+TEST(Bake, BadInputIsRefusedBeforeAnythingIsWritten)
+{
+    const fs::path dir = test::freshTestDir();
+    const Scene scene = parseScene(CAVE_SCENE, "caves.toml");
+    const auto refused = [&](BakeOptions options, const std::string& flag, const std::string& words) {
+        options.outputDir = dir / "out";
+        try {
+            bake(scene, options, planBake(scene, options));
+            ADD_FAILURE() << "accepted " << flag;
+        } catch (const Error& e) {
+            EXPECT_EQ(e.kind(), ErrorKind::BadInput) << e.what();
+            EXPECT_EQ(e.place().key, flag) << e.what();
+            EXPECT_NE(std::string(e.what()).find(words), std::string::npos) << e.what();
+        }
+        EXPECT_FALSE(fs::exists(dir / "out")) << flag << ": something was written";
+    };
+    BakeOptions o = smallBake();
+    o.tileSize = 16.3;
+    refused(o, "--tile-size", "not a multiple of the voxel size");
+    o.tileSize = 17.0; // 34 voxels: not a multiple of the coarsest cell (4 voxels)
+    refused(o, "--tile-size", "coarsest cell");
+    o.tileSize = 64.0;
+    refused(o, "--tile-size", "smaller than one tile");
+    o = smallBake();
+    o.tiles = "18";
+    refused(o, "--tiles", "the world has 18 tiles");
+    o.tiles = "3-1";
+    refused(o, "--tiles", "ends before it starts");
+    o.tiles = "x";
+    refused(o, "--tiles", "expected all");
+    o = smallBake();
+    o.maxMemoryBytes = 1000;
+    refused(o, "--tile-size", "over the budget");
+}
+
+TEST(Bake, AnotherScenesBakeIsRefusedNamingBothHashesUnlessForced)
+{
+    const fs::path dir = test::freshTestDir();
+    const Scene caves = parseScene(CAVE_SCENE, "caves.toml");
+    std::string otherText = CAVE_SCENE;
+    otherText.replace(otherText.find("seed = 11"), 9, "seed = 12");
+    const Scene other = parseScene(otherText, "other.toml");
+    bakeInto(caves, dir, smallBake());
+    const auto before = filesUnder(dir);
+    BakeOptions options = smallBake();
+    options.outputDir = dir;
+    const BakePlan plan = planBake(other, options);
+    try {
+        bake(other, options, plan);
+        ADD_FAILURE() << "baked over another scene's bake";
+    } catch (const Error& e) {
+        EXPECT_EQ(e.kind(), ErrorKind::BadInput);
+        const std::string message = e.what();
+        EXPECT_NE(message.find(planBake(caves, options).sceneHash.substr(0, 16)), std::string::npos) << message;
+        EXPECT_NE(message.find(plan.sceneHash.substr(0, 16)), std::string::npos) << message;
+        EXPECT_NE(message.find("--force"), std::string::npos) << message;
+    }
+    EXPECT_EQ(filesUnder(dir), before) << "the refused bake changed the folder";
+    options.force = true;
+    const BakeSummary forced = bake(other, options, plan);
+    EXPECT_EQ(forced.baked, 18);
+    EXPECT_EQ(readJson(dir / "manifest.json")["seed"], 12);
+}
+
+TEST(Bake, TheWorldRendersFromItsTilesCoarserWhenFar)
+{
+    const fs::path dir = test::freshTestDir();
+    const Scene scene = parseScene(CAVE_SCENE, "caves.toml");
+    bakeInto(scene, dir, smallBake());
+    const Scene baked = loadBakedScene(dir);
+    EXPECT_EQ(baked.text, scene.text);
+    WorldSnapshotOptions options;
+    options.width = 160;
+    options.height = 90;
+    options.request.backend = "cpu";
+    render::Image near, far;
+    const WorldSnapshotStats close =
+        renderBakedWorld(baked, dir, options, nullptr, [&](const render::Image& image) { near = image; });
+    EXPECT_GT(close.tilesPerLevel[0], 0);
+    EXPECT_EQ(near.width, 160);
+    options.request.cameraPosition = glm::dvec3(2000.0, 1500.0, 2000.0);
+    options.request.cameraTarget = glm::dvec3(0.0);
+    options.request.fov = 10.0;
+    const WorldSnapshotStats distant =
+        renderBakedWorld(baked, dir, options, nullptr, [&](const render::Image& image) { far = image; });
+    EXPECT_EQ(distant.tilesPerLevel[0], 0) << "far away no tile needs level 0";
+    EXPECT_GT(distant.tilesPerLevel[2], 0);
+    EXPECT_LT(distant.triangles, close.triangles);
+}
+
+TEST(Bake, TheCliBakesResumesAndRendersTheWorld)
+{
+    const fs::path dir = test::freshTestDir();
+    {
+        std::ofstream(dir / "caves.toml") << CAVE_SCENE;
+    }
+    const test::CommandResult help = test::runStrata("bake --help", dir);
+    EXPECT_EQ(help.exitCode, 0);
+    EXPECT_NE(help.output.find("--tile-size"), std::string::npos);
+
+    const test::CommandResult bad = test::runStrata("bake " + (dir / "caves.toml").string() + " -o " +
+                                                        (dir / "out").string() + " --tile-size 16.3",
+                                                    dir);
+    EXPECT_EQ(bad.exitCode, 2) << bad.output;
+    EXPECT_NE(bad.output.find("strata: error: --tile-size 16.3"), std::string::npos) << bad.output;
+    EXPECT_FALSE(fs::exists(dir / "out"));
+
+    const std::string bakeArgs = "bake " + (dir / "caves.toml").string() + " -o " + (dir / "out").string() +
+                                 " --tile-size 16 --lods 2 --no-grids";
+    const test::CommandResult baked = test::runStrata(bakeArgs, dir);
+    ASSERT_EQ(baked.exitCode, 0) << baked.output;
+    EXPECT_NE(baked.output.find("18 baked"), std::string::npos) << baked.output;
+    EXPECT_FALSE(fs::exists(dir / "out/grids"));
+    const test::CommandResult resumed = test::runStrata(bakeArgs, dir);
+    EXPECT_NE(resumed.output.find("0 baked, 18 kept"), std::string::npos) << resumed.output;
+
+    const test::CommandResult outOfRange = test::runStrata(bakeArgs + " --tiles 40", dir);
+    EXPECT_EQ(outOfRange.exitCode, 2);
+    EXPECT_NE(outOfRange.output.find("tile 40 is out of range: the world has 18 tiles"), std::string::npos)
+        << outOfRange.output;
+
+    const test::CommandResult render = test::runStrata(
+        "render " + (dir / "out").string() + " -o " + (dir / "world.png").string() + " --backend cpu --size 160x90", dir);
+    ASSERT_EQ(render.exitCode, 0) << render.output;
+    EXPECT_TRUE(fs::exists(dir / "world.png"));
+    const test::CommandResult mixed = test::runStrata(
+        "render " + (dir / "out").string() + " -o " + (dir / "x.png").string() + " --seed 3", dir);
+    EXPECT_EQ(mixed.exitCode, 2);
+    EXPECT_NE(mixed.output.find("--seed cannot be used"), std::string::npos) << mixed.output;
+}
