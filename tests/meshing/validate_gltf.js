@@ -1,5 +1,6 @@
 // Validates .glb/.gltf files with the Khronos glTF validator (npm package
-// `gltf-validator`). Usage: node validate_gltf.js FILE...
+// `gltf-validator`). Usage: node validate_gltf.js FILE_OR_FOLDER... (a folder:
+// every .glb under it, sorted).
 // Exit codes: 0 all valid (no errors), 1 a file has errors, 2 the validator
 // or a file is missing. Warnings and infos are printed, not fatal.
 'use strict';
@@ -32,7 +33,18 @@ async function validate(file) {
 }
 
 (async () => {
-    const files = process.argv.slice(2);
+    const files = [];
+    const walk = (dir) => {
+        for (const name of fs.readdirSync(dir).sort()) {
+            const full = path.join(dir, name);
+            if (fs.statSync(full).isDirectory()) walk(full);
+            else if (name.endsWith('.glb')) files.push(full);
+        }
+    };
+    for (const arg of process.argv.slice(2)) {
+        if (fs.existsSync(arg) && fs.statSync(arg).isDirectory()) walk(arg);
+        else files.push(arg);
+    }
     if (files.length === 0) {
         console.error('usage: node validate_gltf.js FILE...');
         process.exit(2);
