@@ -82,7 +82,7 @@ public:
                         if (std::max({std::abs(x - c[0]), std::abs(y - c[1]), std::abs(z - c[2])}) != r) continue;
                         const Entry key{{x, y, z}, 0};
                         for (auto it = std::lower_bound(mEntries.begin(), mEntries.end(), key);
-                             it != mEntries.end() && it->cell == key.cell; ++it) {
+                             it != mEntries.end() && it->cell[0] == x && it->cell[1] == y && it->cell[2] == z; ++it) {
                             const std::uint32_t t = it->triangle;
                             const glm::dvec3 q = closestOnTriangle(p, vertex(mMesh.indices[3 * t]),
                                                                    vertex(mMesh.indices[3 * t + 1]),
@@ -101,7 +101,15 @@ private:
     {
         std::array<int, 3> cell;
         std::uint32_t triangle;
-        bool operator<(const Entry& o) const { return cell != o.cell ? cell < o.cell : triangle < o.triangle; }
+        // Component by component: std::array's operators call memcmp, which
+        // dominated the lookups.
+        bool operator<(const Entry& o) const
+        {
+            if (cell[0] != o.cell[0]) return cell[0] < o.cell[0];
+            if (cell[1] != o.cell[1]) return cell[1] < o.cell[1];
+            if (cell[2] != o.cell[2]) return cell[2] < o.cell[2];
+            return triangle < o.triangle;
+        }
     };
     const TriangleMesh& mMesh;
     double mH;

@@ -39,7 +39,8 @@ namespace {
 /// nearest triangle of the other (SurfaceError's surface-to-mesh measure,
 /// exact point-to-triangle). A level with no surface where the other has
 /// one errs by the size of what it lost.
-double levelError(const meshing::TriangleMesh& fine, const meshing::TriangleMesh& coarse, double voxelSize)
+double levelError(const meshing::TriangleMesh& fine, const meshing::TriangleMesh& coarse, double voxelSize,
+                  double coarseCell)
 {
     const auto diagonal = [](const meshing::TriangleMesh& mesh) {
         const meshing::Bounds b = meshing::worldBounds(mesh);
@@ -47,17 +48,19 @@ double levelError(const meshing::TriangleMesh& fine, const meshing::TriangleMesh
     };
     if (fine.triangleCount() == 0 || coarse.triangleCount() == 0)
         return std::max(fine.triangleCount() ? diagonal(fine) : 0.0, coarse.triangleCount() ? diagonal(coarse) : 0.0);
-    const auto oneWay = [voxelSize](const meshing::TriangleMesh& from, const meshing::TriangleMesh& to) {
+    // SurfaceError buckets the target's triangles in cubes of two "voxels":
+    // half the target's cell size makes them one cell wide, a few triangles each.
+    const auto oneWay = [](const meshing::TriangleMesh& from, const meshing::TriangleMesh& to, double cell) {
         meshing::SurfaceErrorOptions options;
-        options.voxelSize = voxelSize;
+        options.voxelSize = cell;
         options.surfacePoints.reserve(from.positions.size());
         for (const glm::vec3& p : from.positions) options.surfacePoints.push_back(from.origin + glm::dvec3(p));
         // Only the point-to-mesh direction is used: the analytic side is a stub distance.
         const meshing::SurfaceError error =
             meshing::measureSurfaceError(to, [](const glm::dvec3&) { return 0.0; }, options);
-        return error.surfaceToMeshMax * voxelSize;
+        return error.surfaceToMeshMax * cell;
     };
-    return std::max(oneWay(fine, coarse), oneWay(coarse, fine));
+    return std::max(oneWay(fine, coarse, 0.5 * coarseCell), oneWay(coarse, fine, 0.5 * voxelSize));
 }
 
 void addBounds(const meshing::TriangleMesh& mesh, glm::dvec3& lo, glm::dvec3& hi)
@@ -100,7 +103,7 @@ TileRecord bakeTile(const terrain::DensityField& field, const Scene& scene, cons
         out.skirtTriangles = mesh.skirt.triangleCount();
         out.vertices = mesh.surface.vertexCount();
         if (level == 0) finest = mesh.surface;
-        else out.error = levelError(finest, mesh.surface, plan.voxelSize);
+        else out.error = levelError(finest, mesh.surface, plan.voxelSize, plan.voxelSize * double(1 << level));
         if (out.triangles > 0) {
             out.min = glm::dvec3(std::numeric_limits<double>::max());
             out.max = glm::dvec3(std::numeric_limits<double>::lowest());

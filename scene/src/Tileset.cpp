@@ -1,8 +1,9 @@
 // The bake's OGC 3D Tiles 1.1 tileset. A quadtree over the tile columns
-// (x, z): inner nodes have no content and group their children; each column
-// ends in a chain, one node per level of detail from the coarsest down to
-// level 0, each holding that level's .glb of every slab of the column, with
-// REPLACE refinement, so a client shows one level per column and refines it
+// (x, z): inner nodes have no content and group their children; each tile
+// (each slab of a column) ends in a chain, one node per level of detail from
+// the coarsest down to level 0, each holding that level's .glb (one
+// `content` per node: 1.1's `contents` arrays are not read by every client,
+// e.g. 3d-tiles-renderer 0.5), with REPLACE refinement, so a client shows one level per column and refines it
 // as the camera comes closer. geometricError of a chain node is the level's
 // measured error (BakeManifest::geometricErrors(): the largest distance of
 // a vertex from the surface over all tiles), 0 at level 0; an inner node's
@@ -84,23 +85,42 @@ public:
     }
 
 private:
+    /// A column of slabs: one chain per slab (several under a node without
+    /// content, like the quadtree's inner nodes).
     json column(int x, int z, Box& bounds) const
     {
         const auto found = mColumns.find({x, z});
         if (found == mColumns.end()) return nullptr;
-        for (const TileRecord* tile : found->second)
-            for (const TileLevelRecord& level : tile->levels)
-                if (level.file) bounds.add(level.min, level.max);
+        json chains = json::array();
+        double childError = 0.0;
+        for (const TileRecord* tile : found->second) {
+            Box tileBounds;
+            json c = chain(*tile, tileBounds);
+            if (c.is_null()) continue;
+            bounds.add(tileBounds);
+            childError = std::max(childError, c["geometricError"].get<double>());
+            chains.push_back(std::move(c));
+        }
+        if (chains.empty()) return nullptr;
+        if (chains.size() == 1) return chains[0];
+        return {{"boundingVolume", boxVolume(bounds)},
+                {"geometricError", std::max(glm::length(bounds.max - bounds.min), childError)},
+                {"children", chains}};
+    }
+
+    /// One tile's levels from the coarsest (the chain's root) to level 0,
+    /// each node holding that level's .glb (none where the level has no
+    /// surface), all with the tile's bounds over every level.
+    json chain(const TileRecord& tile, Box& bounds) const
+    {
+        for (const TileLevelRecord& level : tile.levels)
+            if (level.file) bounds.add(level.min, level.max);
         if (bounds.empty()) return nullptr;
         json below = nullptr;
         for (int l = 0; l < mManifest.lods; ++l) {
-            json contents = json::array();
-            for (const TileRecord* tile : found->second)
-                for (const TileLevelRecord& level : tile->levels)
-                    if (level.level == l && level.file) contents.push_back({{"uri", level.file->path}});
             json node = {{"boundingVolume", boxVolume(bounds)}, {"geometricError", mErrors[std::size_t(l)]}};
-            if (contents.size() == 1) node["content"] = contents[0];
-            if (contents.size() > 1) node["contents"] = contents;
+            for (const TileLevelRecord& level : tile.levels)
+                if (level.level == l && level.file) node["content"] = {{"uri", level.file->path}};
             if (!below.is_null()) node["children"] = json::array({below});
             below = std::move(node);
         }

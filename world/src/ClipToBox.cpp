@@ -22,11 +22,13 @@ struct Corner
 class Clipper
 {
 public:
+    // Only cut points are indexed: a vertex on a face plane is kept as
+    // itself (Sutherland–Hodgman cuts only edges that cross a plane
+    // strictly), so a cut never lands on an original vertex.
     Clipper(ClipMesh& mesh, double quantum)
         : mMesh(mesh)
         , mQuantum(quantum)
     {
-        for (std::uint32_t i = 0; i < mesh.positions.size(); ++i) mIndex.emplace(key(mesh.positions[i]), i);
     }
 
     Key key(const glm::dvec3& p) const

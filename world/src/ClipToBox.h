@@ -22,7 +22,7 @@ struct ClipMesh
 /// cutting axis (so both triangles beside the edge, and the tile beyond the
 /// face, compute the same bits), set exactly on the face, its other
 /// coordinates rounded to multiples of 1/quantum, its normal interpolated.
-/// Vertices at the same position are one vertex. Vertices no triangle
+/// Cut points at the same position are one vertex. Vertices no triangle
 /// uses any more are dropped; the rest keep their order. Triangles that
 /// collapse to a repeated vertex are dropped. O(triangles · log vertices).
 void clipToBox(ClipMesh& mesh, const glm::dvec3& lo, const glm::dvec3& hi, double quantum);
