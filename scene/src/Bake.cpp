@@ -78,9 +78,11 @@ BakeFile writeBakeFile(const fs::path& dir, const std::string& relative, std::st
     return BakeFile{relative, bytes.size(), sha256Hex(bytes)};
 }
 
-/// Bakes one tile: every level's mesh and (optionally) the level-0 grid.
+/// Bakes one tile: every level's mesh and (optionally) the level-0 grid;
+/// with `dir`, writes its files and then its record (so a record on disk
+/// means every file of the tile is complete).
 TileRecord bakeTile(const terrain::DensityField& field, const Scene& scene, const BakePlan& plan, bool grids,
-                    std::uint64_t maxMemoryBytes, const BakeTile& tile, const fs::path& dir)
+                    std::uint64_t maxMemoryBytes, const BakeTile& tile, const fs::path* dir)
 {
     TileRecord record;
     record.index = tile.index;
@@ -114,7 +116,8 @@ TileRecord bakeTile(const terrain::DensityField& field, const Scene& scene, cons
                 meshing::encodeGlb({meshing::GlbPart{&mesh.surface, "strata-terrain", false},
                                     meshing::GlbPart{&mesh.skirt, "strata-skirt", true}},
                                    mesh.surface.origin, name);
-            out.file = writeBakeFile(dir, "tiles/" + std::to_string(level) + "/" + tile.name + ".glb", bytes);
+            const std::string relative = "tiles/" + std::to_string(level) + "/" + tile.name + ".glb";
+            out.file = dir ? writeBakeFile(*dir, relative, bytes) : BakeFile{relative, bytes.size(), ""};
         }
         record.levels.push_back(out);
     }
@@ -129,9 +132,14 @@ TileRecord bakeTile(const terrain::DensityField& field, const Scene& scene, cons
         openvdb::FloatGrid::Ptr grid = terrain::sampleLevelSet(field, sampling);
         grid->setName("terrain");
         const std::string relative = "grids/" + tile.name + ".vdb";
-        meshing::writeGrid(*grid, dir / relative);
-        record.grid = BakeFile{relative, std::uint64_t(fs::file_size(dir / relative)), sha256File(dir / relative)};
+        if (dir) {
+            meshing::writeGrid(*grid, *dir / relative);
+            record.grid = BakeFile{relative, std::uint64_t(fs::file_size(*dir / relative)), sha256File(*dir / relative)};
+        } else {
+            record.grid = BakeFile{relative, grid->memUsage(), ""};
+        }
     }
+    if (dir) writeFileAtomically(detail::recordPath(*dir, tile.index), detail::recordJson(record).dump(1) + "\n");
     return record;
 }
 
@@ -163,26 +171,95 @@ void checkSameBake(const BakeManifest& old, const BakeManifest& now, const fs::p
     else if (old.seed != now.seed)
         differs = "seed " + std::to_string(old.seed) + " (this bake: " + std::to_string(now.seed) + ")";
     else if (old.tileSize != now.tileSize || old.lods != now.lods || old.voxelSize != now.voxelSize ||
-             old.counts != now.counts || old.min != now.min || old.skirtDepth != now.skirtDepth)
+             old.counts != now.counts || old.min != now.min || old.skirtDepth != now.skirtDepth ||
+             old.grids != now.grids)
         differs = "other settings (tile size " + formatNumber(old.tileSize) + " m, " + std::to_string(old.lods) +
-                  " levels, skirt depth " + formatNumber(old.skirtDepth) + " m; this bake: " +
-                  formatNumber(now.tileSize) + " m, " + std::to_string(now.lods) + " levels, " +
-                  formatNumber(now.skirtDepth) + " m)";
+                  " levels, skirt depth " + formatNumber(old.skirtDepth) + " m, grids " + (old.grids ? "on" : "off") +
+                  "; this bake: " + formatNumber(now.tileSize) + " m, " + std::to_string(now.lods) + " levels, " +
+                  formatNumber(now.skirtDepth) + " m, grids " + (now.grids ? "on" : "off") + ")";
     if (differs.empty() || force) return;
     throw Error(ErrorKind::BadInput,
                 "output folder '" + dir.string() + "' holds a bake of " + differs + ": use another folder, or --force to replace it",
                 {dir.string()});
 }
 
-/// With --force over another bake: removes the files its manifest lists.
-void removeOldBake(const BakeManifest& old, const fs::path& dir)
+/// The record of tile `index` if its files are all there and match it.
+std::optional<TileRecord> verifiedRecord(const fs::path& dir, int index, const BakeManifest& header, bool hash)
+{
+    std::optional<TileRecord> record;
+    try {
+        record = detail::readRecord(detail::recordPath(dir, index));
+    } catch (const Error&) {
+        return std::nullopt; // a damaged record: the tile is redone
+    }
+    if (!record || record->index != index || !tileMatches(dir, *record, header.lods, header.grids, hash))
+        return std::nullopt;
+    return record;
+}
+
+/// With --force over another bake: removes the files its records list.
+void removeOldBake(const fs::path& dir, const BakeManifest& old)
 {
     std::error_code ec;
-    for (const auto& [index, tile] : old.tiles) {
-        for (const TileLevelRecord& level : tile.levels)
-            if (level.file) fs::remove(dir / level.file->path, ec);
-        if (tile.grid) fs::remove(dir / tile.grid->path, ec);
+    const int count = old.counts[0] * old.counts[1] * old.counts[2];
+    for (int index = 0; index < count; ++index) {
+        std::optional<TileRecord> record;
+        try {
+            record = detail::readRecord(detail::recordPath(dir, index));
+        } catch (const Error&) {
+        }
+        if (record) {
+            for (const TileLevelRecord& level : record->levels)
+                if (level.file) fs::remove(dir / level.file->path, ec);
+            if (record->grid) fs::remove(dir / record->grid->path, ec);
+        }
+        fs::remove(detail::recordPath(dir, index), ec);
     }
+    fs::remove(dir / "manifest.json", ec);
+    fs::remove(dir / "tileset.json", ec);
+}
+
+/// Files, bytes, triangles and errors per level of the tiles in `manifest`.
+void summarise(const BakeManifest& manifest, BakeSummary& summary)
+{
+    const auto lods = std::size_t(manifest.lods);
+    summary.trianglesPerLevel.assign(lods, 0);
+    summary.filesPerLevel.assign(lods, 0);
+    summary.bytesPerLevel.assign(lods, 0);
+    for (const auto& [index, tile] : manifest.tiles)
+        for (const TileLevelRecord& level : tile.levels) {
+            const auto l = std::size_t(level.level);
+            if (l >= lods) continue;
+            summary.trianglesPerLevel[l] += level.triangles;
+            if (level.file) {
+                ++summary.filesPerLevel[l];
+                summary.bytesPerLevel[l] += level.file->bytes;
+            }
+        }
+    summary.errorPerLevel = manifest.geometricErrors();
+    summary.tiles = manifest.counts[0] * manifest.counts[1] * manifest.counts[2];
+    summary.missing = summary.tiles - int(manifest.tiles.size());
+}
+
+void writeManifestAndTileset(const fs::path& dir, const BakeManifest& manifest)
+{
+    writeFileAtomically(dir / "manifest.json", detail::toJson(manifest).dump(1) + "\n");
+    writeFileAtomically(dir / "tileset.json", detail::makeTileset(manifest).dump(1) + "\n");
+}
+
+/// "3, 7-9, 12": ascending indices as ranges.
+std::string indexRanges(const std::vector<int>& indices, const char* separator)
+{
+    std::string out;
+    for (std::size_t i = 0; i < indices.size();) {
+        std::size_t j = i;
+        while (j + 1 < indices.size() && indices[j + 1] == indices[j] + 1) ++j;
+        if (!out.empty()) out += separator;
+        out += std::to_string(indices[i]);
+        if (j > i) out += "-" + std::to_string(indices[j]);
+        i = j + 1;
+    }
+    return out;
 }
 
 } // namespace
@@ -198,36 +275,37 @@ BakeSummary bake(const Scene& scene, const BakeOptions& options, const BakePlan&
 
     BakeManifest manifest = detail::manifestFor(plan, scene, options.grids);
     // Check the folder before creating anything in it.
-    std::optional<BakeManifest> old = detail::readManifest(dir);
+    std::optional<BakeManifest> old = detail::readBakeHeader(dir);
     if (old) checkSameBake(*old, manifest, dir, options.force);
     if (observer && !observer->progress(0.0)) throw Error(ErrorKind::Interrupted, "interrupted before the bake");
 
     std::error_code ec;
     fs::create_directories(dir, ec);
     if (ec) throw Error(ErrorKind::Io, "cannot create output folder '" + dir.string() + "': " + ec.message(), {dir.string()});
-    const OutputLock lock(dir);
-    if (old && !options.force) {
-        // Tiles outside this selection: kept when their files are still there.
-        for (const auto& [index, tile] : old->tiles)
-            if (tileMatches(dir, tile, plan.lods, options.grids, /*hash*/ false)) manifest.tiles[index] = tile;
-    } else if (old) {
-        removeOldBake(*old, dir);
-    }
+    // Workers share the folder (each writes only its own tiles); a single
+    // bake holds it.
+    std::optional<OutputLock> lock;
+    if (!options.worker) lock.emplace(dir);
+    const bool replace = old && options.force && detail::headerJson(*old) != detail::headerJson(manifest);
+    if (replace) removeOldBake(dir, *old);
     for (int level = 0; level < plan.lods; ++level) fs::create_directories(dir / "tiles" / std::to_string(level), ec);
     if (options.grids) fs::create_directories(dir / "grids", ec);
+    fs::create_directories(dir / "records", ec);
     if (ec) throw Error(ErrorKind::Io, "cannot create folders in '" + dir.string() + "': " + ec.message(), {dir.string()});
+    // The same bytes from every run and worker of this bake.
+    writeFileAtomically(dir / "scene.toml", scene.text);
+    writeFileAtomically(dir / "bake.json", detail::headerJson(manifest).dump(1) + "\n");
 
     BakeSummary summary;
     summary.tiles = plan.tileCount();
     std::vector<int> todo;
     for (int index : plan.selected) {
-        const auto found = manifest.tiles.find(index);
-        if (found != manifest.tiles.end() && tileMatches(dir, found->second, plan.lods, options.grids, /*hash*/ true)) {
+        if (std::optional<TileRecord> record = verifiedRecord(dir, index, manifest, /*hash*/ true)) {
+            manifest.tiles[index] = std::move(*record);
             ++summary.kept;
-            continue;
+        } else {
+            todo.push_back(index);
         }
-        manifest.tiles.erase(index);
-        todo.push_back(index);
     }
 
     // Tiles in parallel: each worker takes the next index; the calling
@@ -237,7 +315,7 @@ BakeSummary bake(const Scene& scene, const BakeOptions& options, const BakePlan&
     std::condition_variable changed;
     std::size_t next = 0, finished = 0;
     bool stop = false;
-    std::vector<std::string> failures;
+    std::vector<std::pair<int, std::string>> failures;
     std::map<int, TileRecord> made;
     const int threads = std::max(1, std::min<int>(options.threads > 0 ? options.threads
                                                                       : int(std::max(1u, std::thread::hardware_concurrency())),
@@ -256,18 +334,19 @@ BakeSummary bake(const Scene& scene, const BakeOptions& options, const BakePlan&
                 std::optional<TileRecord> record;
                 std::string failure;
                 try {
-                    record = bakeTile(*field, scene, plan, options.grids, options.maxMemoryBytes, tile, dir);
+                    record = bakeTile(*field, scene, plan, options.grids, options.maxMemoryBytes, tile, &dir);
                 } catch (const std::exception& e) {
                     failure = "tile " + std::to_string(index) + " (" + tile.name + "): " + e.what();
                     // No half-made tile: its finished files go too.
                     std::error_code ignored;
+                    fs::remove(detail::recordPath(dir, index), ignored);
                     for (int level = 0; level < plan.lods; ++level)
                         fs::remove(dir / "tiles" / std::to_string(level) / (tile.name + ".glb"), ignored);
                     fs::remove(dir / "grids" / (tile.name + ".vdb"), ignored);
                 }
                 std::lock_guard<std::mutex> hold(mutex);
                 if (record) made.emplace(index, std::move(*record));
-                else failures.push_back(failure);
+                else failures.emplace_back(index, failure);
                 ++finished;
                 changed.notify_all();
             }
@@ -288,55 +367,118 @@ BakeSummary bake(const Scene& scene, const BakeOptions& options, const BakePlan&
     for (auto& [index, record] : made) manifest.tiles[index] = std::move(record);
     summary.baked = int(made.size());
 
-    // The manifest and tileset describe every tile present, even after a
-    // failure or an interruption, so the next run resumes from them.
-    writeFileAtomically(dir / "scene.toml", scene.text);
-    writeFileAtomically(dir / "manifest.json", detail::toJson(manifest).dump(1) + "\n");
-    writeFileAtomically(dir / "tileset.json", detail::makeTileset(manifest).dump(1) + "\n");
-
-    summary.missing = summary.tiles - int(manifest.tiles.size());
-    summary.trianglesPerLevel.assign(std::size_t(plan.lods), 0);
-    summary.filesPerLevel.assign(std::size_t(plan.lods), 0);
-    summary.bytesPerLevel.assign(std::size_t(plan.lods), 0);
-    for (const auto& [index, tile] : manifest.tiles)
-        for (const TileLevelRecord& level : tile.levels) {
-            const auto l = std::size_t(level.level);
-            summary.trianglesPerLevel[l] += level.triangles;
-            if (level.file) {
-                ++summary.filesPerLevel[l];
-                summary.bytesPerLevel[l] += level.file->bytes;
-            }
-        }
-    summary.errorPerLevel = manifest.geometricErrors();
+    if (!options.worker) {
+        // The manifest and tileset describe every tile present (other
+        // selections' tiles included when their files are there), even
+        // after a failure or an interruption, so the next run resumes.
+        for (int index = 0; index < plan.tileCount(); ++index)
+            if (!manifest.tiles.count(index))
+                if (std::optional<TileRecord> record = verifiedRecord(dir, index, manifest, /*hash*/ false))
+                    manifest.tiles[index] = std::move(*record);
+        writeManifestAndTileset(dir, manifest);
+    }
+    summarise(manifest, summary);
     summary.seconds = clock.seconds();
     if (observer) observer->endStage("bake", summary.seconds, std::to_string(summary.baked) + " tiles baked");
     if (stop) throw Error(ErrorKind::Interrupted, "bake interrupted: " + std::to_string(summary.baked) +
-                                                     " tiles baked, the manifest lists every finished tile");
+                                                     " tiles baked; run the same command again to resume");
     if (!failures.empty()) {
         std::sort(failures.begin(), failures.end());
-        std::string message = std::to_string(failures.size()) + " of " + std::to_string(todo.size()) +
-                              " tiles failed (their files were not written); the first: " + failures.front();
-        throw Error(ErrorKind::Io, message, {dir.string()});
+        std::vector<int> indices;
+        for (const auto& failure : failures) indices.push_back(failure.first);
+        throw Error(ErrorKind::Io,
+                    std::to_string(failures.size()) + " of " + std::to_string(todo.size()) + " tiles failed (" +
+                        indexRanges(indices, ", ") + "; none left a file); the first: " + failures.front().second,
+                    {dir.string()});
     }
     return summary;
 }
 
+BakeSummary finalizeBake(const fs::path& dir, PipelineObserver* observer)
+{
+    const Stopwatch clock;
+    const std::optional<BakeManifest> header = detail::readBakeHeader(dir);
+    if (!header)
+        throw Error(ErrorKind::BadInput, "'" + dir.string() + "' holds no bake.json: not a bake folder", {dir.string()});
+    const OutputLock lock(dir);
+    // Every worker has ended: temporaries left by a killed one are litter.
+    std::error_code ec;
+    for (const auto& entry : fs::recursive_directory_iterator(dir, ec)) {
+        const std::string name = entry.path().filename().string();
+        if (entry.is_regular_file() && name.size() > 1 && name[0] == '.' && name.find(".partial-") != std::string::npos)
+            fs::remove(entry.path(), ec);
+    }
+    if (observer) observer->beginStage("finalize");
+    BakeManifest manifest = *header;
+    std::vector<int> missing;
+    const int count = header->counts[0] * header->counts[1] * header->counts[2];
+    for (int index = 0; index < count; ++index) {
+        if (std::optional<TileRecord> record = verifiedRecord(dir, index, manifest, /*hash*/ true))
+            manifest.tiles[index] = std::move(*record);
+        else
+            missing.push_back(index);
+        if (observer && !observer->progressCount(std::uint64_t(index + 1), std::uint64_t(count), "tiles"))
+            throw Error(ErrorKind::Interrupted, "finalize interrupted; nothing was written");
+    }
+    if (!missing.empty()) {
+        const std::string scene = header->sceneSource == "<default scene>" ? "" : header->sceneSource + " ";
+        throw Error(ErrorKind::Io,
+                    "'" + dir.string() + "': " + std::to_string(missing.size()) + " of " + std::to_string(count) +
+                        " tiles are missing or damaged: " + indexRanges(missing, ", ") +
+                        "; bake them with: strata bake " + scene + "-o " + dir.string() + " --tiles " +
+                        indexRanges(missing, ",") + " (then finalize again)",
+                    {dir.string()});
+    }
+    writeManifestAndTileset(dir, manifest);
+    BakeSummary summary;
+    summarise(manifest, summary);
+    summary.kept = count;
+    summary.seconds = clock.seconds();
+    if (observer) observer->endStage("finalize", summary.seconds, std::to_string(count) + " tiles verified");
+    return summary;
+}
+
+BakeSample sampleBakeTile(const Scene& scene, const BakeOptions& options, const BakePlan& plan)
+{
+    std::shared_ptr<const terrain::DensityField> field =
+        options.seed && *options.seed != scene.terrain.seed && scene.buildField ? scene.buildField(*options.seed)
+                                                                                : scene.field;
+    // The middle column's slab that holds the surface: the lowest slab with
+    // triangles at level 0, else slab 0.
+    BakeSample sample;
+    const int x = plan.counts[0] / 2, z = plan.counts[2] / 2;
+    const Stopwatch clock;
+    for (int y = 0; y < plan.counts[1]; ++y) {
+        sample.index = (y * plan.counts[2] + z) * plan.counts[0] + x;
+        const TileRecord record =
+            bakeTile(*field, scene, plan, options.grids, options.maxMemoryBytes, plan.tile(sample.index), nullptr);
+        sample.triangles = 0;
+        for (const TileLevelRecord& level : record.levels) sample.triangles += level.triangles;
+        for (const TileLevelRecord& level : record.levels)
+            if (level.file) sample.bytes += level.file->bytes;
+        if (sample.triangles > 0) break;
+    }
+    sample.seconds = clock.seconds();
+    return sample;
+}
+
 Scene loadBakedScene(const fs::path& bakeDir)
 {
-    const std::optional<BakeManifest> manifest = detail::readManifest(bakeDir);
-    if (!manifest)
-        throw Error(ErrorKind::BadInput, "'" + bakeDir.string() + "' holds no manifest.json: not a bake folder",
+    std::optional<BakeManifest> header = detail::readBakeHeader(bakeDir);
+    if (!header) header = detail::readManifest(bakeDir);
+    if (!header)
+        throw Error(ErrorKind::BadInput, "'" + bakeDir.string() + "' holds no bake.json: not a bake folder",
                     {bakeDir.string()});
     const fs::path copy = bakeDir / "scene.toml";
     std::ifstream in(copy, std::ios::binary);
     if (!in) throw Error(ErrorKind::BadInput, "cannot read '" + copy.string() + "'", {copy.string()});
     const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    if (sha256Hex(text) != manifest->sceneHash)
-        throw Error(ErrorKind::BadInput, "'" + copy.string() + "' does not match the manifest's scene hash", {copy.string()});
-    // Parsed under the original name, so relative texture paths resolve
-    // from the original scene's folder.
-    if (manifest->sceneSource == "<default scene>") return defaultScene();
-    return parseScene(text, manifest->sceneSource);
+    if (sha256Hex(text) != header->sceneHash)
+        throw Error(ErrorKind::BadInput, "'" + copy.string() + "' does not match the bake's scene hash", {copy.string()});
+    // Parsed under the original name, so relative paths (heightmaps,
+    // textures) resolve from the original scene's folder.
+    if (header->sceneSource == "<default scene>") return defaultScene();
+    return parseScene(text, header->sceneSource);
 }
 
 } // namespace strata::scene

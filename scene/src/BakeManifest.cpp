@@ -102,27 +102,28 @@ BakeManifest manifestFor(const BakePlan& plan, const Scene& scene, bool grids)
     return m;
 }
 
-json toJson(const BakeManifest& m)
+json recordJson(const TileRecord& t)
 {
-    json tiles = json::array();
-    for (const auto& [index, t] : m.tiles) {
-        json levels = json::array();
-        for (const TileLevelRecord& l : t.levels) {
-            json level = {{"level", l.level},         {"triangles", l.triangles}, {"skirt_triangles", l.skirtTriangles},
-                          {"vertices", l.vertices},   {"error", l.error},         {"file", nullptr}};
-            if (l.file) {
-                level["file"] = fileJson(*l.file);
-                level["bounds"] = {{"min", vec(l.min)}, {"max", vec(l.max)}};
-            }
-            levels.push_back(level);
+    json levels = json::array();
+    for (const TileLevelRecord& l : t.levels) {
+        json level = {{"level", l.level},       {"triangles", l.triangles}, {"skirt_triangles", l.skirtTriangles},
+                      {"vertices", l.vertices}, {"error", l.error},         {"file", nullptr}};
+        if (l.file) {
+            level["file"] = fileJson(*l.file);
+            level["bounds"] = {{"min", vec(l.min)}, {"max", vec(l.max)}};
         }
-        tiles.push_back({{"index", t.index},
-                         {"cell", t.cell},
-                         {"name", t.name},
-                         {"box", {{"min", vec(t.boxMin)}, {"max", vec(t.boxMax)}}},
-                         {"levels", levels},
-                         {"grid", t.grid ? fileJson(*t.grid) : json(nullptr)}});
+        levels.push_back(level);
     }
+    return {{"index", t.index},
+            {"cell", t.cell},
+            {"name", t.name},
+            {"box", {{"min", vec(t.boxMin)}, {"max", vec(t.boxMax)}}},
+            {"levels", levels},
+            {"grid", t.grid ? fileJson(*t.grid) : json(nullptr)}};
+}
+
+json headerJson(const BakeManifest& m)
+{
     return {{"format", "strata-bake"},
             {"version", 1},
             {"scene", {{"source", m.sceneSource}, {"sha256", m.sceneHash}}},
@@ -134,15 +135,52 @@ json toJson(const BakeManifest& m)
             {"grids", m.grids},
             {"tiles_per_axis", m.counts},
             {"tile_count", m.counts[0] * m.counts[1] * m.counts[2]},
-            {"bounds", {{"min", vec(m.min)}, {"max", vec(m.max)}}},
-            {"geometric_error", m.geometricErrors()},
-            {"tiles", tiles}};
+            {"bounds", {{"min", vec(m.min)}, {"max", vec(m.max)}}}};
 }
 
-BakeManifest manifestFromJson(const json& j, const std::string& path)
+json toJson(const BakeManifest& m)
 {
-    const Reader r(path);
-    if (r.get<std::string>(j, "format") != "strata-bake") r.fail("format", "not a Strata bake manifest");
+    json out = headerJson(m);
+    out["geometric_error"] = m.geometricErrors();
+    json tiles = json::array();
+    for (const auto& [index, t] : m.tiles) tiles.push_back(recordJson(t));
+    out["tiles"] = tiles;
+    return out;
+}
+
+namespace {
+
+TileRecord readRecord(const Reader& r, const json& t)
+{
+    TileRecord tile;
+    tile.index = r.get<int>(t, "index");
+    tile.cell = r.get<std::array<int, 3>>(t, "cell");
+    tile.name = r.get<std::string>(t, "name");
+    tile.boxMin = r.vec3(r.at(t, "box"), "min");
+    tile.boxMax = r.vec3(r.at(t, "box"), "max");
+    tile.grid = r.file(t, "grid");
+    const json& levels = r.at(t, "levels");
+    if (!levels.is_array()) r.fail("levels", "expected an array");
+    for (const json& l : levels) {
+        TileLevelRecord level;
+        level.level = r.get<int>(l, "level");
+        level.triangles = r.get<std::uint64_t>(l, "triangles");
+        level.skirtTriangles = r.get<std::uint64_t>(l, "skirt_triangles");
+        level.vertices = r.get<std::uint64_t>(l, "vertices");
+        level.error = r.get<double>(l, "error");
+        level.file = r.file(l, "file");
+        if (level.file) {
+            level.min = r.vec3(r.at(l, "bounds"), "min");
+            level.max = r.vec3(r.at(l, "bounds"), "max");
+        }
+        tile.levels.push_back(level);
+    }
+    return tile;
+}
+
+BakeManifest readHeader(const Reader& r, const json& j)
+{
+    if (r.get<std::string>(j, "format") != "strata-bake") r.fail("format", "not a Strata bake file");
     if (r.get<int>(j, "version") != 1) r.fail("version", "unsupported version");
     BakeManifest m;
     m.sceneSource = r.get<std::string>(r.at(j, "scene"), "source");
@@ -156,32 +194,34 @@ BakeManifest manifestFromJson(const json& j, const std::string& path)
     m.counts = r.get<std::array<int, 3>>(j, "tiles_per_axis");
     m.min = r.vec3(r.at(j, "bounds"), "min");
     m.max = r.vec3(r.at(j, "bounds"), "max");
-    if (m.lods < 1 || m.lods > 8 || m.counts[0] < 1 || m.counts[1] < 1 || m.counts[2] < 1)
-        r.fail("levels", "out of range");
+    if (m.lods < 1 || m.lods > 8) r.fail("levels", "out of range");
+    if (m.counts[0] < 1 || m.counts[1] < 1 || m.counts[2] < 1 ||
+        std::int64_t(m.counts[0]) * m.counts[1] * m.counts[2] > (1 << 24))
+        r.fail("tiles_per_axis", "out of range");
+    return m;
+}
+
+json parseJsonFile(const std::filesystem::path& path)
+{
+    std::ifstream in(path);
+    if (!in) throw Error(ErrorKind::BadInput, "cannot read '" + path.string() + "'", {path.string()});
+    try {
+        return json::parse(in);
+    } catch (const json::exception& e) {
+        throw Error(ErrorKind::BadInput, "'" + path.string() + "' is not valid JSON: " + e.what(), {path.string()});
+    }
+}
+
+} // namespace
+
+BakeManifest manifestFromJson(const json& j, const std::string& path)
+{
+    const Reader r(path);
+    BakeManifest m = readHeader(r, j);
     const json& tiles = r.at(j, "tiles");
     if (!tiles.is_array()) r.fail("tiles", "expected an array");
     for (const json& t : tiles) {
-        TileRecord tile;
-        tile.index = r.get<int>(t, "index");
-        tile.cell = r.get<std::array<int, 3>>(t, "cell");
-        tile.name = r.get<std::string>(t, "name");
-        tile.boxMin = r.vec3(r.at(t, "box"), "min");
-        tile.boxMax = r.vec3(r.at(t, "box"), "max");
-        tile.grid = r.file(t, "grid");
-        for (const json& l : r.at(t, "levels")) {
-            TileLevelRecord level;
-            level.level = r.get<int>(l, "level");
-            level.triangles = r.get<std::uint64_t>(l, "triangles");
-            level.skirtTriangles = r.get<std::uint64_t>(l, "skirt_triangles");
-            level.vertices = r.get<std::uint64_t>(l, "vertices");
-            level.error = r.get<double>(l, "error");
-            level.file = r.file(l, "file");
-            if (level.file) {
-                level.min = r.vec3(r.at(l, "bounds"), "min");
-                level.max = r.vec3(r.at(l, "bounds"), "max");
-            }
-            tile.levels.push_back(level);
-        }
+        TileRecord tile = readRecord(r, t);
         if (tile.index < 0 || tile.index >= m.counts[0] * m.counts[1] * m.counts[2])
             r.fail("tiles.index", std::to_string(tile.index) + " is out of range");
         m.tiles[tile.index] = tile;
@@ -189,20 +229,32 @@ BakeManifest manifestFromJson(const json& j, const std::string& path)
     return m;
 }
 
+std::optional<BakeManifest> readBakeHeader(const std::filesystem::path& dir)
+{
+    const std::filesystem::path path = dir / "bake.json";
+    std::error_code ec;
+    if (!std::filesystem::exists(path, ec)) return std::nullopt;
+    return readHeader(Reader(path.string()), parseJsonFile(path));
+}
+
+std::optional<TileRecord> readRecord(const std::filesystem::path& path)
+{
+    std::error_code ec;
+    if (!std::filesystem::exists(path, ec)) return std::nullopt;
+    return readRecord(Reader(path.string()), parseJsonFile(path));
+}
+
+std::filesystem::path recordPath(const std::filesystem::path& dir, int index)
+{
+    return dir / "records" / (std::to_string(index) + ".json");
+}
+
 std::optional<BakeManifest> readManifest(const std::filesystem::path& dir)
 {
     const std::filesystem::path path = dir / "manifest.json";
     std::error_code ec;
     if (!std::filesystem::exists(path, ec)) return std::nullopt;
-    std::ifstream in(path);
-    if (!in) throw Error(ErrorKind::Io, "cannot read '" + path.string() + "'", {path.string()});
-    json j;
-    try {
-        j = json::parse(in);
-    } catch (const json::exception& e) {
-        throw Error(ErrorKind::BadInput, "'" + path.string() + "' is not valid JSON: " + e.what(), {path.string()});
-    }
-    return manifestFromJson(j, path.string());
+    return manifestFromJson(parseJsonFile(path), path.string());
 }
 
 } // namespace strata::scene::detail

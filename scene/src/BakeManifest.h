@@ -59,12 +59,24 @@ struct BakeManifest
 };
 
 BakeManifest manifestFor(const BakePlan& plan, const Scene& scene, bool grids);
+/// The bake's identity (every field but the tiles): DIR/bake.json, written
+/// by every run and worker with the same bytes.
+nlohmann::json headerJson(const BakeManifest& manifest);
+/// One tile's record: DIR/records/INDEX.json, written after its files.
+nlohmann::json recordJson(const TileRecord& tile);
+/// The header, the per-level errors and every tile: DIR/manifest.json.
 nlohmann::json toJson(const BakeManifest& manifest);
 /// Throws strata::Error (BadInput) naming `path` and the key when the JSON
 /// is not a manifest.
 BakeManifest manifestFromJson(const nlohmann::json& json, const std::string& path);
 /// A bake's manifest, or nothing when `dir` has none.
 std::optional<BakeManifest> readManifest(const std::filesystem::path& dir);
+/// DIR/bake.json (no tiles), or nothing when `dir` has none.
+std::optional<BakeManifest> readBakeHeader(const std::filesystem::path& dir);
+/// A tile's record file, or nothing when it does not exist. Throws
+/// strata::Error (BadInput) naming the file when it is not a record.
+std::optional<TileRecord> readRecord(const std::filesystem::path& path);
+std::filesystem::path recordPath(const std::filesystem::path& dir, int index);
 
 /// The OGC 3D Tiles 1.1 tileset of the manifest's tiles (see Tileset.cpp).
 nlohmann::json makeTileset(const BakeManifest& manifest);

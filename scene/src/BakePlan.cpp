@@ -4,8 +4,9 @@
 #include <strata/Format.h>
 #include <strata/Sha256.h>
 
-#include <cmath>
+#include <algorithm>
 #include <charconv>
+#include <cmath>
 
 namespace strata::scene {
 
@@ -22,7 +23,8 @@ constexpr int DEFAULT_TILE_VOXELS = 256;
 
 std::int64_t floorDiv(std::int64_t a, std::int64_t b) { return a >= 0 ? a / b : -((-a + b - 1) / b); }
 
-/// Parses "all", "I" or "A-B" into ascending indices below `count`.
+/// Parses "all" or comma-separated indices and ranges "A-B" into ascending
+/// indices below `count`, without repeats.
 std::vector<int> parseSelection(const std::string& text, int count)
 {
     std::vector<int> out;
@@ -34,19 +36,27 @@ std::vector<int> parseSelection(const std::string& text, int count)
         long long value = -1;
         const auto [end, ec] = std::from_chars(part.data(), part.data() + part.size(), value);
         if (ec != std::errc() || end != part.data() + part.size() || part.empty())
-            badFlag("--tiles", text, "expected all, an index I or a range A-B");
+            badFlag("--tiles", text, "expected all, an index I, a range A-B, or a comma-separated list of them");
         if (value < 0 || value >= count)
             badFlag("--tiles", text,
                     "tile " + std::to_string(value) + " is out of range: the world has " + std::to_string(count) +
                         " tiles (0 to " + std::to_string(count - 1) + ")");
         return int(value);
     };
-    const std::string_view view(text);
-    const std::size_t dash = view.find('-');
-    const int first = number(dash == std::string_view::npos ? view : view.substr(0, dash));
-    const int last = dash == std::string_view::npos ? first : number(view.substr(dash + 1));
-    if (last < first) badFlag("--tiles", text, "the range ends before it starts");
-    for (int i = first; i <= last; ++i) out.push_back(i);
+    std::string_view rest(text);
+    while (true) {
+        const std::size_t comma = rest.find(',');
+        const std::string_view part = rest.substr(0, comma);
+        const std::size_t dash = part.find('-');
+        const int first = number(dash == std::string_view::npos ? part : part.substr(0, dash));
+        const int last = dash == std::string_view::npos ? first : number(part.substr(dash + 1));
+        if (last < first) badFlag("--tiles", text, "the range " + std::string(part) + " ends before it starts");
+        for (int i = first; i <= last; ++i) out.push_back(i);
+        if (comma == std::string_view::npos) break;
+        rest.remove_prefix(comma + 1);
+    }
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
     return out;
 }
 

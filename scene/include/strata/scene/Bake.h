@@ -22,14 +22,23 @@
 ///   primitives, the surface and the skirt (material "strata-skirt",
 ///   double-sided). A tile with no surface at a level has no file.
 /// - `grids/X_Z.vdb`: the tile's level-0 narrow-band level set (open box).
-/// - `manifest.json`: scene hash, seed, settings, per tile and level the
-///   bounds, triangles, bytes, SHA-256 and measured error.
-/// - `tileset.json`: 3D Tiles 1.1 (see Tileset.h).
+/// - `records/I.json`: tile I's record (its files' paths, sizes and
+///   SHA-256, triangles, bounds, measured error), written after its files.
+/// - `bake.json`: the bake's identity (scene hash, seed, settings), and
+///   `scene.toml`, the scene; the same bytes from every run and worker.
+/// - `manifest.json`: bake.json plus every tile's record and the per-level
+///   geometric errors; `tileset.json`: 3D Tiles 1.1 (Tileset.cpp). Written
+///   by a single bake, or by finalizeBake() after workers.
 ///
-/// Resume. A bake into a folder that holds a manifest of the same bake
-/// (scene hash, seed and settings) keeps every tile whose files match the
-/// manifest's sizes and hashes and redoes the rest; a manifest of another
-/// bake is refused unless `force`.
+/// Resume. A bake into a folder of the same bake (bake.json: scene hash,
+/// seed and settings) keeps every selected tile whose record's files match
+/// (sizes and SHA-256) and redoes the rest; another bake's folder is
+/// refused unless `force`.
+///
+/// Workers (a Slurm job array, a Kubernetes Indexed Job): `worker` bakes
+/// its selection without the folder lock and without the manifest, so many
+/// processes share one folder, each writing only its own tiles;
+/// finalizeBake() then checks every tile and writes manifest and tileset.
 
 #include <strata/scene/Pipeline.h>
 #include <strata/scene/Scene.h>
@@ -50,8 +59,11 @@ struct BakeOptions
     std::filesystem::path outputDir;
     double tileSize = 0.0; ///< metres; 0 = 256 voxels
     int lods = 3;          ///< levels of detail, 1..8: level l has cells of 2^l voxels
-    /// Which tiles: "all", an index "I", or a range "A-B" (inclusive).
+    /// Which tiles: "all", or indices and inclusive ranges separated by
+    /// commas ("7", "0-63", "3,7-9").
     std::string tiles = "all";
+    /// A worker of a scheduler's array: no lock, no manifest (finalizeBake()).
+    bool worker = false;
     bool grids = true;                 ///< write grids/X_Z.vdb
     bool force = false;                ///< bake over another scene's bake
     std::optional<std::uint64_t> seed; ///< overrides the scene's seed
@@ -96,6 +108,7 @@ struct BakePlan
 /// holds more than 1024 voxels, a region smaller than one tile over x or z,
 /// `lods` out of range, a tile selection that does not parse or is out of
 /// range (naming the count), a tile over the memory budget.
+/// `options.tiles` is parsed against the tile count.
 BakePlan planBake(const Scene& scene, const BakeOptions& options);
 
 /// What a bake did.
@@ -112,8 +125,8 @@ struct BakeSummary
 };
 
 /// Bakes the selected tiles of `plan` (tiles in parallel, each a pure
-/// function of the scene and its index), then rewrites manifest.json and
-/// tileset.json from every tile present. `observer` hears the stage "bake"
+/// function of the scene and its index), then (unless options.worker)
+/// rewrites manifest.json and tileset.json from every tile present. `observer` hears the stage "bake"
 /// with progress per tile and may interrupt (strata::Error, Interrupted:
 /// finished tiles stay, the manifest is written for them). Holds the
 /// output folder's lock. Throws strata::Error: BadInput for another bake's
@@ -121,6 +134,25 @@ struct BakeSummary
 /// not be written.
 BakeSummary bake(const Scene& scene, const BakeOptions& options, const BakePlan& plan,
                  PipelineObserver* observer = nullptr);
+
+/// After the workers: checks every tile of the bake in `dir` against its
+/// record (sizes and SHA-256), removes temporaries a killed worker left, and
+/// writes manifest.json and tileset.json (the same bytes as a single bake's,
+/// and the same bytes when run twice). Throws strata::Error: BadInput when
+/// `dir` is not a bake folder; Io naming the missing or damaged tiles by
+/// index, with the command that bakes just them (nothing written then).
+BakeSummary finalizeBake(const std::filesystem::path& dir, PipelineObserver* observer = nullptr);
+
+/// One tile baked in memory (nothing written) to estimate a bake's cost:
+/// the middle column's lowest slab with a surface.
+struct BakeSample
+{
+    int index = 0;
+    double seconds = 0.0;
+    std::uint64_t triangles = 0; ///< all levels
+    std::uint64_t bytes = 0;     ///< its .glb files, all levels
+};
+BakeSample sampleBakeTile(const Scene& scene, const BakeOptions& options, const BakePlan& plan);
 
 /// A whole-world snapshot from a bake folder: for each tile the coarsest
 /// level whose geometric error, projected from the camera, stays within
