@@ -11,6 +11,7 @@ PACKAGES=(
   libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri libepoxy-dev libglfw3-dev
   libcli11-dev libtomlplusplus-dev nlohmann-json3-dev libfmt-dev
   libgtest-dev libbenchmark-dev libssl-dev
+  slurm-wlm munge python3 python3-yaml
   xvfb xauth
 )
 # Node.js and npm run the Khronos glTF validator test (npm installs

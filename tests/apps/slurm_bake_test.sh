@@ -149,7 +149,11 @@ cmp -s "$work/slurm/manifest.json" "$work/manifest.first" || fail "finalize twic
 # A worker killed half-way leaves no partial tile; its rerun completes the bake.
 "$strata" bake "$scene" -o "$work/killed" "${flags[@]}" --worker --tiles-per-worker 18 --tile 0 --threads 1 -q &
 worker=$!
-sleep 1.5
+# Half-way: once two tiles are recorded (the third is being written).
+for _ in $(seq 600); do
+  [[ $(find "$work/killed/records" -name '*.json' 2>/dev/null | wc -l) -ge 2 ]] && break
+  sleep 0.1
+done
 kill -KILL "$worker" 2>/dev/null || true
 wait "$worker" 2>/dev/null || true
 partial=0
@@ -157,7 +161,8 @@ for f in $(find "$work/killed/tiles" -name '*.glb' 2>/dev/null); do
   "$strata" info "$f" >/dev/null 2>&1 || { partial=$((partial + 1)); echo "partial: $f"; }
 done
 [[ $partial -eq 0 ]] || fail "$partial tile files under their final names are not complete after SIGKILL"
-done_before=$(ls "$work/killed/records" 2>/dev/null | wc -l)
+done_before=$(find "$work/killed/records" -name '*.json' 2>/dev/null | wc -l)
+[[ $done_before -lt 18 ]] || fail "the worker finished before it was killed"
 "$strata" bake "$scene" -o "$work/killed" "${flags[@]}" --worker --tiles-per-worker 18 --tile 0 -q
 "$strata" bake "$work/killed" --finalize -q
 compare "$work/single" "$work/killed"
