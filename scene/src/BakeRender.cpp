@@ -1,6 +1,7 @@
 // A whole-world snapshot from a bake's tiles: per tile the coarsest level
-// whose geometric error fits the screen (the 3D Tiles screen-space error
-// rule), merged into one mesh and rendered like any snapshot.
+// whose geometric error (the tile's own measured error) fits the screen (the
+// 3D Tiles screen-space error rule), merged into one mesh and rendered like
+// any snapshot.
 
 #include <strata/scene/Bake.h>
 
@@ -36,7 +37,6 @@ WorldSnapshotStats renderBakedWorld(const Scene& scene, const std::filesystem::p
                     {bakeDir.string()});
     if (!(options.maxScreenError > 0.0))
         throw Error(ErrorKind::BadInput, "--max-screen-error must be a positive number of pixels", {"", 0, "--max-screen-error", ""});
-    const std::vector<double> errors = manifest->geometricErrors();
 
     // The camera frames the whole world (every level's bounds).
     meshing::Bounds world{glm::dvec3(std::numeric_limits<double>::max()), glm::dvec3(std::numeric_limits<double>::lowest())};
@@ -61,9 +61,15 @@ WorldSnapshotStats renderBakedWorld(const Scene& scene, const std::filesystem::p
     merged.origin = 0.5 * (world.min + world.max);
     for (const auto& [index, tile] : manifest->tiles) {
         const double distance = boxDistance(camera.position, tile.boxMin, tile.boxMax);
+        // This tile's own measured errors (non-decreasing with the level):
+        // tighter than the tileset's per-level maximum over all tiles.
+        std::vector<double> tileErrors(std::size_t(manifest->lods), 0.0);
+        for (const detail::TileLevelRecord& level : tile.levels)
+            if (level.level > 0 && level.level < manifest->lods) tileErrors[std::size_t(level.level)] = level.error;
+        for (std::size_t l = 1; l < tileErrors.size(); ++l) tileErrors[l] = std::max(tileErrors[l], tileErrors[l - 1]);
         int chosen = 0;
         for (int l = manifest->lods - 1; l > 0; --l)
-            if (distance > 0.0 && errors[std::size_t(l)] * pixelsPerRadian / distance <= options.maxScreenError) {
+            if (distance > 0.0 && tileErrors[std::size_t(l)] * pixelsPerRadian / distance <= options.maxScreenError) {
                 chosen = l;
                 break;
             }

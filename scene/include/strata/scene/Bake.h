@@ -155,7 +155,8 @@ struct BakeSample
 BakeSample sampleBakeTile(const Scene& scene, const BakeOptions& options, const BakePlan& plan);
 
 /// A whole-world snapshot from a bake folder: for each tile the coarsest
-/// level whose geometric error, projected from the camera, stays within
+/// level whose geometric error (the tile's own measured error, made
+/// non-decreasing with the level), projected from the camera, stays within
 /// `maxScreenError` pixels (the 3D Tiles rule), merged and rendered as
 /// renderSnapshots() does. The scene comes from `scene` (its material,
 /// lighting and camera); the camera frames the whole world.
