@@ -2,6 +2,7 @@
 
 #include <strata/AtomicFile.h>
 #include <strata/Error.h>
+#include <strata/StderrCapture.h>
 
 #include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
@@ -139,6 +140,8 @@ Image readImage(const fs::path& path)
 {
     OIIO::ImageSpec config;
     config.attribute("oiio:UnassociatedAlpha", 1);
+    // libpng prints its complaints on stderr; OpenImageIO's error says the same.
+    StderrCapture libraryLines;
     auto input = OIIO::ImageInput::open(path.string(), &config);
     if (!input) {
         throw Error("cannot read image '" + path.string() + "': " + oiioError({}));
