@@ -131,6 +131,14 @@ TEST(MeshCommand, BadInputsGiveClearErrors)
     expectError("mesh " + writeRaw(fog, "fog.vdb") + out, "not a level set");
     expectError("mesh " + writeRaw(empty, "empty.vdb") + out, "empty");
     expectError("mesh " + vdb.string() + " -o " + (dir / "out.fbx").string(), "unknown extension");
+    // A bad output name is refused before any work, and no folder is made for it.
+    expectError("mesh " + vdb.string() + " -o " + (dir / "newdir" / "out.xyz").string(),
+                "cannot write mesh file '" + (dir / "newdir" / "out.xyz").string() + "': unknown extension '.xyz'");
+    EXPECT_FALSE(std::filesystem::exists(dir / "newdir"));
+    expectError("mesh " + (dir / "missing.vdb").string() + " -o " + (dir / "newdir" / "out.glb").string(), "does not exist");
+    EXPECT_FALSE(std::filesystem::exists(dir / "newdir"));
+    std::filesystem::create_directories(dir / "folder.glb");
+    expectError("mesh " + vdb.string() + " -o " + (dir / "folder.glb").string(), "it is a folder");
     expectError("mesh " + vdb.string() + out + " --mesher surface-nets --adaptivity 0.5", "--adaptivity");
     expectError("mesh " + vdb.string() + out + " --mesher marching-cubes", "--mesher");
     expectError("mesh " + vdb.string() + out + " --mesher surface-nets --chunk 12", "chunk size 12");
