@@ -14,6 +14,7 @@
 
 #include <cstdlib>
 #include <fstream>
+#include <iterator>
 #include <numbers>
 
 using namespace strata::meshing;
@@ -127,6 +128,17 @@ TEST(MeshCommand, BadInputsGiveClearErrors)
 
     expectError("mesh " + (dir / "missing.vdb").string() + out, "does not exist");
     expectError("mesh " + (dir / "corrupt.vdb").string() + out, "not a readable OpenVDB file");
+    {
+        // A .vdb cut short (at its header, in its tree) is refused, not read
+        // on with whatever OpenVDB's variables held (which allocated GBs).
+        std::ifstream in(vdb, std::ios::binary);
+        const std::string bytes{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+        std::ofstream(dir / "cut-header.vdb", std::ios::binary) << bytes.substr(0, 300);
+        std::ofstream(dir / "cut-tree.vdb", std::ios::binary) << bytes.substr(0, bytes.size() - 100);
+    }
+    expectError("mesh " + (dir / "cut-header.vdb").string() + out, "is truncated or corrupt");
+    expectError("mesh " + (dir / "cut-tree.vdb").string() + out, "is truncated or corrupt");
+    expectError("info " + (dir / "cut-tree.vdb").string(), "is truncated or corrupt");
     expectError("mesh " + writeRaw(openvdb::Vec3SGrid::create(), "vector.vdb") + out, "no float grid");
     expectError("mesh " + writeRaw(fog, "fog.vdb") + out, "not a level set");
     expectError("mesh " + writeRaw(empty, "empty.vdb") + out, "empty");
