@@ -1,5 +1,7 @@
 #include <strata/meshing/GridIO.h>
 
+#include "VdbPreflight.h"
+
 #include <strata/AtomicFile.h>
 #include <strata/Error.h>
 
@@ -93,6 +95,8 @@ VdbFile readVdbFile(const std::filesystem::path& path)
     if (!std::filesystem::is_regular_file(path, ec)) {
         throw Error(where + " is not a file");
     }
+    // Lengths, counts and offsets that OpenVDB would trust, checked first.
+    detail::preflightVdbFile(path);
     std::ifstream in(path, std::ios::binary);
     if (!in) {
         throw Error(ErrorKind::Io, where + " cannot be opened: " + std::strerror(errno), {.file = path.string()});

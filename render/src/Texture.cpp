@@ -2,6 +2,7 @@
 
 #include <strata/Error.h>
 #include <strata/StderrCapture.h>
+#include <strata/render/PngStructure.h>
 
 #include <OpenImageIO/imageio.h>
 
@@ -220,6 +221,11 @@ Image loadMapImage(const std::filesystem::path& path, MapKind kind, int minChann
     std::error_code ec;
     if (!std::filesystem::is_regular_file(path, ec)) {
         throw fail("no such file");
+    }
+    try {
+        checkPngStructure(path);
+    } catch (const Error& e) {
+        throw fail(e.what());
     }
     OIIO::ImageSpec config;
     config.attribute("oiio:UnassociatedAlpha", 1);
