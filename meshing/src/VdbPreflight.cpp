@@ -128,7 +128,7 @@ void preflightVdbFile(const std::filesystem::path& path)
     openvdb::initialize();
     Reader r(path);
     if (r.remaining() < 8 || r.value<std::int64_t>("the magic number") != openvdb::OPENVDB_MAGIC) {
-        r.fail("is not an OpenVDB file (no VDB magic number)");
+        r.fail("is not a readable OpenVDB file (no VDB magic number)");
     }
     const auto version = r.value<std::uint32_t>("the file version");
     if (version < MIN_VDB_FILE_VERSION || version > openvdb::OPENVDB_FILE_VERSION) {
