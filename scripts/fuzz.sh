@@ -36,6 +36,7 @@ for name in $names; do
   # In an empty folder: file names in fuzzed scenes resolve there.
   if ! (cd "$build/fuzz-cwd" &&
         ASAN_OPTIONS="log_path=$build/fuzz_$name.sanitizer:${ASAN_OPTIONS:-}" \
+        LSAN_OPTIONS="suppressions=$root/fuzz/lsan.supp:${LSAN_OPTIONS:-}" \
         UBSAN_OPTIONS="log_path=$build/fuzz_$name.sanitizer:print_stacktrace=1:${UBSAN_OPTIONS:-}" \
         "$build/fuzz/fuzz_$name" "$work" -max_total_time="$seconds" -max_len=$max_len -rss_limit_mb=2048 \
           -malloc_limit_mb=1024 -timeout=10 -artifact_prefix="$crashes/" -print_final_stats=1 2>"$log"); then

@@ -35,7 +35,7 @@ echo "   built in $(($(now) - start)) s"
 
 start=$(now)
 echo "== ASan + UBSan tests matching $tests"
-ASAN_OPTIONS="detect_leaks=1:${ASAN_OPTIONS:-}" UBSAN_OPTIONS="print_stacktrace=1:${UBSAN_OPTIONS:-}" \
+ASAN_OPTIONS="detect_leaks=1:${ASAN_OPTIONS:-}" LSAN_OPTIONS="suppressions=$root/fuzz/lsan.supp:${LSAN_OPTIONS:-}" UBSAN_OPTIONS="print_stacktrace=1:${UBSAN_OPTIONS:-}" \
   ctest --test-dir "$san" --output-on-failure -j "$jobs" -R "$tests"
 echo "   ran in $(($(now) - start)) s"
 

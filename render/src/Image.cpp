@@ -3,7 +3,7 @@
 #include <strata/AtomicFile.h>
 #include <strata/Error.h>
 #include <strata/StderrCapture.h>
-#include <strata/render/PngStructure.h>
+#include <strata/render/ImageFileStructure.h>
 
 #include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
@@ -142,7 +142,7 @@ Image readImage(const fs::path& path)
     OIIO::ImageSpec config;
     config.attribute("oiio:UnassociatedAlpha", 1);
     try {
-        checkPngStructure(path);
+        checkImageFileStructure(path);
     } catch (const Error& e) {
         throw Error("cannot read image '" + path.string() + "': " + e.what());
     }

@@ -2,7 +2,7 @@
 
 #include <strata/Error.h>
 #include <strata/StderrCapture.h>
-#include <strata/render/PngStructure.h>
+#include <strata/render/ImageFileStructure.h>
 
 #include <OpenImageIO/imageio.h>
 
@@ -223,7 +223,7 @@ Image loadMapImage(const std::filesystem::path& path, MapKind kind, int minChann
         throw fail("no such file");
     }
     try {
-        checkPngStructure(path);
+        checkImageFileStructure(path);
     } catch (const Error& e) {
         throw fail(e.what());
     }

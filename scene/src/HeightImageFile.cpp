@@ -2,7 +2,7 @@
 
 #include <strata/Error.h>
 #include <strata/StderrCapture.h>
-#include <strata/render/PngStructure.h>
+#include <strata/render/ImageFileStructure.h>
 
 #include <OpenImageIO/imageio.h>
 
@@ -30,7 +30,7 @@ terrain::HeightImage readHeightImageFile(const std::filesystem::path& path)
 {
     std::error_code ec;
     if (!std::filesystem::is_regular_file(path, ec)) throw Error("no such file");
-    render::checkPngStructure(path);
+    render::checkImageFileStructure(path);
     OIIO::ImageSpec config;
     config.attribute("oiio:UnassociatedAlpha", 1);
     // libpng prints its complaints on stderr; OpenImageIO's error says the same.
