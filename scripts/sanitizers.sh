@@ -12,7 +12,7 @@
 #     tests/world/tsan.supp (TBB's own frames only, no Strata frame).
 # A sanitizer report fails the step; the reports stay in the build folders.
 #   scripts/sanitizers.sh            (CI: the README's test command runs it)
-#   FUZZ_SECONDS=60 SANITIZE_TESTS=. scripts/sanitizers.sh   (every test, longer fuzzing)
+#   SANITIZE_TESTS=. FUZZ_SECONDS=60 scripts/sanitizers.sh   (every test built and run, longer fuzzing)
 set -eu
 root=$(cd "$(dirname "$0")/.." && pwd)
 jobs=${JOBS:-2}
@@ -30,7 +30,11 @@ if [ ! -f "$san/CMakeCache.txt" ]; then
   cmake -S "$root" -B "$san" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSTRATA_FUZZ=ON \
     -DCMAKE_CXX_COMPILER="$cxx" -DCMAKE_C_COMPILER="$cc" >/dev/null
 fi
-nice -n 10 cmake --build "$san" --target common_tests meshing_tests scene_tests fuzzers -j "$jobs"
+if [ "$tests" = "." ]; then
+  nice -n 10 cmake --build "$san" -j "$jobs" # every test
+else
+  nice -n 10 cmake --build "$san" --target common_tests meshing_tests scene_tests fuzzers -j "$jobs"
+fi
 echo "   built in $(($(now) - start)) s"
 
 start=$(now)
