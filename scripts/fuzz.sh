@@ -1,31 +1,49 @@
 #!/bin/sh
-# Builds the mesh-reader fuzzers (clang, libFuzzer, ASan + UBSan) in
-# build-fuzz/ and runs each for SECONDS (default 60) on a copy of its seed
-# corpus in fuzz/corpus/<format>/. New crash inputs land in
-# build-fuzz/crashes/<format>/; add a fixed one to fuzz/corpus/<format>/ so
-# the meshing tests replay it.
-#   scripts/fuzz.sh [SECONDS]
+# Builds the fuzzers (clang, libFuzzer, ASan + UBSan; -DSTRATA_FUZZ=ON) in
+# build-sanitize/ and runs each for SECONDS (default 60) on a copy of its
+# seed corpus in fuzz/corpus/<name>/. New crash inputs land in
+# build-sanitize/crashes/<name>/; add a fixed one to fuzz/corpus/<name>/ so
+# the tests (FuzzCorpus.*) replay it. Sanitizer reports go to
+# build-sanitize/fuzz_<name>.sanitizer.* (the image readers capture stderr
+# while OpenImageIO runs, so a report printed there would be lost).
+#   scripts/fuzz.sh [SECONDS] [NAME ...]     NAME: glb ply obj stl off scene vdb heightmap
 set -eu
 seconds=${1:-60}
+[ $# -gt 0 ] && shift
+names=${*:-glb ply obj stl off scene vdb heightmap}
 root=$(cd "$(dirname "$0")/.." && pwd)
-build=${STRATA_FUZZ_BUILD:-$root/build-fuzz}
-cxx=${CXX_FUZZ:-$(command -v clang++-15 || command -v clang++)}
-cc=${CC_FUZZ:-$(command -v clang-15 || command -v clang)}
-cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSTRATA_FUZZ=ON \
-  -DSTRATA_BUILD_TESTS=OFF -DSTRATA_BUILD_APPS=OFF -DCMAKE_CXX_COMPILER="$cxx" -DCMAKE_C_COMPILER="$cc" >/dev/null
+build=${STRATA_FUZZ_BUILD:-$root/build-sanitize}
+cxx=${CXX_FUZZ:-$(command -v clang++-15 || command -v clang++-14 || command -v clang++)}
+cc=${CC_FUZZ:-$(command -v clang-15 || command -v clang-14 || command -v clang)}
+if [ ! -f "$build/CMakeCache.txt" ]; then
+  cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSTRATA_FUZZ=ON \
+    -DCMAKE_CXX_COMPILER="$cxx" -DCMAKE_C_COMPILER="$cc" >/dev/null
+fi
 nice -n 10 cmake --build "$build" --target fuzzers -j "${JOBS:-2}"
 status=0
-for format in glb ply obj stl off; do
-  work="$build/corpus/$format"
-  crashes="$build/crashes/$format"
-  mkdir -p "$work" "$crashes"
-  cp "$root/fuzz/corpus/$format/"* "$work/"
-  echo "== fuzz_$format for ${seconds}s"
-  if ! "$build/fuzz/fuzz_$format" "$work" -max_total_time="$seconds" -max_len=4096 -rss_limit_mb=2048 \
-      -malloc_limit_mb=512 -timeout=10 -artifact_prefix="$crashes/" -print_final_stats=1 2>"$build/fuzz_$format.log"; then
-    echo "fuzz_$format FOUND A PROBLEM: see $build/fuzz_$format.log and $crashes/"
+for name in $names; do
+  work="$build/corpus/$name"
+  crashes="$build/crashes/$name"
+  mkdir -p "$work" "$crashes" "$build/fuzz-cwd"
+  cp "$root/fuzz/corpus/$name/"* "$work/"
+  case $name in
+    vdb) max_len=16384 ;;
+    *) max_len=4096 ;;
+  esac
+  log="$build/fuzz_$name.log"
+  rm -f "$build/fuzz_$name.sanitizer".*
+  echo "== fuzz_$name for ${seconds}s"
+  # In an empty folder: file names in fuzzed scenes resolve there.
+  if ! (cd "$build/fuzz-cwd" &&
+        ASAN_OPTIONS="log_path=$build/fuzz_$name.sanitizer:${ASAN_OPTIONS:-}" \
+        LSAN_OPTIONS="suppressions=$root/fuzz/lsan.supp:${LSAN_OPTIONS:-}" \
+        UBSAN_OPTIONS="log_path=$build/fuzz_$name.sanitizer:print_stacktrace=1:${UBSAN_OPTIONS:-}" \
+        "$build/fuzz/fuzz_$name" "$work" -max_total_time="$seconds" -max_len=$max_len -rss_limit_mb=2048 \
+          -malloc_limit_mb=1024 -timeout=10 -artifact_prefix="$crashes/" -print_final_stats=1 2>"$log"); then
+    echo "fuzz_$name FOUND A PROBLEM: see $log, $build/fuzz_$name.sanitizer.* and $crashes/"
+    cat "$build/fuzz_$name.sanitizer".* 2>/dev/null | head -40 || true
     status=1
   fi
-  grep -E "stat::number_of_executed_units|stat::peak_rss_mb" "$build/fuzz_$format.log" || true
+  grep -E "stat::number_of_executed_units|stat::average_exec_per_sec|stat::peak_rss_mb" "$log" || true
 done
 exit $status

@@ -3,6 +3,7 @@
 #include "Commands.h"
 
 #include <strata/Error.h>
+#include <strata/meshing/GridIO.h>
 #include <strata/meshing/MeshFile.h>
 #include <strata/meshing/MeshMetrics.h>
 
@@ -26,18 +27,9 @@ std::string format(const char* pattern, double a, double b = 0, double c = 0)
 
 void describeVdb(const std::filesystem::path& path, std::ostream& out)
 {
-    openvdb::initialize();
-    openvdb::GridPtrVecPtr grids;
-    std::string version;
-    try {
-        openvdb::io::File file(path.string());
-        file.open(/*delayLoad*/ false);
-        version = file.version();
-        grids = file.getGrids();
-        file.close();
-    } catch (const std::exception& e) {
-        throw Error("VDB file '" + path.string() + "' is not a readable OpenVDB file: " + e.what());
-    }
+    const meshing::VdbFile file = meshing::readVdbFile(path);
+    const openvdb::GridPtrVecPtr& grids = file.grids;
+    const std::string& version = file.version;
     out << path.string() << ": OpenVDB file (version " << version << "), " << (grids ? grids->size() : 0)
         << " grid(s)\n";
     if (!grids) return;

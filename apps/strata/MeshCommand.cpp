@@ -74,6 +74,16 @@ int runMesh(const MeshArguments& args)
         if (!args.quiet) std::cout << line << std::endl;
     };
 
+    // The output name is checked before any work, and its folder is made
+    // only when the mesh is ready to be written: a bad run leaves nothing.
+    const std::filesystem::path output(args.output);
+    meshing::checkMeshFileExtension(output);
+    std::error_code ec;
+    if (std::filesystem::is_directory(output, ec)) {
+        throw Error(ErrorKind::BadInput, "cannot write mesh file '" + args.output + "': it is a folder",
+                    {.file = args.output});
+    }
+
     auto start = std::chrono::steady_clock::now();
     const openvdb::FloatGrid::Ptr grid = meshing::readLevelSet(args.input);
     const double voxel = grid->voxelSize()[0];
@@ -142,8 +152,14 @@ int runMesh(const MeshArguments& args)
         std::to_string(topology.eulerCharacteristic()) + " (vertices welded by position)");
 
     start = std::chrono::steady_clock::now();
-    if (std::filesystem::path(args.output).has_parent_path()) {
-        std::filesystem::create_directories(std::filesystem::path(args.output).parent_path());
+    if (output.has_parent_path()) {
+        std::filesystem::create_directories(output.parent_path(), ec);
+        if (ec || !std::filesystem::is_directory(output.parent_path())) {
+            throw Error(ErrorKind::Io,
+                        "cannot create output directory '" + output.parent_path().string() + "': " +
+                            (ec ? ec.message() : "a file of that name is in the way"),
+                        {.file = output.parent_path().string()});
+        }
     }
     // The mesh is named after its source (the grid's name, else the input file's stem).
     meshing::MeshFileOptions fileOptions;

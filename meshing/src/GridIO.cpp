@@ -1,12 +1,18 @@
 #include <strata/meshing/GridIO.h>
 
+#include "VdbPreflight.h"
+
 #include <strata/AtomicFile.h>
 #include <strata/Error.h>
 
 #include <openvdb/io/Archive.h>
 #include <openvdb/io/File.h>
+#include <openvdb/io/Stream.h>
 
+#include <cerrno>
 #include <cstdint>
+#include <cstring>
+#include <fstream>
 #include <cstdio>
 #include <sstream>
 #include <stdexcept>
@@ -78,22 +84,46 @@ void writeGrid(const openvdb::FloatGrid& grid, const std::filesystem::path& path
     writeFileAtomically(path, bytes);
 }
 
-openvdb::FloatGrid::Ptr readLevelSet(const std::filesystem::path& path)
+VdbFile readVdbFile(const std::filesystem::path& path)
 {
     openvdb::initialize();
     const std::string where = "VDB file '" + path.string() + "'";
-    if (!std::filesystem::exists(path)) {
+    std::error_code ec;
+    if (!std::filesystem::exists(path, ec)) {
         throw Error(where + " does not exist");
     }
-    openvdb::GridPtrVecPtr grids;
+    if (!std::filesystem::is_regular_file(path, ec)) {
+        throw Error(where + " is not a file");
+    }
+    // Lengths, counts and offsets that OpenVDB would trust, checked first.
+    detail::preflightVdbFile(path);
+    std::ifstream in(path, std::ios::binary);
+    if (!in) {
+        throw Error(ErrorKind::Io, where + " cannot be opened: " + std::strerror(errno), {.file = path.string()});
+    }
+    VdbFile file;
     try {
-        openvdb::io::File file(path.string());
-        file.open(/*delayLoad*/ false);
-        grids = file.getGrids();
-        file.close();
+        // Read as a stream: every grid in full, in file order. OpenVDB does
+        // not check its reads, and after a short read it would go on with
+        // whatever its variables held (reading a truncated file then
+        // allocated gigabytes): the stream throws at the first short read.
+        in.exceptions(std::ios::failbit | std::ios::badbit);
+        openvdb::io::Stream stream(in, /*delayLoad*/ false);
+        file.grids = stream.getGrids();
+        file.version = stream.version();
+    } catch (const std::ios_base::failure&) {
+        throw Error(where + " is truncated or corrupt: it ends before its last grid does");
     } catch (const std::exception& e) {
         throw Error(where + " is not a readable OpenVDB file: " + e.what());
     }
+    if (!file.grids) file.grids = std::make_shared<openvdb::GridPtrVec>();
+    return file;
+}
+
+openvdb::FloatGrid::Ptr readLevelSet(const std::filesystem::path& path)
+{
+    const std::string where = "VDB file '" + path.string() + "'";
+    const openvdb::GridPtrVecPtr grids = readVdbFile(path).grids;
     if (!grids || grids->empty()) {
         throw Error(where + " holds no grid");
     }

@@ -328,6 +328,17 @@ std::string meshFileExtensions()
     return ".glb, .ply, .obj, .stl, .off";
 }
 
+void checkMeshFileExtension(const std::filesystem::path& path)
+{
+    const std::string ext = lowerExtension(path);
+    if (ext != ".glb" && ext != ".ply" && ext != ".obj" && ext != ".stl" && ext != ".off") {
+        throw Error(ErrorKind::BadInput,
+                    "cannot write mesh file '" + path.string() + "': unknown extension '" + ext + "' (use " +
+                        meshFileExtensions() + ")",
+                    detail::filePlace(path));
+    }
+}
+
 void writeMeshFile(const TriangleMesh& mesh, const std::filesystem::path& path, const MeshFileOptions& fileOptions)
 {
     const std::string ext = lowerExtension(path);
@@ -337,12 +348,7 @@ void writeMeshFile(const TriangleMesh& mesh, const std::filesystem::path& path, 
         return writeGlb(mesh, path, glb);
     }
     if (ext == ".ply") return writePly(mesh, path);
-    if (ext != ".obj" && ext != ".stl" && ext != ".off") {
-        throw Error(ErrorKind::BadInput,
-                    "cannot write mesh file '" + path.string() + "': unknown extension '" + ext + "' (use " +
-                        meshFileExtensions() + ")",
-                    detail::filePlace(path));
-    }
+    checkMeshFileExtension(path);
     detail::OmMesh om;
     const bool hasNormals = detail::toOpenMesh(mesh, om);
     OpenMesh::IO::Options options;

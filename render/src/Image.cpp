@@ -2,6 +2,8 @@
 
 #include <strata/AtomicFile.h>
 #include <strata/Error.h>
+#include <strata/StderrCapture.h>
+#include <strata/render/ImageFileStructure.h>
 
 #include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
@@ -139,6 +141,13 @@ Image readImage(const fs::path& path)
 {
     OIIO::ImageSpec config;
     config.attribute("oiio:UnassociatedAlpha", 1);
+    try {
+        checkImageFileStructure(path);
+    } catch (const Error& e) {
+        throw Error("cannot read image '" + path.string() + "': " + e.what());
+    }
+    // libpng prints its complaints on stderr; OpenImageIO's error says the same.
+    StderrCapture libraryLines;
     auto input = OIIO::ImageInput::open(path.string(), &config);
     if (!input) {
         throw Error("cannot read image '" + path.string() + "': " + oiioError({}));

@@ -1,6 +1,8 @@
 #include <strata/render/Texture.h>
 
 #include <strata/Error.h>
+#include <strata/StderrCapture.h>
+#include <strata/render/ImageFileStructure.h>
 
 #include <OpenImageIO/imageio.h>
 
@@ -14,6 +16,16 @@
 namespace strata::render {
 
 namespace {
+
+/// OpenImageIO's error in one line (it may hold several), else what the
+/// image library printed, else a generic reason.
+std::string oneLineError(std::string message, const std::string& printed)
+{
+    std::replace(message.begin(), message.end(), '\n', ' ');
+    while (!message.empty() && message.back() == ' ') message.pop_back();
+    if (message.empty()) message = printed;
+    return message.empty() ? "unknown OpenImageIO error" : message;
+}
 
 const std::array<float, 256>& srgbTable()
 {
@@ -210,11 +222,18 @@ Image loadMapImage(const std::filesystem::path& path, MapKind kind, int minChann
     if (!std::filesystem::is_regular_file(path, ec)) {
         throw fail("no such file");
     }
+    try {
+        checkImageFileStructure(path);
+    } catch (const Error& e) {
+        throw fail(e.what());
+    }
     OIIO::ImageSpec config;
     config.attribute("oiio:UnassociatedAlpha", 1);
+    // libpng prints its complaints on stderr; OpenImageIO's error says the same.
+    StderrCapture libraryLines;
     auto input = OIIO::ImageInput::open(path.string(), &config);
     if (!input) {
-        throw fail("cannot read: " + OIIO::geterror());
+        throw fail("cannot read: " + oneLineError(OIIO::geterror(), libraryLines.release()));
     }
     const OIIO::ImageSpec& spec = input->spec();
     const int channels = spec.nchannels;
@@ -234,7 +253,7 @@ Image loadMapImage(const std::filesystem::path& path, MapKind kind, int minChann
                             colorSpace == "lin_srgb" || colorSpace == "scene_linear";
     std::vector<float> data(std::size_t(spec.width) * std::size_t(spec.height) * std::size_t(channels));
     if (!input->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, data.data())) {
-        throw fail("cannot read: " + input->geterror());
+        throw fail("cannot read: " + oneLineError(input->geterror(), libraryLines.release()));
     }
     Image image;
     image.width = spec.width;

@@ -1,12 +1,12 @@
 #include "SceneTerrain.h"
 
+#include "HeightImageFile.h"
+
 #include <strata/Error.h>
 #include <strata/Format.h>
 #include <strata/terrain/Heightfield.h>
 #include <strata/terrain/NodeRegistry.h>
 #include <strata/terrain/Noise.h>
-
-#include <OpenImageIO/imageio.h>
 
 #include <algorithm>
 #include <cmath>
@@ -45,28 +45,12 @@ std::shared_ptr<const HeightImage> readHeightImage(const std::filesystem::path& 
     std::lock_guard<std::mutex> lock(cache.mutex);
     auto found = cache.images.find(path.string());
     if (found != cache.images.end()) return found->second;
-    const std::string shown = "= '" + path.string() + "'";
-    std::error_code ec;
-    if (!std::filesystem::is_regular_file(path, ec)) t.fail(nullptr, key, shown + ": no such file");
-    OIIO::ImageSpec config;
-    config.attribute("oiio:UnassociatedAlpha", 1);
-    std::unique_ptr<OIIO::ImageInput> in = OIIO::ImageInput::open(path.string(), &config);
-    if (!in) t.fail(nullptr, key, shown + " cannot be read as an image: " + OIIO::geterror());
-    const OIIO::ImageSpec& spec = in->spec();
-    auto image = std::make_shared<HeightImage>();
-    image->width = spec.width;
-    image->height = spec.height;
-    if (spec.width < 2 || spec.height < 2 || spec.nchannels < 1 ||
-        double(spec.width) * double(spec.height) > double(1 << 28)) {
-        t.fail(nullptr, key, shown + " is " + std::to_string(spec.width) + "x" + std::to_string(spec.height) +
-                                    " pixels: heightmaps need 2x2 to 16384x16384");
+    std::shared_ptr<const HeightImage> image;
+    try {
+        image = std::make_shared<const HeightImage>(readHeightImageFile(path));
+    } catch (const Error& e) {
+        t.fail(nullptr, key, "= '" + path.string() + "': " + e.what());
     }
-    image->values.resize(std::size_t(spec.width) * std::size_t(spec.height));
-    // Channel 0 as float: 8- and 16-bit integers come normalised to [0, 1].
-    if (!in->read_image(0, 0, 0, 1, OIIO::TypeDesc::FLOAT, image->values.data())) {
-        t.fail(nullptr, key, shown + " cannot be read: " + in->geterror());
-    }
-    in->close();
     cache.images.emplace(path.string(), image);
     return image;
 }

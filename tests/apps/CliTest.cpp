@@ -8,17 +8,49 @@
 #include <strata/meshing/MeshMetrics.h>
 #include <strata/render/Image.h>
 
+#include <OpenImageIO/imageio.h>
+
 #include <nlohmann/json.hpp>
 
 #include <gtest/gtest.h>
 
 #include <cstdlib>
 #include <fstream>
+#include <iterator>
+#include <map>
+#include <sstream>
+#include <vector>
 
 namespace {
 
 using strata::test::CommandResult;
 using strata::test::runStrata;
+
+/// The non-empty lines of `text`.
+std::vector<std::string> linesOf(const std::string& text)
+{
+    std::vector<std::string> lines;
+    std::istringstream in(text);
+    for (std::string line; std::getline(in, line);) {
+        if (!line.empty()) lines.push_back(line);
+    }
+    return lines;
+}
+
+/// An 8x8 RGB ramp as PNG bytes (written by OpenImageIO): a heightmap or a
+/// normal map.
+std::string pngBytes(const std::filesystem::path& dir)
+{
+    std::vector<unsigned char> pixels(8 * 8 * 3);
+    for (std::size_t i = 0; i < pixels.size(); ++i) pixels[i] = static_cast<unsigned char>(i);
+    const std::filesystem::path path = dir / "good.png";
+    auto out = OIIO::ImageOutput::create(path.string());
+    EXPECT_TRUE(out && out->open(path.string(), OIIO::ImageSpec(8, 8, 3, OIIO::TypeDesc::UINT8)));
+    EXPECT_TRUE(out->write_image(OIIO::TypeDesc::UINT8, pixels.data()));
+    out->close();
+    std::ifstream in(path, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
 
 } // namespace
 
@@ -117,6 +149,52 @@ TEST(Cli, BadSceneExitsWithTwoAndWritesNothing)
 
     const CommandResult missing = runStrata("generate /nonexistent.toml -o " + (dir / "out").string(), dir);
     EXPECT_EQ(missing.exitCode, 2);
+}
+
+// libpng prints "libpng error: ..." on stderr for a corrupt PNG before
+// OpenImageIO reports the failure: the user sees one `strata: error:` line
+// naming the key and the file, nothing else, and no output folder.
+TEST(Cli, CorruptPngHeightmapOrMaterialMapGivesOneErrorLine)
+{
+    const auto dir = strata::test::freshTestDir();
+    const std::string good = pngBytes(dir);
+    ASSERT_GT(good.size(), 60u);
+    const std::size_t idat = good.find("IDAT");
+    ASSERT_NE(idat, std::string::npos);
+    std::string badCrc = good;
+    const std::size_t length = (std::size_t(std::uint8_t(good[idat - 4])) << 24) | (std::size_t(std::uint8_t(good[idat - 3])) << 16) |
+                               (std::size_t(std::uint8_t(good[idat - 2])) << 8) | std::size_t(std::uint8_t(good[idat - 1]));
+    badCrc[idat + 4 + length] = char(badCrc[idat + 4 + length] ^ 0x5a); // the IDAT chunk's CRC
+    const std::map<std::string, std::string> corrupt = {{"badcrc.png", badCrc}, {"truncated.png", good.substr(0, idat + 12)}};
+    for (const auto& [name, bytes] : corrupt) {
+        std::ofstream(dir / name, std::ios::binary) << bytes;
+    }
+    struct Case
+    {
+        std::string scene, key;
+    };
+    for (const auto& [name, bytes] : corrupt) {
+        for (const Case& c :
+             {Case{"[terrain]\nroot = \"a\"\n[terrain.nodes.a]\ntype = \"image_heightfield\"\nfile = \"" + name + "\"\n",
+                   "terrain.nodes.a.file = '"},
+              Case{"[material.maps.normal]\nfile = \"" + name + "\"\n", "material.maps.normal"}}) {
+            {
+                std::ofstream(dir / "scene.toml") << c.scene;
+            }
+            for (const std::string flags : {"", " --no-snapshot"}) {
+                const CommandResult run =
+                    runStrata("generate " + (dir / "scene.toml").string() + " -o " + (dir / "out").string() + " -q" + flags, dir);
+                EXPECT_EQ(run.exitCode, 2) << name << flags << "\n" << run.output;
+                const std::vector<std::string> lines = linesOf(run.output);
+                ASSERT_EQ(lines.size(), 1u) << name << flags << "\n" << run.output;
+                EXPECT_EQ(lines[0].rfind("strata: error: ", 0), 0u) << lines[0];
+                EXPECT_NE(lines[0].find(c.key), std::string::npos) << lines[0];
+                EXPECT_NE(lines[0].find(name), std::string::npos) << lines[0];
+                EXPECT_EQ(run.output.find("libpng"), std::string::npos) << run.output;
+                EXPECT_FALSE(std::filesystem::exists(dir / "out")) << name << flags;
+            }
+        }
+    }
 }
 
 TEST(Cli, CtrlCStopsTheRunWritesNothingAndExits130)

@@ -14,6 +14,7 @@
 
 #include <cstdlib>
 #include <fstream>
+#include <iterator>
 #include <numbers>
 
 using namespace strata::meshing;
@@ -127,10 +128,29 @@ TEST(MeshCommand, BadInputsGiveClearErrors)
 
     expectError("mesh " + (dir / "missing.vdb").string() + out, "does not exist");
     expectError("mesh " + (dir / "corrupt.vdb").string() + out, "not a readable OpenVDB file");
+    {
+        // A .vdb cut short (at its header, in its tree) is refused, not read
+        // on with whatever OpenVDB's variables held (which allocated GBs).
+        std::ifstream in(vdb, std::ios::binary);
+        const std::string bytes{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+        std::ofstream(dir / "cut-header.vdb", std::ios::binary) << bytes.substr(0, 300);
+        std::ofstream(dir / "cut-tree.vdb", std::ios::binary) << bytes.substr(0, bytes.size() - 100);
+    }
+    expectError("mesh " + (dir / "cut-header.vdb").string() + out, "is truncated or corrupt");
+    expectError("mesh " + (dir / "cut-tree.vdb").string() + out, "is truncated or corrupt");
+    expectError("info " + (dir / "cut-tree.vdb").string(), "is truncated or corrupt");
     expectError("mesh " + writeRaw(openvdb::Vec3SGrid::create(), "vector.vdb") + out, "no float grid");
     expectError("mesh " + writeRaw(fog, "fog.vdb") + out, "not a level set");
     expectError("mesh " + writeRaw(empty, "empty.vdb") + out, "empty");
     expectError("mesh " + vdb.string() + " -o " + (dir / "out.fbx").string(), "unknown extension");
+    // A bad output name is refused before any work, and no folder is made for it.
+    expectError("mesh " + vdb.string() + " -o " + (dir / "newdir" / "out.xyz").string(),
+                "cannot write mesh file '" + (dir / "newdir" / "out.xyz").string() + "': unknown extension '.xyz'");
+    EXPECT_FALSE(std::filesystem::exists(dir / "newdir"));
+    expectError("mesh " + (dir / "missing.vdb").string() + " -o " + (dir / "newdir" / "out.glb").string(), "does not exist");
+    EXPECT_FALSE(std::filesystem::exists(dir / "newdir"));
+    std::filesystem::create_directories(dir / "folder.glb");
+    expectError("mesh " + vdb.string() + " -o " + (dir / "folder.glb").string(), "it is a folder");
     expectError("mesh " + vdb.string() + out + " --mesher surface-nets --adaptivity 0.5", "--adaptivity");
     expectError("mesh " + vdb.string() + out + " --mesher marching-cubes", "--mesher");
     expectError("mesh " + vdb.string() + out + " --mesher surface-nets --chunk 12", "chunk size 12");

@@ -1,6 +1,7 @@
 // The fuzzers' seed corpora (and any crash reproducer added to them) as
 // regression inputs: each file either parses or throws strata::Error.
 #include <strata/Error.h>
+#include <strata/meshing/GridIO.h>
 #include <strata/meshing/MeshFile.h>
 
 #include <gtest/gtest.h>
@@ -34,4 +35,29 @@ TEST(FuzzCorpus, EveryCorpusFileParsesOrThrowsStrataError)
         EXPECT_GT(files, 0u) << format;
         EXPECT_GT(parsed, 0u) << format; // each corpus holds at least one good file
     }
+}
+
+// The .vdb reader of `strata mesh` / `strata info` on fuzz/corpus/vdb/: a
+// usable level set or strata::Error (BadInput), never a crash or another
+// exception.
+TEST(FuzzCorpus, EveryVdbCorpusFileReadsOrThrowsStrataError)
+{
+    const fs::path root = STRATA_FUZZ_CORPUS_DIR;
+    std::size_t files = 0, read = 0;
+    for (const auto& entry : fs::directory_iterator(root / "vdb")) {
+        if (!entry.is_regular_file()) continue;
+        ++files;
+        try {
+            const openvdb::FloatGrid::Ptr grid = readLevelSet(entry.path());
+            ASSERT_TRUE(grid) << entry.path();
+            EXPECT_EQ(grid->getGridClass(), openvdb::GRID_LEVEL_SET) << entry.path();
+            EXPECT_GT(grid->activeVoxelCount(), 0u) << entry.path();
+            ++read;
+        } catch (const strata::Error& e) {
+            EXPECT_EQ(e.kind(), strata::ErrorKind::BadInput) << entry.path() << ": " << e.what();
+        }
+    }
+    EXPECT_GT(files, 0u);
+    EXPECT_GT(read, 0u); // at least one good file
+    EXPECT_LT(read, files); // and at least one bad one
 }

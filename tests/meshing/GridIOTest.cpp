@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <iterator>
 
 using namespace strata::meshing;
 
@@ -73,6 +74,45 @@ TEST(GridIO, EachBadFileHasItsOwnError)
     empty->setGridClass(openvdb::GRID_LEVEL_SET);
     writeRaw(empty, dir / "empty.vdb");
     expectReadError(dir / "empty.vdb", "empty");
+}
+
+// Lengths and counts OpenVDB would trust are checked against the file first:
+// a few changed bytes must not make the reader allocate gigabytes.
+TEST(GridIO, LengthsAndCountsBeyondTheFileAreRefused)
+{
+    openvdb::initialize();
+    const auto dir = strata::test::freshTestDir();
+    auto sphere = openvdb::tools::createLevelSetSphere<openvdb::FloatGrid>(2.0f, openvdb::Vec3f(0.0f), 0.5f);
+    writeGrid(*sphere, dir / "good.vdb");
+    std::ifstream in(dir / "good.vdb", std::ios::binary);
+    const std::string good{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+    ASSERT_NO_THROW(readLevelSet(dir / "good.vdb"));
+    auto withBytes = [&](std::size_t offset, const std::string& bytes, const std::string& name) {
+        std::string changed = good;
+        changed.replace(offset, bytes.size(), bytes);
+        std::ofstream(dir / name, std::ios::binary) << changed;
+        return dir / name;
+    };
+    const std::size_t name = good.find("class");
+    ASSERT_NE(name, std::string::npos);
+    // The grid metadata's first name claims 0x7fffffff characters.
+    expectReadError(withBytes(name - 4, std::string("\xff\xff\xff\x7f", 4), "long-name.vdb"),
+                    "claims 2147483647 characters");
+    // The grid metadata count (just before that name) claims 2^32 - 1 entries.
+    expectReadError(withBytes(name - 8, std::string("\xff\xff\xff\xff", 4), "many-entries.vdb"),
+                    "claims 4294967295 entries");
+    // The file format version (bytes 8..11).
+    expectReadError(withBytes(8, std::string("\x10\x00\x00\x00", 4), "old.vdb"), "has format version 16");
+    // A string metadata value longer than the file.
+    const std::size_t value = good.find("level set");
+    ASSERT_NE(value, std::string::npos);
+    expectReadError(withBytes(value - 4, std::string("\x00\x00\x00\x40", 4), "long-value.vdb"),
+                    "is truncated or corrupt");
+    // Cut anywhere in the tree.
+    {
+        std::ofstream(dir / "cut.vdb", std::ios::binary) << good.substr(0, good.size() * 2 / 3);
+    }
+    expectReadError(dir / "cut.vdb", "is truncated or corrupt");
 }
 
 TEST(GridIO, SameGridGivesSameBytes)

@@ -293,13 +293,14 @@ TEST(SceneTerrain, CliRefusesBadNodesAndOverBudgetScenesWithExitTwoWritingNothin
     std::string output;
     EXPECT_EQ(runStrata("generate " + (dir / "bad.toml").string() + " -o " + (dir / "out").string(), dir, output), 2);
     EXPECT_NE(output.find("bad.toml:4: terrain.nodes.a.type = 'blob'"), std::string::npos) << output;
-    EXPECT_FALSE(std::filesystem::exists(dir / "out" / "terrain.vdb"));
+    EXPECT_FALSE(std::filesystem::exists(dir / "out"));
 
     EXPECT_EQ(runStrata("generate -o " + (dir / "big").string() + " --no-snapshot --max-memory 2MiB", dir, output), 2);
     EXPECT_NE(output.find("memory budget of 2 MiB"), std::string::npos) << output;
     EXPECT_NE(output.find("coarser voxel_size"), std::string::npos) << output;
     EXPECT_FALSE(std::filesystem::exists(dir / "big" / "terrain.vdb"));
     EXPECT_FALSE(std::filesystem::exists(dir / "big" / "report.json"));
+    EXPECT_FALSE(std::filesystem::exists(dir / "big")) << "an over-budget scene leaves no folder";
 
     EXPECT_EQ(runStrata("generate -o " + (dir / "x").string() + " --max-memory lots", dir, output), 2);
     EXPECT_NE(output.find("--max-memory 'lots'"), std::string::npos) << output;

@@ -12,9 +12,24 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <mutex>
 #include <string>
 
 namespace strata::world::detail {
+
+namespace {
+
+/// Passed through by a thread before it starts a parallel_for and by each
+/// body first: makes TBB's hand-over visible to ThreadSanitizer. A static
+/// with a constexpr constructor, so it is constant-initialised (never
+/// written at run time, unlike a member mutex constructed with its object).
+std::mutex& spawnFence()
+{
+    static std::mutex fence;
+    return fence;
+}
+
+} // namespace
 
 using openvdb::Coord;
 using openvdb::CoordBBox;
@@ -69,13 +84,16 @@ std::vector<Coord> EditLayer::apply(const Edit& edit, const terrain::DensityFiel
     std::vector<std::vector<Change>> perSlice(slices);
     const openvdb::FloatTree& tree = mGrid->tree();
     {
-        // An empty exclusive section: publishes the values above to the
-        // workers' shared locks in a way ThreadSanitizer sees.
-        { std::unique_lock<std::shared_mutex> publish(mLock); }
+        // TBB orders everything this thread did before the parallel_for
+        // (the construction of mLock included) before the bodies run, but
+        // ThreadSanitizer cannot see TBB's synchronisation: this thread and
+        // then each body pass through one fence mutex, which it does see.
+        { std::lock_guard<std::mutex> fence(spawnFence()); }
         tbb::parallel_for(tbb::blocked_range<int>(0, slices), [&](const tbb::blocked_range<int>& r) {
+            { std::lock_guard<std::mutex> fence(spawnFence()); }
             // Only this edit writes (mWriteMutex); the shared lock costs little
-            // and makes the order of these reads and the writes below visible
-            // to ThreadSanitizer, which cannot see TBB's own synchronisation.
+            // and orders these reads before the writes below (after the
+            // parallel_for) in a way ThreadSanitizer sees.
             std::shared_lock<std::shared_mutex> lock(mLock);
             ConstTreeAccessor acc(tree);
             for (int s = r.begin(); s != r.end(); ++s) {

@@ -22,6 +22,11 @@ struct MeshFileOptions
     std::string name;
 };
 
+/// Throws strata::Error (BadInput) "cannot write mesh file 'PATH': unknown
+/// extension ..." unless writeMeshFile() can write `path`'s extension: lets a
+/// caller refuse a bad output name before doing any work.
+void checkMeshFileExtension(const std::filesystem::path& path);
+
 /// Writes `mesh` in the format its extension names (case-insensitive).
 /// Text formats (.obj, .off) write max_digits10 (9) significant digits, so
 /// every position and normal reads back bit-identical.

@@ -1,0 +1,111 @@
+#include <strata/render/ImageFileStructure.h>
+
+#include <strata/Error.h>
+
+#include <cstdint>
+#include <cstring>
+#include <fstream>
+#include <string>
+
+namespace strata::render {
+
+namespace {
+
+std::string printable(std::string text)
+{
+    for (char& c : text) {
+        if (c < 32 || c > 126) c = '?';
+    }
+    return text;
+}
+
+void checkPng(std::ifstream& in, std::uint64_t size)
+{
+    std::uint64_t offset = 8;
+    for (;;) {
+        if (size - offset < 12) {
+            throw Error("is a truncated PNG: it ends at byte " + std::to_string(size) + " without an IEND chunk");
+        }
+        unsigned char chunk[8];
+        in.seekg(std::streamoff(offset));
+        if (!in.read(reinterpret_cast<char*>(chunk), 8)) throw Error("cannot be read at byte " + std::to_string(offset));
+        const std::uint64_t length = (std::uint64_t(chunk[0]) << 24) | (std::uint64_t(chunk[1]) << 16) |
+                                     (std::uint64_t(chunk[2]) << 8) | std::uint64_t(chunk[3]);
+        const std::string type = printable(std::string(reinterpret_cast<const char*>(chunk + 4), 4));
+        if (length > 0x7fffffffu || length + 12 > size - offset) {
+            throw Error("is a truncated PNG: chunk '" + type + "' at byte " + std::to_string(offset) + " needs " +
+                        std::to_string(length + 12) + " bytes, the file has " + std::to_string(size - offset) + " left");
+        }
+        offset += length + 12;
+        if (type == "IEND") return;
+    }
+}
+
+/// OpenEXR: after the magic number and version, one header (several for a
+/// multi-part file, ended by an empty one) of attributes: name, type name
+/// (NUL-terminated), a 32-bit size and the value; an empty name ends it.
+void checkExr(std::ifstream& in, std::uint64_t size)
+{
+    std::uint64_t offset = 4;
+    std::uint32_t version = 0;
+    in.seekg(4);
+    if (!in.read(reinterpret_cast<char*>(&version), 4)) throw Error("is a truncated OpenEXR file: no version");
+    offset = 8;
+    const bool multipart = (version & 0x1000u) != 0;
+    auto readName = [&](const char* what) {
+        std::string name;
+        for (;;) {
+            char c;
+            if (offset >= size || !in.get(c)) {
+                throw Error("is a truncated OpenEXR file: " + std::string(what) + " at byte " + std::to_string(offset) +
+                            " runs past the end");
+            }
+            ++offset;
+            if (c == '\0') return name;
+            if (name.size() >= 255) {
+                throw Error("is a corrupt OpenEXR file: " + std::string(what) + " at byte " +
+                            std::to_string(offset - name.size() - 1) + " is longer than 255 characters");
+            }
+            name += c;
+        }
+    };
+    for (int part = 0;; ++part) {
+        int attributes = 0;
+        for (;; ++attributes) {
+            const std::string name = readName("an attribute name");
+            if (name.empty()) break;
+            readName("an attribute type");
+            std::int32_t length = 0;
+            if (size - offset < 4 || !in.read(reinterpret_cast<char*>(&length), 4)) {
+                throw Error("is a truncated OpenEXR file: attribute '" + printable(name) + "' has no size");
+            }
+            offset += 4;
+            if (length < 0 || std::uint64_t(length) > size - offset) {
+                throw Error("is a corrupt OpenEXR file: attribute '" + printable(name) + "' at byte " +
+                            std::to_string(offset - 4) + " claims " + std::to_string(length) + " bytes, the file has " +
+                            std::to_string(size - offset) + " left");
+            }
+            offset += std::uint64_t(length);
+            in.seekg(std::streamoff(offset));
+        }
+        if (!multipart || attributes == 0) return; // single part, or the empty header ending a multi-part file
+    }
+}
+
+} // namespace
+
+void checkImageFileStructure(const std::filesystem::path& path)
+{
+    static const unsigned char PNG[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+    static const unsigned char EXR[4] = {0x76, 0x2f, 0x31, 0x01};
+    std::error_code ec;
+    const std::uint64_t size = std::filesystem::file_size(path, ec);
+    if (ec) return; // the reader reports it
+    std::ifstream in(path, std::ios::binary);
+    unsigned char header[8] = {};
+    if (size < 8 || !in.read(reinterpret_cast<char*>(header), 8)) return;
+    if (std::memcmp(header, PNG, 8) == 0) return checkPng(in, size);
+    if (std::memcmp(header, EXR, 4) == 0) return checkExr(in, size);
+}
+
+} // namespace strata::render
