@@ -188,6 +188,8 @@ Command registerBakeCommand(CLI::App& app)
                     return 0;
                 }
                 if (!args->plan && args->outputDir.empty()) throw Error("--output is required (strata bake SCENE -o DIR)");
+                // From here on the first Ctrl-C is a clean stop (exit 130).
+                TerminalProgress progress(std::cout, stdoutIsTerminal(), args->quiet);
                 if (!args->scenePath.empty() && std::filesystem::is_directory(args->scenePath))
                     throw Error("'" + args->scenePath + "' is a folder: give a scene file (or --finalize a bake folder)");
                 BakeOptions options;
@@ -234,7 +236,6 @@ Command registerBakeCommand(CLI::App& app)
                               << plan.selected.size() << " selected, about "
                               << mebibytes(plan.tileMemoryBytes) << " per tile" << std::endl;
                 }
-                TerminalProgress progress(std::cout, stdoutIsTerminal(), args->quiet);
                 const BakeSummary summary = scene::bake(scene, options, plan, &progress);
                 if (!args->quiet) printSummary(summary, args->worker);
                 return 0;

@@ -102,6 +102,9 @@ Command registerGenerateCommand(CLI::App& app)
     generate->add_flag("-q,--quiet", args->quiet, "Print nothing but errors");
 
     return {generate, [args, generate]() {
+                // First: from here on the first Ctrl-C is a clean stop (exit 130), even
+                // while the scene and its maps are still being read.
+                TerminalProgress progress(std::cout, stdoutIsTerminal(), args->quiet);
                 GenerateOptions options;
                 options.outputDir = args->outputDir;
                 options.seed = args->seed;
@@ -141,7 +144,6 @@ Command registerGenerateCommand(CLI::App& app)
                 if (!args->quiet) {
                     std::cout << "strata generate: " << scene.source << " → " << args->outputDir << "/" << std::endl;
                 }
-                TerminalProgress progress(std::cout, stdoutIsTerminal(), args->quiet);
                 const GenerateResult result = scene::generate(scene, options, &progress);
                 if (!args->quiet) printSummary(result, options.outputDir);
                 return 0;
