@@ -473,12 +473,14 @@ Scene loadBakedScene(const fs::path& bakeDir)
     std::ifstream in(copy, std::ios::binary);
     if (!in) throw Error(ErrorKind::BadInput, "cannot read '" + copy.string() + "'", {copy.string()});
     const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    if (sha256Hex(text) != header->sceneHash)
-        throw Error(ErrorKind::BadInput, "'" + copy.string() + "' does not match the bake's scene hash", {copy.string()});
     // Parsed under the original name, so relative paths (heightmaps,
     // textures) resolve from the original scene's folder.
-    if (header->sceneSource == "<default scene>") return defaultScene();
-    return parseScene(text, header->sceneSource);
+    Scene scene = header->sceneSource == "<default scene>" ? defaultScene() : parseScene(text, header->sceneSource);
+    if (scene.text != text || detail::sceneHash(scene) != header->sceneHash)
+        throw Error(ErrorKind::BadInput,
+                    "'" + copy.string() + "' or the heightmaps it reads changed since the bake (the scene hash differs)",
+                    {copy.string()});
+    return scene;
 }
 
 } // namespace strata::scene

@@ -58,6 +58,10 @@ struct BakeManifest
     std::vector<double> geometricErrors() const;
 };
 
+/// SHA-256 of the scene text and of the contents of the files its terrain
+/// reads (Scene::inputFiles).
+std::string sceneHash(const Scene& scene);
+
 BakeManifest manifestFor(const BakePlan& plan, const Scene& scene, bool grids);
 /// The bake's identity (every field but the tiles): DIR/bake.json, written
 /// by every run and worker with the same bytes.

@@ -1,5 +1,7 @@
 #include <strata/scene/Bake.h>
 
+#include "BakeManifest.h"
+
 #include <strata/Error.h>
 #include <strata/Format.h>
 #include <strata/Sha256.h>
@@ -62,6 +64,25 @@ std::vector<int> parseSelection(const std::string& text, int count)
 
 } // namespace
 
+namespace detail {
+
+std::string sceneHash(const Scene& scene)
+{
+    // The scene text and the contents of every file its terrain reads, so a
+    // changed heightmap is another bake.
+    std::string identity = scene.text;
+    for (const std::filesystem::path& file : scene.inputFiles) {
+        // Appended piece by piece: g++ 12 warns falsely (-Wrestrict) on "\n" + string.
+        identity += '\n';
+        identity += file.string();
+        identity += ' ';
+        identity += sha256File(file);
+    }
+    return sha256Hex(identity);
+}
+
+} // namespace detail
+
 BakeTile BakePlan::tile(int index) const
 {
     BakeTile t;
@@ -87,7 +108,7 @@ BakePlan planBake(const Scene& scene, const BakeOptions& options)
     BakePlan plan;
     plan.voxelSize = scene.voxelSize;
     plan.seed = options.seed.value_or(scene.terrain.seed);
-    plan.sceneHash = sha256Hex(scene.text);
+    plan.sceneHash = detail::sceneHash(scene);
     if (options.lods < 1 || options.lods > MAX_LODS)
         badFlag("--lods", std::to_string(options.lods), "must be in [1, " + std::to_string(MAX_LODS) + "]");
     plan.lods = options.lods;

@@ -38,7 +38,8 @@ void readTerrain(TableReader& root, Scene& scene)
             }
         }
         scene.buildField = readTerrainNodes(terrainNode->as_table(), scene.source,
-                                            std::filesystem::path(scene.source).parent_path(), scene.terrain.seed);
+                                            std::filesystem::path(scene.source).parent_path(), scene.terrain.seed,
+                                            &scene.inputFiles);
         scene.field = scene.buildField(scene.terrain.seed);
         return;
     }

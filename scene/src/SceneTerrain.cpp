@@ -265,11 +265,14 @@ DensityFieldPtr buildTree(const toml::table* table, const std::string& source,
 } // namespace
 
 TerrainBuilder readTerrainNodes(const toml::table* terrainTable, const std::string& source,
-                                const std::filesystem::path& baseDirectory, std::uint64_t seed)
+                                const std::filesystem::path& baseDirectory, std::uint64_t seed,
+                                std::vector<std::filesystem::path>* inputFiles)
 {
     auto images = std::make_shared<ImageCache>();
     // Built once now, from the parsed document, so errors carry its lines.
     buildTree(terrainTable, source, baseDirectory, *images, seed);
+    if (inputFiles)
+        for (const auto& [path, image] : images->images) inputFiles->push_back(path); // a sorted map
     // Rebuilds (another seed) work on a copy of the table, which cannot fail
     // where this one did not (images are cached).
     auto table = std::make_shared<toml::table>(terrainTable ? *terrainTable : toml::table{});

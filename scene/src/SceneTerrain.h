@@ -45,10 +45,12 @@ const std::vector<std::string>& terrainNodeTypes();
 /// returns a builder for it. The tree is built once here with `seed`, so every
 /// error surfaces now: unknown node types, keys or child names, cycles, values
 /// out of range, NaN or infinite, missing or unreadable heightmap images.
+/// `inputFiles` (may be null) receives the image files read, sorted.
 /// Relative image paths are taken from `baseDirectory` (the scene file's
 /// folder). Throws strata::Error "SOURCE:LINE: terrain.nodes.NAME.KEY ...".
 /// `terrainTable` must be the reader of [terrain]; its keys are consumed.
 TerrainBuilder readTerrainNodes(const toml::table* terrainTable, const std::string& source,
-                                const std::filesystem::path& baseDirectory, std::uint64_t seed);
+                                const std::filesystem::path& baseDirectory, std::uint64_t seed,
+                                std::vector<std::filesystem::path>* inputFiles = nullptr);
 
 } // namespace strata::scene

@@ -12,6 +12,7 @@
 #include <strata/Error.h>
 #include <strata/world/TileMesh.h>
 
+#include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -19,8 +20,10 @@
 #include <fstream>
 #include <iterator>
 #include <map>
+#include <memory>
 #include <set>
 #include <string>
+#include <vector>
 
 using namespace strata;
 using namespace strata::scene;
@@ -454,4 +457,56 @@ TEST(Bake, TheCliBakesResumesAndRendersTheWorld)
         "render " + (dir / "out").string() + " -o " + (dir / "x.png").string() + " --seed 3", dir);
     EXPECT_EQ(mixed.exitCode, 2);
     EXPECT_NE(mixed.output.find("--seed cannot be used"), std::string::npos) << mixed.output;
+}
+
+TEST(Bake, AChangedHeightmapIsAnotherBake)
+{
+    // The scene hash covers the heightmap's contents, not only the scene
+    // text: after the image changes, resuming into the old folder is refused.
+    const fs::path dir = test::freshTestDir();
+    const auto writeImage = [&](float slope) {
+        std::vector<float> pixels(32 * 32);
+        for (int y = 0; y < 32; ++y)
+            for (int x = 0; x < 32; ++x) pixels[std::size_t(y * 32 + x)] = slope * float(x + y) / 62.0f;
+        std::unique_ptr<OIIO::ImageOutput> out = OIIO::ImageOutput::create((dir / "height.tif").string());
+        ASSERT_TRUE(out);
+        ASSERT_TRUE(out->open((dir / "height.tif").string(), OIIO::ImageSpec(32, 32, 1, OIIO::TypeDesc::FLOAT)));
+        ASSERT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, pixels.data()));
+        out->close();
+    };
+    writeImage(1.0f);
+    std::ofstream(dir / "scene.toml") << R"(
+[terrain]
+root = "land"
+[terrain.nodes.land]
+type = "image_heightfield"
+file = "height.tif"
+min = [-16.0, -16.0]
+max = [16.0, 16.0]
+height_scale = 8.0
+[region]
+min = [-16.0, -4.0, -16.0]
+max = [16.0, 12.0, 16.0]
+[sampling]
+voxel_size = 0.5
+)";
+    BakeOptions options = smallBake();
+    options.grids = false;
+    const Scene first = loadScene(dir / "scene.toml");
+    ASSERT_EQ(first.inputFiles.size(), 1u);
+    bakeInto(first, dir / "out", options);
+    EXPECT_EQ(loadBakedScene(dir / "out").inputFiles.size(), 1u);
+    const std::string before = planBake(first, options).sceneHash;
+
+    writeImage(0.5f); // same scene text, other heights
+    const Scene second = loadScene(dir / "scene.toml");
+    EXPECT_EQ(second.text, first.text);
+    EXPECT_NE(planBake(second, options).sceneHash, before);
+    try {
+        bakeInto(second, dir / "out", options);
+        ADD_FAILURE() << "resumed a bake of other heights";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("another scene"), std::string::npos) << e.what();
+    }
+    EXPECT_THROW(loadBakedScene(dir / "out"), Error) << "the folder's scene no longer matches its heightmap";
 }

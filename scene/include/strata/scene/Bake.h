@@ -91,7 +91,7 @@ struct BakePlan
     double tileSize = 0.0; ///< metres
     int lods = 1;
     std::uint64_t seed = 0;
-    std::string sceneHash;                  ///< SHA-256 of the scene text
+    std::string sceneHash;                  ///< SHA-256 of the scene text and its heightmaps' contents
     std::array<std::int64_t, 3> minVoxel{}; ///< the snapped region corner (voxels)
     std::array<std::int64_t, 3> maxVoxel{}; ///< the snapped far corner (voxels)
     std::array<int, 3> counts{1, 1, 1};     ///< tiles per axis

@@ -17,6 +17,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace strata::scene {
 
@@ -47,6 +48,9 @@ struct Scene
 {
     std::string source; ///< file path, or "<default scene>"
     std::string text;   ///< the TOML text it was parsed from (the bake hashes it)
+    /// The files the terrain reads (heightmap images), sorted; the bake
+    /// hashes their contents too.
+    std::vector<std::filesystem::path> inputFiles;
     /// The seed (terrain.seed) and, for the [terrain.height]/[terrain.caves]
     /// shorthand, its options.
     terrain::TerrainOptions terrain;
