@@ -72,6 +72,10 @@ void addBounds(const meshing::TriangleMesh& mesh, glm::dvec3& lo, glm::dvec3& hi
     }
 }
 
+/// Where a tile's files go, relative to the bake folder.
+std::string tileFile(int level, const std::string& name) { return "tiles/" + std::to_string(level) + "/" + name + ".glb"; }
+std::string gridFile(const std::string& name) { return "grids/" + name + ".vdb"; }
+
 BakeFile writeBakeFile(const fs::path& dir, const std::string& relative, std::string_view bytes)
 {
     writeFileAtomically(dir / relative, bytes);
@@ -116,7 +120,7 @@ TileRecord bakeTile(const terrain::DensityField& field, const Scene& scene, cons
                 meshing::encodeGlb({meshing::GlbPart{&mesh.surface, "strata-terrain", false},
                                     meshing::GlbPart{&mesh.skirt, "strata-skirt", true}},
                                    mesh.surface.origin, name);
-            const std::string relative = "tiles/" + std::to_string(level) + "/" + tile.name + ".glb";
+            const std::string relative = tileFile(level, tile.name);
             out.file = dir ? writeBakeFile(*dir, relative, bytes) : BakeFile{relative, bytes.size(), ""};
         }
         record.levels.push_back(out);
@@ -131,7 +135,7 @@ TileRecord bakeTile(const terrain::DensityField& field, const Scene& scene, cons
         sampling.region.max = record.boxMax;
         openvdb::FloatGrid::Ptr grid = terrain::sampleLevelSet(field, sampling);
         grid->setName("terrain");
-        const std::string relative = "grids/" + tile.name + ".vdb";
+        const std::string relative = gridFile(tile.name);
         if (dir) {
             meshing::writeGrid(*grid, *dir / relative);
             record.grid = BakeFile{relative, std::uint64_t(fs::file_size(*dir / relative)), sha256File(*dir / relative)};
@@ -268,14 +272,18 @@ BakeSummary bake(const Scene& scene, const BakeOptions& options, const BakePlan&
 {
     const Stopwatch clock;
     const fs::path& dir = options.outputDir;
-    std::shared_ptr<const terrain::DensityField> field =
-        options.seed && *options.seed != scene.terrain.seed && scene.buildField ? scene.buildField(*options.seed)
-                                                                                : scene.field;
-    if (!field) throw Error(ErrorKind::BadInput, scene.source + ": the scene has no terrain", {scene.source});
+    const std::shared_ptr<const terrain::DensityField> field = fieldForSeed(scene, options.seed);
 
     BakeManifest manifest = detail::manifestFor(plan, scene, options.grids);
     // Check the folder before creating anything in it.
-    std::optional<BakeManifest> old = detail::readBakeHeader(dir);
+    std::optional<BakeManifest> old;
+    try {
+        old = detail::readBakeHeader(dir);
+    } catch (const Error& e) {
+        // A damaged bake.json: --force bakes anew over it (its tiles' records are redone).
+        if (!options.force)
+            throw Error(ErrorKind::BadInput, std::string(e.what()) + " (--force bakes anew over it)", e.place());
+    }
     if (old) checkSameBake(*old, manifest, dir, options.force);
     if (observer && !observer->progress(0.0)) throw Error(ErrorKind::Interrupted, "interrupted before the bake");
 
@@ -340,9 +348,8 @@ BakeSummary bake(const Scene& scene, const BakeOptions& options, const BakePlan&
                     // No half-made tile: its finished files go too.
                     std::error_code ignored;
                     fs::remove(detail::recordPath(dir, index), ignored);
-                    for (int level = 0; level < plan.lods; ++level)
-                        fs::remove(dir / "tiles" / std::to_string(level) / (tile.name + ".glb"), ignored);
-                    fs::remove(dir / "grids" / (tile.name + ".vdb"), ignored);
+                    for (int level = 0; level < plan.lods; ++level) fs::remove(dir / tileFile(level, tile.name), ignored);
+                    fs::remove(dir / gridFile(tile.name), ignored);
                 }
                 std::lock_guard<std::mutex> hold(mutex);
                 if (record) made.emplace(index, std::move(*record));
@@ -440,9 +447,7 @@ BakeSummary finalizeBake(const fs::path& dir, PipelineObserver* observer)
 
 BakeSample sampleBakeTile(const Scene& scene, const BakeOptions& options, const BakePlan& plan)
 {
-    std::shared_ptr<const terrain::DensityField> field =
-        options.seed && *options.seed != scene.terrain.seed && scene.buildField ? scene.buildField(*options.seed)
-                                                                                : scene.field;
+    const std::shared_ptr<const terrain::DensityField> field = fieldForSeed(scene, options.seed);
     // The middle column's slab that holds the surface: the lowest slab with
     // triangles at level 0, else slab 0.
     BakeSample sample;

@@ -177,9 +177,7 @@ SampledTerrain sampleTerrain(const Scene& scene, std::optional<std::uint64_t> se
 {
     SampledTerrain out;
     out.seed = seed.value_or(scene.terrain.seed);
-    // The scene's root density field; another seed rebuilds the tree.
-    out.field = seed && *seed != scene.terrain.seed && scene.buildField ? scene.buildField(*seed) : scene.field;
-    if (!out.field) throw Error(ErrorKind::BadInput, scene.source + ": the scene has no terrain", {scene.source});
+    out.field = fieldForSeed(scene, seed);
     terrain::SampleOptions sampling;
     sampling.voxelSize = scene.voxelSize;
     sampling.halfWidth = scene.halfWidth;

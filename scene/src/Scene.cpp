@@ -216,4 +216,12 @@ Scene loadScene(const std::filesystem::path& path)
 
 Scene defaultScene() { return parseScene(defaultSceneText(), "<default scene>"); }
 
+std::shared_ptr<const terrain::DensityField> fieldForSeed(const Scene& scene, std::optional<std::uint64_t> seed)
+{
+    std::shared_ptr<const terrain::DensityField> field =
+        seed && *seed != scene.terrain.seed && scene.buildField ? scene.buildField(*seed) : scene.field;
+    if (!field) throw Error(ErrorKind::BadInput, scene.source + ": the scene has no terrain", {scene.source});
+    return field;
+}
+
 } // namespace strata::scene

@@ -50,6 +50,37 @@ json boxVolume(const Box& b)
     return {{"box", json::array({c.x, -c.z, c.y, h.x, 0.0, 0.0, 0.0, h.z, 0.0, 0.0, 0.0, h.y})}};
 }
 
+/// Children gathered under a node without content: null children are
+/// skipped, one child stands for the group, and the group's error is its
+/// box's diagonal, never less than a child's.
+class Group
+{
+public:
+    void add(json child, const Box& childBounds)
+    {
+        if (child.is_null()) return;
+        mError = std::max(mError, child["geometricError"].get<double>());
+        mBounds.add(childBounds);
+        mChildren.push_back(std::move(child));
+    }
+
+    /// The group's node (or its only child, or null); adds its box to `bounds`.
+    json finish(Box& bounds)
+    {
+        bounds.add(mBounds);
+        if (mChildren.empty()) return nullptr;
+        if (mChildren.size() == 1) return mChildren[0];
+        return {{"boundingVolume", boxVolume(mBounds)},
+                {"geometricError", std::max(glm::length(mBounds.max - mBounds.min), mError)},
+                {"children", mChildren}};
+    }
+
+private:
+    json mChildren = json::array();
+    double mError = 0.0;
+    Box mBounds;
+};
+
 class Builder
 {
 public:
@@ -64,24 +95,15 @@ public:
     json node(int x0, int x1, int z0, int z1, Box& bounds) const
     {
         if (x1 - x0 == 1 && z1 - z0 == 1) return column(x0, z0, bounds);
-        json children = json::array();
-        double childError = 0.0;
+        Group group;
         const int xm = x1 - x0 > 1 ? (x0 + x1) / 2 : x1, zm = z1 - z0 > 1 ? (z0 + z1) / 2 : z1;
         for (const auto& [a0, a1] : {std::pair{x0, xm}, std::pair{xm, x1}})
             for (const auto& [b0, b1] : {std::pair{z0, zm}, std::pair{zm, z1}}) {
                 if (a0 >= a1 || b0 >= b1) continue;
                 Box childBounds;
-                json child = node(a0, a1, b0, b1, childBounds);
-                if (child.is_null()) continue;
-                childError = std::max(childError, child["geometricError"].get<double>());
-                bounds.add(childBounds);
-                children.push_back(std::move(child));
+                group.add(node(a0, a1, b0, b1, childBounds), childBounds);
             }
-        if (children.empty()) return nullptr;
-        if (children.size() == 1) return children[0];
-        return {{"boundingVolume", boxVolume(bounds)},
-                {"geometricError", std::max(glm::length(bounds.max - bounds.min), childError)},
-                {"children", children}};
+        return group.finish(bounds);
     }
 
 private:
@@ -91,21 +113,12 @@ private:
     {
         const auto found = mColumns.find({x, z});
         if (found == mColumns.end()) return nullptr;
-        json chains = json::array();
-        double childError = 0.0;
+        Group group;
         for (const TileRecord* tile : found->second) {
             Box tileBounds;
-            json c = chain(*tile, tileBounds);
-            if (c.is_null()) continue;
-            bounds.add(tileBounds);
-            childError = std::max(childError, c["geometricError"].get<double>());
-            chains.push_back(std::move(c));
+            group.add(chain(*tile, tileBounds), tileBounds);
         }
-        if (chains.empty()) return nullptr;
-        if (chains.size() == 1) return chains[0];
-        return {{"boundingVolume", boxVolume(bounds)},
-                {"geometricError", std::max(glm::length(bounds.max - bounds.min), childError)},
-                {"children", chains}};
+        return group.finish(bounds);
     }
 
     /// One tile's levels from the coarsest (the chain's root) to level 0,

@@ -85,4 +85,9 @@ Scene loadScene(const std::filesystem::path& path);
 /// The embedded default scene, parsed (source "<default scene>").
 Scene defaultScene();
 
+/// The scene's root density field for `seed` (the scene's own when empty or
+/// equal; another seed rebuilds the node tree). Throws strata::Error
+/// (BadInput) when the scene has no terrain.
+std::shared_ptr<const terrain::DensityField> fieldForSeed(const Scene& scene, std::optional<std::uint64_t> seed);
+
 } // namespace strata::scene
