@@ -325,18 +325,32 @@ std::shared_ptr<const WormCaves::Bucket> WormCaves::bucket(const Key& key) const
     return built;
 }
 
-double WormCaves::density(const glm::dvec3& p) const
+namespace {
+
+WormCaves::Key bucketKey(const glm::dvec3& p)
 {
-    const Key key{std::int64_t(std::floor(p.x / BUCKET_SIZE)), std::int64_t(std::floor(p.y / BUCKET_SIZE)),
-                  std::int64_t(std::floor(p.z / BUCKET_SIZE))};
+    return {std::int64_t(std::floor(p.x / BUCKET_SIZE)), std::int64_t(std::floor(p.y / BUCKET_SIZE)),
+            std::int64_t(std::floor(p.z / BUCKET_SIZE))};
+}
+
+} // namespace
+
+const WormCaves::Bucket& WormCaves::threadBucket(const Key& key) const
+{
     WormThreadCache& cache = tWormCache;
     if (cache.id != mId || cache.key != key || !cache.bucket) {
         cache.bucket = bucket(key);
         cache.id = mId;
         cache.key = key;
     }
+    return *static_cast<const Bucket*>(cache.bucket.get());
+}
+
+double WormCaves::distanceAmong(const glm::dvec3& p, const Cone* cones, std::size_t count)
+{
     double d = CAP;
-    for (const Cone& c : *static_cast<const Bucket*>(cache.bucket.get())) {
+    for (std::size_t i = 0; i < count; ++i) {
+        const Cone& c = cones[i];
         // Cheap rejection with the segment's bounding sphere: |p − mid| >= d + reach.
         const glm::dvec3 v = p - c.mid;
         const double far = d + c.reach;
@@ -344,6 +358,35 @@ double WormCaves::density(const glm::dvec3& p) const
         d = std::min(d, roundConeDistance(p, c.s.a, c.s.b, c.s.ra, c.s.rb));
     }
     return d;
+}
+
+double WormCaves::density(const glm::dvec3& p) const
+{
+    const Bucket& cones = threadBucket(bucketKey(p));
+    return distanceAmong(p, cones.data(), cones.size());
+}
+
+void WormCaves::densities(const PointBlock& points, double* out) const
+{
+    const Key key = bucketKey(points.box.min);
+    if (points.count == 0 || bucketKey(points.box.max) != key) {
+        DensityField::densities(points, out);
+        return;
+    }
+    // distanceAmong() rejects a cone at p when |p − mid| >= d + reach, and
+    // d <= CAP: a cone at least CAP + reach from the whole box (with a
+    // millimetre to spare for rounding) is rejected at every point, so
+    // dropping it first leaves each point's sequence of minima, and its
+    // bits, unchanged.
+    const Bucket& all = threadBucket(key);
+    std::vector<Cone> near;
+    for (const Cone& c : all) {
+        const glm::dvec3 gap = glm::max(glm::max(points.box.min - c.mid, c.mid - points.box.max), 0.0);
+        const double reach = CAP + c.reach + 1e-3;
+        if (glm::dot(gap, gap) < reach * reach) near.push_back(c);
+    }
+    for (std::size_t i = 0; i < points.count; ++i)
+        out[i] = distanceAmong({points.x[i], points.y[i], points.z[i]}, near.data(), near.size());
 }
 
 Interval WormCaves::bounds(const WorldBox& box) const

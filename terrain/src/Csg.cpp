@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <cassert>
+#include <cmath>
+#include <vector>
 
 namespace strata::terrain {
 
@@ -49,6 +51,72 @@ double CsgField::density(const glm::dvec3& p) const
         }
     }
     return d;
+}
+
+namespace {
+
+/// Bounds are rigorous up to rounding of about 1e-7 relative (DensityField::
+/// bounds); a skip decided by them keeps this much more margin, so a value
+/// the child leaves unchanged by the interval is unchanged point by point.
+double skipMargin(const Interval& c, double dLo, double dHi)
+{
+    return 1e-4 + 1e-6 * (std::abs(c.lo) + std::abs(c.hi) + std::abs(dLo) + std::abs(dHi));
+}
+
+} // namespace
+
+void CsgField::densities(const PointBlock& points, double* out) const
+{
+    const std::size_t n = points.count;
+    mChildren[0]->densities(points, out);
+    std::vector<std::size_t> need;
+    std::vector<double> buffer;
+    for (std::size_t i = 1; i < mChildren.size(); ++i) {
+        const DensityField& child = *mChildren[i];
+        // The points where density() would evaluate this child.
+        const double floor = child.minDensity();
+        need.clear();
+        double dLo = HUGE_VAL, dHi = -HUGE_VAL;
+        for (std::size_t j = 0; j < n; ++j) {
+            const double d = out[j];
+            if (mOperation == CsgOperation::SUBTRACT && d >= mSmooth - floor) continue;
+            if (mOperation == CsgOperation::UNION && d <= floor - mSmooth) continue;
+            need.push_back(j);
+            dLo = std::min(dLo, d);
+            dHi = std::max(dHi, d);
+        }
+        if (need.empty()) continue;
+        // Outside the blend, smooth-min/max return the unchanged operand
+        // exactly: d when c + d >= k (subtract), c − d >= k (union),
+        // d − c >= k (intersect). A bound costs about one evaluation.
+        if (need.size() >= 8) {
+            const Interval c = child.bounds(points.box);
+            const double margin = mSmooth + skipMargin(c, dLo, dHi);
+            if ((mOperation == CsgOperation::SUBTRACT && c.lo + dLo >= margin) ||
+                (mOperation == CsgOperation::UNION && c.lo - dHi >= margin) ||
+                (mOperation == CsgOperation::INTERSECT && dLo - c.hi >= margin))
+                continue;
+        }
+        const std::size_t m = need.size();
+        buffer.resize(4 * m);
+        double *x = buffer.data(), *y = x + m, *z = y + m, *c = z + m;
+        for (std::size_t k = 0; k < m; ++k) {
+            x[k] = points.x[need[k]];
+            y[k] = points.y[need[k]];
+            z[k] = points.z[need[k]];
+        }
+        PointBlock some{x, y, z, m, points.box};
+        if (m < n) some.box = spannedBox(some);
+        child.densities(some, c);
+        for (std::size_t k = 0; k < m; ++k) {
+            double& d = out[need[k]];
+            switch (mOperation) {
+            case CsgOperation::UNION: d = smoothMin(d, c[k], mSmooth); break;
+            case CsgOperation::SUBTRACT: d = smoothMax(d, -c[k], mSmooth); break;
+            case CsgOperation::INTERSECT: d = smoothMax(d, c[k], mSmooth); break;
+            }
+        }
+    }
 }
 
 Interval CsgField::bounds(const WorldBox& box) const

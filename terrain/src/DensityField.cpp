@@ -12,6 +12,17 @@ double WorldBox::radius() const
     return 0.5 * glm::length(max - min);
 }
 
+WorldBox spannedBox(const PointBlock& points)
+{
+    if (points.count == 0) return {};
+    WorldBox box{{points.x[0], points.y[0], points.z[0]}, {points.x[0], points.y[0], points.z[0]}};
+    for (std::size_t i = 1; i < points.count; ++i) {
+        box.min = glm::min(box.min, glm::dvec3(points.x[i], points.y[i], points.z[i]));
+        box.max = glm::max(box.max, glm::dvec3(points.x[i], points.y[i], points.z[i]));
+    }
+    return box;
+}
+
 Interval DensityField::bounds(const WorldBox& box) const
 {
     // Lipschitz: |d(p) − d(c)| <= L·|p − c| <= L·radius for p in the box;
@@ -19,6 +30,11 @@ Interval DensityField::bounds(const WorldBox& box) const
     const double d = density(box.centre());
     const double reach = lipschitz() * box.radius();
     return {std::max(d - reach, minDensity()), d + reach};
+}
+
+void DensityField::densities(const PointBlock& points, double* out) const
+{
+    for (std::size_t i = 0; i < points.count; ++i) out[i] = density({points.x[i], points.y[i], points.z[i]});
 }
 
 double DensityField::distanceBound(const glm::dvec3& p) const

@@ -4,7 +4,7 @@
 
 #include <strata/Error.h>
 
-#include "NoiseHash.h"
+#include "NoiseKernels.h"
 
 #include <glm/geometric.hpp>
 
@@ -17,128 +17,38 @@ namespace {
 
 using namespace detail;
 
-/// A uniform double in [0, 1) from the top 53 bits of a hash.
-inline double unit(std::uint64_t h)
-{
-    return double(h >> 11) * 0x1.0p-53;
-}
-
-// ---- value noise -------------------------------------------------------------
-
-inline double lattice(std::uint64_t h)
-{
-    return 2.0 * unit(h) - 1.0;
-}
+inline double unit(std::uint64_t h) { return unitInterval(h); }
 
 double value3(std::uint64_t s, const glm::dvec3& p)
 {
-    const double fx = std::floor(p.x), fy = std::floor(p.y), fz = std::floor(p.z);
-    const double x = p.x - fx, y = p.y - fy, z = p.z - fz;
-    const std::int64_t ix = latticeIndex(fx), iy = latticeIndex(fy), iz = latticeIndex(fz);
-    const std::uint64_t hx0 = hashCombine(s, ix), hx1 = hashCombine(s, ix + 1);
-    const std::uint64_t h00 = hashCombine(hx0, iy), h01 = hashCombine(hx0, iy + 1);
-    const std::uint64_t h10 = hashCombine(hx1, iy), h11 = hashCombine(hx1, iy + 1);
-    const double u = fade(x), v = fade(y), w = fade(z);
-    const double n00 = lerp(lattice(hashCombine(h00, iz)), lattice(hashCombine(h00, iz + 1)), w);
-    const double n01 = lerp(lattice(hashCombine(h01, iz)), lattice(hashCombine(h01, iz + 1)), w);
-    const double n10 = lerp(lattice(hashCombine(h10, iz)), lattice(hashCombine(h10, iz + 1)), w);
-    const double n11 = lerp(lattice(hashCombine(h11, iz)), lattice(hashCombine(h11, iz + 1)), w);
-    return lerp(lerp(n00, n01, v), lerp(n10, n11, v), u);
+    const Split3 q = splitCube(p);
+    ValueCell3 cell;
+    valueCell(s, q, cell);
+    return valueInCell(cell, q);
 }
 
 double value2(std::uint64_t s, const glm::dvec2& p)
 {
-    const double fx = std::floor(p.x), fy = std::floor(p.y);
-    const double x = p.x - fx, y = p.y - fy;
-    const std::int64_t ix = latticeIndex(fx), iy = latticeIndex(fy);
-    const std::uint64_t hx0 = hashCombine(s, ix), hx1 = hashCombine(s, ix + 1);
-    const double u = fade(x), v = fade(y);
-    return lerp(lerp(lattice(hashCombine(hx0, iy)), lattice(hashCombine(hx0, iy + 1)), v),
-                lerp(lattice(hashCombine(hx1, iy)), lattice(hashCombine(hx1, iy + 1)), v), u);
-}
-
-// ---- simplex-style noise -------------------------------------------------------
-
-constexpr double GRAD3[12][3] = {
-    {1, 1, 0}, {-1, 1, 0}, {1, -1, 0}, {-1, -1, 0}, {1, 0, 1}, {-1, 0, 1},
-    {1, 0, -1}, {-1, 0, -1}, {0, 1, 1}, {0, -1, 1}, {0, 1, -1}, {0, -1, -1},
-};
-constexpr double D = 0.70710678118654752440;
-constexpr double GRAD2[8][2] = {{1, 0}, {-1, 0}, {0, 1}, {0, -1}, {D, D}, {-D, D}, {D, -D}, {-D, -D}};
-
-/// Kernel support radius²: 0.5 keeps every kernel inside the simplices
-/// around its corner, so the sum over one simplex's corners is continuous.
-constexpr double KERNEL_R2 = 0.5;
-/// Brings the range to about [−1, 1] (measured maxima of the unscaled sums
-/// 0.0152 in 3D and 0.0101 in 2D over 2 million points).
-constexpr double SIMPLEX3_SCALE = 77.0;
-constexpr double SIMPLEX2_SCALE = 99.0;
-
-inline double kernel3(std::uint64_t h, double x, double y, double z)
-{
-    const double t = KERNEL_R2 - x * x - y * y - z * z;
-    if (t <= 0.0) return 0.0;
-    const double* g = GRAD3[pick(h, 12)];
-    const double t2 = t * t;
-    return t2 * t2 * (g[0] * x + g[1] * y + g[2] * z);
-}
-
-inline double kernel2(std::uint64_t h, double x, double y)
-{
-    const double t = KERNEL_R2 - x * x - y * y;
-    if (t <= 0.0) return 0.0;
-    const double* g = GRAD2[pick(h, 8)];
-    const double t2 = t * t;
-    return t2 * t2 * (g[0] * x + g[1] * y);
-}
-
-inline std::uint64_t corner3(std::uint64_t s, std::int64_t i, std::int64_t j, std::int64_t k)
-{
-    return hashCombine(hashCombine(hashCombine(s, i), j), k);
+    const Split2 q = splitSquare(p);
+    ValueCell2 cell;
+    valueCell(s, q, cell);
+    return valueInCell(cell, q);
 }
 
 double simplex3(std::uint64_t s, const glm::dvec3& p)
 {
-    constexpr double F3 = 1.0 / 3.0, G3 = 1.0 / 6.0;
-    const double skew = (p.x + p.y + p.z) * F3;
-    const double fi = std::floor(p.x + skew), fj = std::floor(p.y + skew), fk = std::floor(p.z + skew);
-    const std::int64_t i = latticeIndex(fi), j = latticeIndex(fj), k = latticeIndex(fk);
-    // The first corner unskewed is (i, j, k) − (i + j + k)·G3: subtract the
-    // large integer part first so the offset keeps its precision far out.
-    const double unskew = (fi + fj + fk) * G3;
-    const double x0 = (p.x - fi) + unskew, y0 = (p.y - fj) + unskew, z0 = (p.z - fk) + unskew;
-
-    int i1, j1, k1, i2, j2, k2; // the simplex's second and third corners
-    if (x0 >= y0) {
-        if (y0 >= z0) { i1 = 1; j1 = 0; k1 = 0; i2 = 1; j2 = 1; k2 = 0; }
-        else if (x0 >= z0) { i1 = 1; j1 = 0; k1 = 0; i2 = 1; j2 = 0; k2 = 1; }
-        else { i1 = 0; j1 = 0; k1 = 1; i2 = 1; j2 = 0; k2 = 1; }
-    } else {
-        if (y0 < z0) { i1 = 0; j1 = 0; k1 = 1; i2 = 0; j2 = 1; k2 = 1; }
-        else if (x0 < z0) { i1 = 0; j1 = 1; k1 = 0; i2 = 0; j2 = 1; k2 = 1; }
-        else { i1 = 0; j1 = 1; k1 = 0; i2 = 1; j2 = 1; k2 = 0; }
-    }
-    double n = kernel3(corner3(s, i, j, k), x0, y0, z0);
-    n += kernel3(corner3(s, i + i1, j + j1, k + k1), x0 - i1 + G3, y0 - j1 + G3, z0 - k1 + G3);
-    n += kernel3(corner3(s, i + i2, j + j2, k + k2), x0 - i2 + 2.0 * G3, y0 - j2 + 2.0 * G3, z0 - k2 + 2.0 * G3);
-    n += kernel3(corner3(s, i + 1, j + 1, k + 1), x0 - 1.0 + 3.0 * G3, y0 - 1.0 + 3.0 * G3, z0 - 1.0 + 3.0 * G3);
-    return SIMPLEX3_SCALE * n;
+    const Split3 q = splitSimplex(p);
+    GradientCell3 cell;
+    simplexCell(s, q, cell);
+    return simplexInCell(cell, q);
 }
 
 double simplex2(std::uint64_t s, const glm::dvec2& p)
 {
-    const double F2 = 0.5 * (std::sqrt(3.0) - 1.0), G2 = (3.0 - std::sqrt(3.0)) / 6.0;
-    const double skew = (p.x + p.y) * F2;
-    const double fi = std::floor(p.x + skew), fj = std::floor(p.y + skew);
-    const std::int64_t i = latticeIndex(fi), j = latticeIndex(fj);
-    const double unskew = (fi + fj) * G2;
-    const double x0 = (p.x - fi) + unskew, y0 = (p.y - fj) + unskew;
-    const int i1 = x0 > y0 ? 1 : 0, j1 = 1 - i1;
-    const std::uint64_t hi0 = hashCombine(s, i), hi1 = hashCombine(s, i + 1);
-    double n = kernel2(hashCombine(hi0, j), x0, y0);
-    n += kernel2(hashCombine(i1 ? hi1 : hi0, j + j1), x0 - i1 + G2, y0 - j1 + G2);
-    n += kernel2(hashCombine(hi1, j + 1), x0 - 1.0 + 2.0 * G2, y0 - 1.0 + 2.0 * G2);
-    return SIMPLEX2_SCALE * n;
+    const Split2 q = splitSimplex(p);
+    GradientCell2 cell;
+    simplexCell(s, q, cell);
+    return simplexInCell(cell, q);
 }
 
 /// max over r of |g|·t³·(8r² + t), t = R² − r²: the largest gradient of one
@@ -155,68 +65,31 @@ double simplexKernelSlope(double gradientLength)
 
 // ---- cellular noise ------------------------------------------------------------
 
-/// Feature points lie in [JITTER_MIN, 1 − JITTER_MIN] of their cell. Proof
-/// that the 3×3×3 search then finds F1 and F2 exactly: let p lie at distance
-/// u <= 1/2 from the nearest face of its cell. Its own feature is at most
-/// √3·(1 − a) away and the one across that face at most
-/// √((1 − a + u)² + 2(1 − a − u)²) <= √((1.5 − a)² + 2(0.5 − a)²); every cell
-/// outside the 3×3×3 block holds its feature at least 1 + a away. With
-/// a = 0.3: 1.212 and 1.233 < 1.3. In 2D: 0.990 and 1.217 < 1.3.
-constexpr double JITTER_MIN = 0.3, JITTER_SPAN = 0.4;
-
-// Keeps the two smallest squared distances seen so far (f1 <= f2).
-inline void keepTwoNearest(double d2, double& f1, double& f2)
-{
-    if (d2 < f1) {
-        f2 = f1;
-        f1 = d2;
-    } else if (d2 < f2) {
-        f2 = d2;
-    }
-}
+// Feature points lie in [JITTER_MIN, 1 − JITTER_MIN] of their cell
+// (NoiseKernels.h). Proof that the 3×3×3 search then finds F1 and F2
+// exactly: let p lie at distance u <= 1/2 from the nearest face of its cell.
+// Its own feature is at most √3·(1 − a) away and the one across that face at
+// most √((1 − a + u)² + 2(1 − a − u)²) <= √((1.5 − a)² + 2(0.5 − a)²); every
+// cell outside the 3×3×3 block holds its feature at least 1 + a away. With
+// a = 0.3: 1.212 and 1.233 < 1.3. In 2D: 0.990 and 1.217 < 1.3.
 
 CellularDistances cellular3(std::uint64_t s, const glm::dvec3& p)
 {
-    const double fx = std::floor(p.x), fy = std::floor(p.y), fz = std::floor(p.z);
-    const double x = p.x - fx, y = p.y - fy, z = p.z - fz;
-    const std::int64_t ix = latticeIndex(fx), iy = latticeIndex(fy), iz = latticeIndex(fz);
-    double f1 = 1e9, f2 = 1e9; // squared
-    for (int a = -1; a <= 1; ++a) {
-        const std::uint64_t ha = hashCombine(s, ix + a);
-        for (int b = -1; b <= 1; ++b) {
-            const std::uint64_t hb = hashCombine(ha, iy + b);
-            for (int c = -1; c <= 1; ++c) {
-                std::uint64_t h = hashCombine(hb, iz + c);
-                const double jx = JITTER_MIN + JITTER_SPAN * unit(h);
-                h = mix64(h + 0x9e3779b97f4a7c15ULL);
-                const double jy = JITTER_MIN + JITTER_SPAN * unit(h);
-                h = mix64(h + 0x9e3779b97f4a7c15ULL);
-                const double jz = JITTER_MIN + JITTER_SPAN * unit(h);
-                const double dx = x - (a + jx), dy = y - (b + jy), dz = z - (c + jz);
-                keepTwoNearest(dx * dx + dy * dy + dz * dz, f1, f2);
-            }
-        }
-    }
+    const Split3 q = splitCube(p);
+    CellularCell3 cell;
+    cellularCell(s, q, cell);
+    double f1, f2; // squared
+    cellularInCell(cell, q, f1, f2);
     return {std::sqrt(f1), std::sqrt(f2)};
 }
 
 CellularDistances cellular2(std::uint64_t s, const glm::dvec2& p)
 {
-    const double fx = std::floor(p.x), fy = std::floor(p.y);
-    const double x = p.x - fx, y = p.y - fy;
-    const std::int64_t ix = latticeIndex(fx), iy = latticeIndex(fy);
-    double f1 = 1e9, f2 = 1e9;
-    for (int a = -1; a <= 1; ++a) {
-        const std::uint64_t ha = hashCombine(s, ix + a);
-        for (int b = -1; b <= 1; ++b) {
-            std::uint64_t h = hashCombine(ha, iy + b);
-            const double jx = JITTER_MIN + JITTER_SPAN * unit(h);
-            h = mix64(h + 0x9e3779b97f4a7c15ULL);
-            const double jy = JITTER_MIN + JITTER_SPAN * unit(h);
-            const double dx = x - (a + jx), dy = y - (b + jy);
-            keepTwoNearest(dx * dx + dy * dy, f1, f2);
-        }
-    }
+    const Split2 q = splitSquare(p);
+    CellularCell2 cell;
+    cellularCell(s, q, cell);
+    double f1, f2;
+    cellularInCell(cell, q, f1, f2);
     return {std::sqrt(f1), std::sqrt(f2)};
 }
 

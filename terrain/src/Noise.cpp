@@ -4,91 +4,28 @@
 #include <cassert>
 #include <cmath>
 
-#include "NoiseHash.h"
+#include "NoiseKernels.h"
 
 namespace strata::terrain {
-
-namespace {
-
-using namespace detail;
-
-/// The 12 cube-edge directions of improved Perlin noise (length sqrt 2).
-constexpr double GRAD3[12][3] = {
-    {1, 1, 0}, {-1, 1, 0}, {1, -1, 0}, {-1, -1, 0},
-    {1, 0, 1}, {-1, 0, 1}, {1, 0, -1}, {-1, 0, -1},
-    {0, 1, 1}, {0, -1, 1}, {0, 1, -1}, {0, -1, -1},
-};
-
-inline double grad3(std::uint64_t h, double x, double y, double z)
-{
-    const double* g = GRAD3[pick(h, 12)];
-    return g[0] * x + g[1] * y + g[2] * z;
-}
-
-/// 8 directions, 45 degrees apart, unit length.
-constexpr double D = 0.70710678118654752440;
-constexpr double GRAD2[8][2] = {
-    {1, 0}, {-1, 0}, {0, 1}, {0, -1}, {D, D}, {-D, D}, {D, -D}, {-D, -D},
-};
-
-/// Unit gradients give 2D noise a range of about ±0.7; this brings it to
-/// about ±1 like the 3D noise (whose gradients have length sqrt 2).
-constexpr double NOISE2_SCALE = 1.41421356237309504880;
-
-inline double grad2(std::uint64_t h, double x, double y)
-{
-    const double* g = GRAD2[pick(h, 8)];
-    return g[0] * x + g[1] * y;
-}
-
-} // namespace
 
 namespace detail {
 
 /// 3D gradient noise from an already hashed seed.
 double noise3(std::uint64_t s, const glm::dvec3& p)
 {
-    const double fx = std::floor(p.x), fy = std::floor(p.y), fz = std::floor(p.z);
-    // The fraction in double, from the unrounded floor: exact, and it keeps
-    // its precision far from the origin.
-    const double x = p.x - fx, y = p.y - fy, z = p.z - fz;
-    const std::int64_t ix = latticeIndex(fx), iy = latticeIndex(fy), iz = latticeIndex(fz);
-
-    // Hash the 8 corners hierarchically: 2 + 4 + 8 mixes instead of 8 * 3.
-    const std::uint64_t hx0 = hashCombine(s, ix), hx1 = hashCombine(s, ix + 1);
-    const std::uint64_t h00 = hashCombine(hx0, iy), h01 = hashCombine(hx0, iy + 1);
-    const std::uint64_t h10 = hashCombine(hx1, iy), h11 = hashCombine(hx1, iy + 1);
-
-    const double n000 = grad3(hashCombine(h00, iz), x, y, z);
-    const double n001 = grad3(hashCombine(h00, iz + 1), x, y, z - 1.0);
-    const double n010 = grad3(hashCombine(h01, iz), x, y - 1.0, z);
-    const double n011 = grad3(hashCombine(h01, iz + 1), x, y - 1.0, z - 1.0);
-    const double n100 = grad3(hashCombine(h10, iz), x - 1.0, y, z);
-    const double n101 = grad3(hashCombine(h10, iz + 1), x - 1.0, y, z - 1.0);
-    const double n110 = grad3(hashCombine(h11, iz), x - 1.0, y - 1.0, z);
-    const double n111 = grad3(hashCombine(h11, iz + 1), x - 1.0, y - 1.0, z - 1.0);
-
-    const double u = fade(x), v = fade(y), w = fade(z);
-    const double n00 = lerp(n000, n001, w), n01 = lerp(n010, n011, w);
-    const double n10 = lerp(n100, n101, w), n11 = lerp(n110, n111, w);
-    return lerp(lerp(n00, n01, v), lerp(n10, n11, v), u);
+    const Split3 q = splitCube(p);
+    GradientCell3 cell;
+    gradientCell(s, q, cell);
+    return gradientInCell(cell, q);
 }
 
 /// 2D gradient noise from an already hashed seed.
 double noise2(std::uint64_t s, const glm::dvec2& p)
 {
-    const double fx = std::floor(p.x), fy = std::floor(p.y);
-    const double x = p.x - fx, y = p.y - fy;
-    const std::int64_t ix = latticeIndex(fx), iy = latticeIndex(fy);
-
-    const std::uint64_t hx0 = hashCombine(s, ix), hx1 = hashCombine(s, ix + 1);
-    const double n00 = grad2(hashCombine(hx0, iy), x, y);
-    const double n01 = grad2(hashCombine(hx0, iy + 1), x, y - 1.0);
-    const double n10 = grad2(hashCombine(hx1, iy), x - 1.0, y);
-    const double n11 = grad2(hashCombine(hx1, iy + 1), x - 1.0, y - 1.0);
-
-    const double u = fade(x), v = fade(y);
-    return NOISE2_SCALE * lerp(lerp(n00, n01, v), lerp(n10, n11, v), u);
+    const Split2 q = splitSquare(p);
+    GradientCell2 cell;
+    gradientCell(s, q, cell);
+    return gradientInCell(cell, q);
 }
 
 namespace {
@@ -144,11 +81,9 @@ double noise2Spread(std::uint64_t s, const glm::dvec2& lo, const glm::dvec2& hi,
     const double fx = std::floor(lo.x), fy = std::floor(lo.y);
     const double x0 = lo.x - fx, x1 = hi.x - fx, y0 = lo.y - fy, y1 = hi.y - fy;
     const std::int64_t ix = latticeIndex(fx), iy = latticeIndex(fy);
-    const std::uint64_t hx0 = hashCombine(s, ix), hx1 = hashCombine(s, ix + 1);
-    const double* g00 = GRAD2[pick(hashCombine(hx0, iy), 8)];
-    const double* g01 = GRAD2[pick(hashCombine(hx0, iy + 1), 8)];
-    const double* g10 = GRAD2[pick(hashCombine(hx1, iy), 8)];
-    const double* g11 = GRAD2[pick(hashCombine(hx1, iy + 1), 8)];
+    GradientCell2 cell;
+    gradientCell(s, Split2{ix, iy, x0, y0}, cell);
+    const double *g00 = cell.g[0], *g01 = cell.g[1], *g10 = cell.g[2], *g11 = cell.g[3];
 
     const double xc = 0.5 * (x0 + x1), yc = 0.5 * (y0 + y1), hx = 0.5 * (x1 - x0), hy = 0.5 * (y1 - y0);
     const double d0[2] = {g01[0] - g00[0], g01[1] - g00[1]};
@@ -173,6 +108,8 @@ double noise2Spread(std::uint64_t s, const glm::dvec2& lo, const glm::dvec2& hi,
 }
 
 } // namespace detail
+
+using namespace detail;
 
 std::uint64_t deriveSeed(std::uint64_t seed, std::uint64_t stream)
 {

@@ -179,6 +179,15 @@ public:
         return mClosed ? std::max(d, box(p)) : d;
     }
 
+    /// operator() at every point of the block (DensityField::densities).
+    void operator()(const PointBlock& points, double* out) const
+    {
+        mField.densities(points, out);
+        if (!mClosed) return;
+        for (std::size_t i = 0; i < points.count; ++i)
+            out[i] = std::max(out[i], box({points.x[i], points.y[i], points.z[i]}));
+    }
+
     /// An interval of operator() over the box (DensityField::bounds; the
     /// region box term is 1-Lipschitz, and max is non-decreasing in both
     /// arguments, so max of the ends bounds max of the values).
@@ -304,27 +313,38 @@ public:
         bool anyInside = false, anyOutside = false;
     };
 
-    /// Evaluates the voxels of `cube` inside `clip` one by one.
+    /// Evaluates the voxels of `cube` inside `clip` as one block.
     void evaluateVoxels(const CoordBBox& cube, const CoordBBox& clip, Fill& fill, TileResult& result) const
     {
         CoordBBox sub = cube;
         sub.intersect(clip);
         if (sub.empty()) return;
-        for (int x = sub.min().x(); x <= sub.max().x(); ++x)
-            for (int y = sub.min().y(); y <= sub.max().y(); ++y)
-                for (int z = sub.min().z(); z <= sub.max().z(); ++z) {
-                    const Coord ijk(x, y, z);
-                    const double d = mField(mField.world(ijk));
-                    ++result.evaluated;
-                    const openvdb::Index offset = Leaf::coordToOffset(ijk);
-                    if (std::abs(d) < mBackground) {
-                        fill.values[offset] = float(d);
-                        fill.active.setOn(offset);
-                    } else {
-                        fill.values[offset] = float(d < 0.0 ? -mBackground : mBackground);
-                    }
-                    (d < 0.0 ? fill.anyInside : fill.anyOutside) = true;
+        double x[Leaf::SIZE], y[Leaf::SIZE], z[Leaf::SIZE], values[Leaf::SIZE];
+        openvdb::Index offsets[Leaf::SIZE];
+        std::size_t n = 0;
+        for (int i = sub.min().x(); i <= sub.max().x(); ++i)
+            for (int j = sub.min().y(); j <= sub.max().y(); ++j)
+                for (int k = sub.min().z(); k <= sub.max().z(); ++k, ++n) {
+                    const Coord ijk(i, j, k);
+                    const glm::dvec3 p = mField.world(ijk);
+                    x[n] = p.x;
+                    y[n] = p.y;
+                    z[n] = p.z;
+                    offsets[n] = Leaf::coordToOffset(ijk);
                 }
+        mField(PointBlock{x, y, z, n, {mField.world(sub.min()), mField.world(sub.max())}}, values);
+        result.evaluated += n;
+        for (std::size_t i = 0; i < n; ++i) {
+            const double d = values[i];
+            const openvdb::Index offset = offsets[i];
+            if (std::abs(d) < mBackground) {
+                fill.values[offset] = float(d);
+                fill.active.setOn(offset);
+            } else {
+                fill.values[offset] = float(d < 0.0 ? -mBackground : mBackground);
+            }
+            (d < 0.0 ? fill.anyInside : fill.anyOutside) = true;
+        }
     }
 
     /// Fills the part inside `clip` of the aligned cube at `origin` of size

@@ -9,6 +9,7 @@
 #include <strata/Error.h>
 
 #include <cmath>
+#include <vector>
 
 namespace strata::terrain {
 
@@ -45,6 +46,37 @@ glm::dvec3 WarpField::warp(const glm::dvec3& p) const
 double WarpField::density(const glm::dvec3& p) const
 {
     return mChild->density(warp(p));
+}
+
+void WarpField::densities(const PointBlock& points, double* out) const
+{
+    const std::size_t n = points.count;
+    if (n == 0) return;
+    std::vector<double> buffer(6 * n);
+    double *qx = buffer.data(), *qy = qx + n, *qz = qy + n, *fx = qz + n, *fy = fx + n, *fz = fy + n;
+    // As warp(): q = p / wavelength, then p + amplitude·(fx, v·fy or 0, fz).
+    const double w = mOptions.wavelength, a = mOptions.amplitude;
+    for (std::size_t i = 0; i < n; ++i) {
+        qx[i] = points.x[i] / w;
+        qy[i] = points.y[i] / w;
+        qz[i] = points.z[i] / w;
+    }
+    mX.evaluate(qx, qy, qz, n, fx);
+    mZ.evaluate(qx, qy, qz, n, fz);
+    if (mOptions.vertical != 0.0) {
+        mY.evaluate(qx, qy, qz, n, fy);
+        for (std::size_t i = 0; i < n; ++i) fy[i] = mOptions.vertical * fy[i];
+    } else {
+        for (std::size_t i = 0; i < n; ++i) fy[i] = 0.0;
+    }
+    PointBlock warped{qx, qy, qz, n, {}};
+    for (std::size_t i = 0; i < n; ++i) {
+        qx[i] = points.x[i] + a * fx[i];
+        qy[i] = points.y[i] + a * fy[i];
+        qz[i] = points.z[i] + a * fz[i];
+    }
+    warped.box = spannedBox(warped);
+    mChild->densities(warped, out);
 }
 
 double WarpField::distanceBound(const glm::dvec3& p) const
@@ -87,6 +119,22 @@ double TerraceField::density(const glm::dvec3& p) const
     return mChild->density({p.x, terrace(p.y), p.z});
 }
 
+void TerraceField::densities(const PointBlock& points, double* out) const
+{
+    const std::size_t n = points.count;
+    if (n == 0) return;
+    std::vector<double> terraced(n);
+    for (std::size_t i = 0; i < n; ++i) {
+        const double y = points.y[i];
+        terraced[i] = (i > 0 && y == points.y[i - 1]) ? terraced[i - 1] : terrace(y);
+    }
+    PointBlock child{points.x, terraced.data(), points.z, n, points.box};
+    const WorldBox spanned = spannedBox(child);
+    child.box.min.y = spanned.min.y;
+    child.box.max.y = spanned.max.y;
+    mChild->densities(child, out);
+}
+
 double TerraceField::distanceBound(const glm::dvec3& p) const
 {
     return mChild->distanceBound({p.x, terrace(p.y), p.z}) / std::max(1.0, mSharpness);
@@ -108,6 +156,19 @@ Interval TerraceField::bounds(const WorldBox& box) const
 } // namespace strata::terrain
 
 namespace strata::terrain {
+
+void TranslateField::densities(const PointBlock& points, double* out) const
+{
+    const std::size_t n = points.count;
+    std::vector<double> moved(3 * n);
+    double *x = moved.data(), *y = x + n, *z = y + n;
+    for (std::size_t i = 0; i < n; ++i) {
+        x[i] = points.x[i] - mOffset.x;
+        y[i] = points.y[i] - mOffset.y;
+        z[i] = points.z[i] - mOffset.z;
+    }
+    mChild->densities({x, y, z, n, {points.box.min - mOffset, points.box.max - mOffset}}, out);
+}
 
 void registerTransformNodes(NodeRegistry& registry)
 {

@@ -50,6 +50,36 @@ void SampleArray::fillAll()
             }
 }
 
+bool SampleArray::provablyFar(const std::int64_t v0[3], const std::int64_t v1[3])
+{
+    const glm::dvec3 c0{double(v0[0]), double(v0[1]), double(v0[2])};
+    const glm::dvec3 c1{double(v1[0]), double(v1[1]), double(v1[2])};
+    // The distance bound at the centre: no surface within it.
+    const glm::dvec3 centre = 0.5 * (c0 + c1) * mVoxelSize;
+    const double radius = 0.5 * glm::length(c1 - c0) * mVoxelSize;
+    const double reach = double(mMargin) * mVoxelSize;
+    const double bound = mField->distanceBound(centre);
+    if (std::abs(bound) > radius + reach) {
+        mFarValue = bound > 0.0 ? float(bound - radius) : float(bound + radius);
+        return true;
+    }
+    // Else the field's interval over the block grown by the margin (usually
+    // much tighter on ground): one sign all over it means no surface there.
+    // The slack keeps rounding in the bound (about 1e-7 relative) from
+    // deciding.
+    const terrain::Interval d = mField->bounds({c0 * mVoxelSize - reach, c1 * mVoxelSize + reach});
+    const double slack = 1e-3 * mVoxelSize + 1e-6 * (std::abs(d.lo) + std::abs(d.hi));
+    if (d.lo > slack) {
+        mFarValue = float(d.lo);
+        return true;
+    }
+    if (d.hi < -slack) {
+        mFarValue = float(d.hi);
+        return true;
+    }
+    return false;
+}
+
 void SampleArray::fill(int bi, int bj, int bk, std::size_t b)
 {
     mFilled[b] = 1;
@@ -64,25 +94,36 @@ void SampleArray::fill(int bi, int bj, int bk, std::size_t b)
     const CoordBBox box(Coord(int(v0[0] - mMargin), int(v0[1] - mMargin), int(v0[2] - mMargin)),
                         Coord(int(v1[0] + mMargin), int(v1[1] + mMargin), int(v1[2] + mMargin)));
     const bool edited = mEdits && !mEdits->empty() && mEdits->overlaps(box);
-    if (!edited) {
-        const glm::dvec3 c0{double(v0[0]), double(v0[1]), double(v0[2])};
-        const glm::dvec3 c1{double(v1[0]), double(v1[1]), double(v1[2])};
-        const glm::dvec3 centre = 0.5 * (c0 + c1) * mVoxelSize;
-        const double radius = 0.5 * glm::length(c1 - c0) * mVoxelSize;
-        const double bound = mField->distanceBound(centre);
-        if (std::abs(bound) > radius + double(mMargin) * mVoxelSize) {
-            const float value = bound > 0.0 ? float(bound - radius) : float(bound + radius);
-            for (int k = lo[2]; k < hi[2]; ++k)
-                for (int j = lo[1]; j < hi[1]; ++j)
-                    for (int i = lo[0]; i < hi[0]; ++i) mValues[index(i, j, k)] = value;
-            return;
-        }
+    if (!edited && provablyFar(v0, v1)) {
+        for (int k = lo[2]; k < hi[2]; ++k)
+            for (int j = lo[1]; j < hi[1]; ++j)
+                for (int i = lo[0]; i < hi[0]; ++i) mValues[index(i, j, k)] = mFarValue;
+        return;
     }
     const bool cached = mCache && mCache->blockDone[b];
     if (mCache && mCache->values.empty()) mCache->values.assign(mValues.size(), 0.0f);
+    if (!cached) {
+        // The block's procedural samples in one block evaluation: the same
+        // bits as baseSample() point by point.
+        mX.clear();
+        mY.clear();
+        mZ.clear();
+        for (int k = lo[2]; k < hi[2]; ++k)
+            for (int j = lo[1]; j < hi[1]; ++j)
+                for (int i = lo[0]; i < hi[0]; ++i) {
+                    mX.push_back(double(mOrigin[0] + i * mStep) * mVoxelSize);
+                    mY.push_back(double(mOrigin[1] + j * mStep) * mVoxelSize);
+                    mZ.push_back(double(mOrigin[2] + k * mStep) * mVoxelSize);
+                }
+        mD.resize(mX.size());
+        const glm::dvec3 c0{double(v0[0]), double(v0[1]), double(v0[2])};
+        const glm::dvec3 c1{double(v1[0]), double(v1[1]), double(v1[2])};
+        mField->densities({mX.data(), mY.data(), mZ.data(), mX.size(), {c0 * mVoxelSize, c1 * mVoxelSize}}, mD.data());
+    }
+    std::size_t n = 0;
     for (int k = lo[2]; k < hi[2]; ++k) {
         for (int j = lo[1]; j < hi[1]; ++j) {
-            for (int i = lo[0]; i < hi[0]; ++i) {
+            for (int i = lo[0]; i < hi[0]; ++i, ++n) {
                 const std::size_t at = index(i, j, k);
                 const std::int64_t x = mOrigin[0] + i * mStep, y = mOrigin[1] + j * mStep, z = mOrigin[2] + k * mStep;
                 float value;
@@ -94,7 +135,7 @@ void SampleArray::fill(int bi, int bj, int bk, std::size_t b)
                     mValues[at] = mCache->values[at];
                     continue;
                 }
-                value = baseSample(*mField, x, y, z, mVoxelSize);
+                value = float(mD[n]);
                 if (mCache) mCache->values[at] = value;
                 if (!(edited && mEdits->lookup(Coord(int(x), int(y), int(z)), mValues[at]))) mValues[at] = value;
             }

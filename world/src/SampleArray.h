@@ -1,7 +1,8 @@
 #pragma once
 // Internal: a box of lattice samples filled lazily in 8³ blocks, pruned by
-// the field's distance bound. Shared by the World's chunk mesher and the
-// bake's tile mesher, so both read the same floats for the same point.
+// the field's distance and interval bounds, evaluated a block at a time.
+// Shared by the World's chunk mesher and the bake's tile mesher, so both
+// read the same floats for the same point.
 
 #include "EditLayer.h"
 #include "Lattice.h"
@@ -58,6 +59,10 @@ public:
 private:
     std::size_t index(int i, int j, int k) const { return (std::size_t(k) * mDims[1] + j) * mDims[0] + i; }
     void fill(int bi, int bj, int bk, std::size_t b);
+    /// True when no surface lies within the margin of the block spanning
+    /// lattice points v0..v1 (the distance bound at its centre, else the
+    /// field's interval over it); sets mFarValue to a value of its sign.
+    bool provablyFar(const std::int64_t v0[3], const std::int64_t v1[3]);
 
     const terrain::DensityField* mField = nullptr;
     const EditSnapshot* mEdits = nullptr;
@@ -70,6 +75,8 @@ private:
     std::int64_t mMargin = 0;
     std::vector<float> mValues;
     std::vector<std::uint8_t> mFilled;
+    float mFarValue = 0.0f;
+    std::vector<double> mX, mY, mZ, mD; ///< one block's points and densities
 };
 
 } // namespace strata::world::detail

@@ -121,6 +121,9 @@ public:
     WormCaves(std::uint64_t seed, const WormOptions& options);
     ~WormCaves() override;
     double density(const glm::dvec3& p) const override;
+    /// When the block lies in one bucket, its segments that no point can
+    /// reach within CAP are dropped once for the block, not per point.
+    void densities(const PointBlock& points, double* out) const override;
     double lipschitz() const override { return 1.0; }
     double distanceBound(const glm::dvec3& p) const override { return density(p); }
     double minDensity() const override { return -mOptions.radius * (1.0 + mOptions.radiusVariation); }
@@ -141,6 +144,7 @@ public:
         glm::dvec3 a, b;
         double ra, rb;
     };
+    using Key = std::array<std::int64_t, 3>; ///< a bucket: floor(p / 8 m)
     /// The segments of all worms spawned in cell (cx, cz), in order.
     std::vector<Segment> wormsOfCell(std::int64_t cx, std::int64_t cz) const;
 
@@ -152,8 +156,11 @@ private:
         double reach;
     };
     using Bucket = std::vector<Cone>;
-    using Key = std::array<std::int64_t, 3>;
     std::shared_ptr<const Bucket> bucket(const Key& key) const;
+    /// The bucket, through this thread's one-entry cache.
+    const Bucket& threadBucket(const Key& key) const;
+    /// min(CAP, the cones' round-cone distances at p).
+    static double distanceAmong(const glm::dvec3& p, const Cone* cones, std::size_t count);
     std::shared_ptr<const std::vector<Segment>> cell(std::int64_t cx, std::int64_t cz) const;
 
     std::uint64_t mSeed;

@@ -36,6 +36,11 @@ public:
     CsgField(CsgOperation operation, std::vector<DensityFieldPtr> children, double smoothRadius = 0.0);
 
     double density(const glm::dvec3& p) const override;
+    /// density()'s per-point skip, and per block: a child whose bounds()
+    /// over the block show it leaves every value unchanged (beyond a margin
+    /// for rounding) is not evaluated; one needed at a few points only is
+    /// evaluated at those.
+    void densities(const PointBlock& points, double* out) const override;
     double lipschitz() const override { return mLipschitz; }
     double distanceBound(const glm::dvec3& p) const override;
     /// The children's intervals combined by the same operation applied to

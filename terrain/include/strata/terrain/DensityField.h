@@ -6,6 +6,7 @@
 #include <glm/vec3.hpp>
 
 #include <cmath>
+#include <cstddef>
 
 namespace strata::terrain {
 
@@ -29,6 +30,21 @@ struct WorldBox
     double radius() const;
 };
 
+/// A block of points in structure-of-arrays form (metres), with a box that
+/// holds every one of them: the unit of block evaluation
+/// (DensityField::densities). The arrays are the caller's; count may be 0.
+struct PointBlock
+{
+    const double* x = nullptr;
+    const double* y = nullptr;
+    const double* z = nullptr;
+    std::size_t count = 0;
+    WorldBox box; ///< min <= every point <= max, per axis
+};
+
+/// The smallest box holding the block's points (its `box` is not read).
+WorldBox spannedBox(const PointBlock& points);
+
 class DensityField
 {
 public:
@@ -38,6 +54,15 @@ public:
     /// in air, zero on the surface. Must be a pure function of `p` (thread-safe,
     /// deterministic).
     virtual double density(const glm::dvec3& p) const = 0;
+
+    /// density() at every point of `points`, into out[0, count): the same
+    /// bits as density() point by point (tests check it node by node), in
+    /// one virtual call per node and block instead of one per point. Nodes
+    /// override it to share work across the block: lattice hashes of noise
+    /// cells, a heightfield's columns, a cave's segment list, a CSG child
+    /// that the block's interval shows cannot change the result. The
+    /// default calls density() per point. Thread-safe like density().
+    virtual void densities(const PointBlock& points, double* out) const;
 
     /// Upper bound of |∇density| over all space (Lipschitz constant). A true
     /// signed distance has 1. The default bounds() relies on it:

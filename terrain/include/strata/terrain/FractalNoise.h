@@ -16,6 +16,7 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
+#include <cstddef>
 #include <cstdint>
 #include <string>
 
@@ -103,6 +104,14 @@ public:
 
     double operator()(const glm::dvec3& p) const;
     double operator()(const glm::dvec2& p) const;
+
+    /// operator() at n points given as arrays (noise units), into out[0, n):
+    /// the same bits, with each lattice cell's hashes reused while
+    /// consecutive points stay in it (NoiseBlock.cpp). Points in lattice
+    /// order (a block of voxels) share the most.
+    void evaluate(const double* x, const double* y, const double* z, std::size_t n, double* out) const;
+    /// The 2D sum at (x[i], y[i]).
+    void evaluate(const double* x, const double* y, std::size_t n, double* out) const;
 
     /// Upper bound of |∇| in noise units for the 3D (or 2D) evaluation.
     double lipschitz(int dimensions = 3) const;

@@ -7,6 +7,7 @@
 #include <strata/terrain/DensityField.h>
 #include <strata/terrain/FractalNoise.h>
 
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -21,6 +22,9 @@ class HeightfieldBase : public DensityField
 {
 public:
     double density(const glm::dvec3& p) const final { return (p.y - height(p.x, p.z)) * mScale; }
+    /// One height per distinct column (x, z) of the block: a block of n³
+    /// voxels asks heights() for n² columns, not n³ points.
+    void densities(const PointBlock& points, double* out) const final;
     double lipschitz() const final { return mLipschitz; }
     double distanceBound(const glm::dvec3& p) const final { return (p.y - height(p.x, p.z)) * mBoundScale; }
     /// (y − h)·s is increasing in y and decreasing in h, so over the box it
@@ -30,6 +34,9 @@ public:
 
     /// Surface height at (x, z), metres.
     virtual double height(double x, double z) const = 0;
+    /// height() at n columns, into out[0, n): the same bits. The default
+    /// calls height() per column.
+    virtual void heights(const double* x, const double* z, std::size_t n, double* out) const;
     /// An interval holding height() over the rectangle [min.x, max.x] ×
     /// [min.y, max.y] (world x and z, metres). The default is h(c) ± S·r
     /// (S = slopeBound(), r the rectangle's half diagonal: h is S-Lipschitz).
@@ -59,6 +66,8 @@ public:
     /// Throws strata::Error naming the option ("amplitude = -1 ...").
     NoiseHeightfield(std::uint64_t seed, const NoiseHeightfieldOptions& options);
     double height(double x, double z) const override;
+    /// The noise sum as one block evaluation (FractalNoise::evaluate).
+    void heights(const double* x, const double* z, std::size_t n, double* out) const override;
     /// base + amplitude·FractalNoise::bounds() over the rectangle in noise
     /// units (amplitude >= 0, so the map is increasing).
     Interval heightBounds(const glm::dvec2& min, const glm::dvec2& max) const override;

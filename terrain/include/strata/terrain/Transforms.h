@@ -30,6 +30,9 @@ public:
     /// Throws strata::Error naming the option when out of range.
     WarpField(DensityFieldPtr child, std::uint64_t seed, const WarpOptions& options);
     double density(const glm::dvec3& p) const override;
+    /// The three noise sums as block evaluations, then the child's block at
+    /// the warped points (their box is the one they span).
+    void densities(const PointBlock& points, double* out) const override;
     double lipschitz() const override { return mChild->lipschitz() * mStretch; }
     double distanceBound(const glm::dvec3& p) const override;
     double minDensity() const override { return mChild->minDensity(); }
@@ -62,6 +65,9 @@ public:
     /// step > 0 (metres), sharpness >= 1; throws strata::Error otherwise.
     TerraceField(DensityFieldPtr child, double step, double sharpness);
     double density(const glm::dvec3& p) const override;
+    /// One terrace() per run of equal heights (a block of voxels has one
+    /// per layer), then the child's block.
+    void densities(const PointBlock& points, double* out) const override;
     double lipschitz() const override { return mChild->lipschitz() * std::max(1.0, mSharpness); }
     double distanceBound(const glm::dvec3& p) const override;
     double minDensity() const override { return mChild->minDensity(); }
@@ -86,6 +92,7 @@ class TranslateField final : public DensityField
 public:
     TranslateField(DensityFieldPtr child, const glm::dvec3& offset) : mChild(std::move(child)), mOffset(offset) {}
     double density(const glm::dvec3& p) const override { return mChild->density(p - mOffset); }
+    void densities(const PointBlock& points, double* out) const override;
     double lipschitz() const override { return mChild->lipschitz(); }
     double distanceBound(const glm::dvec3& p) const override { return mChild->distanceBound(p - mOffset); }
     double minDensity() const override { return mChild->minDensity(); }

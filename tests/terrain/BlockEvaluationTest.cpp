@@ -1,0 +1,196 @@
+// Block evaluation (DensityField::densities, FractalNoise::evaluate) against
+// the scalar reference, bit for bit: every noise basis and fractal, every
+// node type of the registry with its default keys, on voxel blocks at the
+// extremes (1e9 m from the origin, voxels of 1 µm and 1 km, empty blocks,
+// blocks straddling the band) and on scattered points.
+
+#include "DefaultSceneTree.h"
+
+#include <strata/terrain/FractalNoise.h>
+#include <strata/terrain/Heightfield.h>
+#include <strata/terrain/NodeRegistry.h>
+#include <strata/terrain/Primitives.h>
+
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <cstring>
+#include <string>
+#include <vector>
+
+using namespace strata::terrain;
+
+namespace {
+
+/// A block of points as the sampler makes them: n³ voxels at `origin`
+/// spaced `step` apart (x outer, z inner), or scattered when `scatter`.
+struct Block
+{
+    std::vector<double> x, y, z;
+
+    PointBlock view() const
+    {
+        PointBlock b{x.data(), y.data(), z.data(), x.size(), {}};
+        b.box = spannedBox(b);
+        return b;
+    }
+};
+
+Block voxels(const glm::dvec3& origin, double step, int n)
+{
+    Block b;
+    for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j)
+            for (int k = 0; k < n; ++k) {
+                b.x.push_back(origin.x + i * step);
+                b.y.push_back(origin.y + j * step);
+                b.z.push_back(origin.z + k * step);
+            }
+    return b;
+}
+
+Block scattered(const glm::dvec3& centre, double spread, int count, std::uint64_t state)
+{
+    Block b;
+    const auto next = [&state] {
+        state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+        return double(state >> 11) * 0x1.0p-53 - 0.5;
+    };
+    for (int i = 0; i < count; ++i) {
+        b.x.push_back(centre.x + spread * next());
+        b.y.push_back(centre.y + spread * next());
+        b.z.push_back(centre.z + spread * next());
+    }
+    return b;
+}
+
+bool sameBits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+
+/// The blocks every field is checked on.
+std::vector<std::pair<std::string, Block>> testBlocks()
+{
+    return {
+        {"8^3 of 0.5 m at the origin", voxels({-2.0, -2.0, -2.0}, 0.5, 8)},
+        {"8^3 of 0.5 m on the ground", voxels({31.0, -6.0, -17.5}, 0.5, 8)},
+        {"4^3 of 2 m", voxels({100.0, 0.0, 40.0}, 2.0, 4)},
+        {"2^3 of 1 um", voxels({3.0, 0.25, 7.0}, 1e-6, 2)},
+        {"8^3 of 1 km", voxels({-4000.0, -4000.0, -4000.0}, 1000.0, 8)},
+        {"8^3 of 0.25 m 1e9 m out", voxels({1e9, -3.0, -1e9}, 0.25, 8)},
+        {"one point", voxels({0.3, 0.7, -0.2}, 1.0, 1)},
+        {"empty", Block{}},
+        {"scattered", scattered({0.0, 0.0, 0.0}, 200.0, 300, 7)},
+    };
+}
+
+/// 8³ voxels of 0.25 m around a point where the field changes sign (found
+/// by scanning columns), so the block straddles the surface and every CSG
+/// child and cave matters there; none when the field has no surface nearby.
+std::vector<std::pair<std::string, Block>> surfaceBlocks(const DensityField& field)
+{
+    std::vector<std::pair<std::string, Block>> out;
+    for (double x = -60.0; x <= 60.0 && out.size() < 3; x += 13.0)
+        for (double z = -60.0; z <= 60.0 && out.size() < 3; z += 17.0)
+            for (double y = -80.0; y < 80.0; y += 0.5)
+                if ((field.density({x, y, z}) < 0.0) != (field.density({x, y + 0.5, z}) < 0.0)) {
+                    out.emplace_back("8^3 of 0.25 m on the surface at " + std::to_string(x) + ", " + std::to_string(y) +
+                                         ", " + std::to_string(z),
+                                     voxels({x - 1.0, y - 1.0, z - 1.0}, 0.25, 8));
+                    break;
+                }
+    return out;
+}
+
+void expectSameAsScalar(const DensityField& field, const std::string& name, bool needSurface = true)
+{
+    auto blocks = testBlocks();
+    const auto surface = surfaceBlocks(field);
+    if (needSurface) EXPECT_FALSE(surface.empty()) << name << ": no surface found to test on";
+    blocks.insert(blocks.end(), surface.begin(), surface.end());
+    for (const auto& [label, block] : blocks) {
+        const PointBlock view = block.view();
+        std::vector<double> out(view.count + 1, 12345.0);
+        field.densities(view, out.data());
+        EXPECT_EQ(out[view.count], 12345.0) << name << ", " << label << ": wrote past the block";
+        int mismatches = 0;
+        for (std::size_t i = 0; i < view.count && mismatches < 3; ++i) {
+            const double scalar = field.density({view.x[i], view.y[i], view.z[i]});
+            if (!sameBits(out[i], scalar)) {
+                ++mismatches;
+                ADD_FAILURE() << name << ", " << label << ", point " << i << " (" << view.x[i] << ", " << view.y[i]
+                              << ", " << view.z[i] << "): block " << out[i] << ", scalar " << scalar;
+            }
+        }
+    }
+}
+
+} // namespace
+
+TEST(BlockEvaluation, EveryNoiseAndFractalGivesTheScalarBits)
+{
+    const NoiseType noises[] = {NoiseType::GRADIENT, NoiseType::SIMPLEX, NoiseType::VALUE, NoiseType::CELLULAR_F1,
+                                NoiseType::CELLULAR_F2};
+    const FractalType fractals[] = {FractalType::FBM, FractalType::RIDGED, FractalType::BILLOW};
+    for (const NoiseType noise : noises)
+        for (const FractalType fractal : fractals) {
+            const FractalNoise f(99, {noise, fractal, 4, 2.0, 0.5});
+            for (const auto& [label, block] : testBlocks()) {
+                const std::size_t n = block.x.size();
+                std::vector<double> out3(n), out2(n);
+                f.evaluate(block.x.data(), block.y.data(), block.z.data(), n, out3.data());
+                f.evaluate(block.x.data(), block.z.data(), n, out2.data());
+                for (std::size_t i = 0; i < n; ++i) {
+                    const double s3 = f({block.x[i], block.y[i], block.z[i]});
+                    const double s2 = f(glm::dvec2(block.x[i], block.z[i]));
+                    ASSERT_TRUE(sameBits(out3[i], s3)) << "noise " << int(noise) << " fractal " << int(fractal) << ", "
+                                                       << label << ", point " << i << ": " << out3[i] << " vs " << s3;
+                    ASSERT_TRUE(sameBits(out2[i], s2)) << "2D noise " << int(noise) << " fractal " << int(fractal)
+                                                       << ", " << label << ", point " << i;
+                }
+            }
+        }
+}
+
+TEST(BlockEvaluation, EveryNodeTypeGivesTheScalarBits)
+{
+    // Children: a heightfield (block path: columns) and a sphere (default path).
+    const DensityFieldPtr hills = std::make_shared<NoiseHeightfield>(5, NoiseHeightfieldOptions{});
+    const DensityFieldPtr ball = std::make_shared<SphereField>(glm::dvec3(30.0, -4.0, -15.0), 6.0);
+    auto image = std::make_shared<HeightImage>();
+    image->width = 5;
+    image->height = 4;
+    for (int i = 0; i < 20; ++i) image->values.push_back(float(i % 7) / 7.0f);
+
+    int built = 0;
+    for (const NodeType* type : NodeRegistry::builtin().types()) {
+        NodeArgs args(type->name, 1234);
+        for (const NodeKey& key : type->keys) {
+            switch (key.type) {
+            case NodeKeyType::Child: args.set(key.name, hills); break;
+            case NodeKeyType::Children: args.set(key.name, std::vector<DensityFieldPtr>{hills, ball, hills}); break;
+            case NodeKeyType::Image: args.set(key.name, std::shared_ptr<const HeightImage>(image)); break;
+            case NodeKeyType::Seed: break;
+            default:
+                if (!std::holds_alternative<std::monostate>(key.defaultValue)) args.set(key.name, key.defaultValue);
+                else if (key.type == NodeKeyType::Number) args.set(key.name, key.min + 0.25 * (key.max - key.min));
+                break;
+            }
+        }
+        const DensityFieldPtr field = type->build(args);
+        ASSERT_TRUE(field) << type->name;
+        expectSameAsScalar(*field, type->name, false);
+        ++built;
+    }
+    EXPECT_GE(built, 10);
+}
+
+TEST(BlockEvaluation, SmoothCsgAndTheDefaultSceneGiveTheScalarBits)
+{
+    expectSameAsScalar(*strata::test::defaultSceneTree(true), "default scene (terraced)");
+    expectSameAsScalar(*strata::test::defaultSceneTree(false), "default scene");
+    const DensityFieldPtr hills = std::make_shared<NoiseHeightfield>(5, NoiseHeightfieldOptions{});
+    const DensityFieldPtr ball = std::make_shared<SphereField>(glm::dvec3(-8.0, -2.0, -9.0), 12.0);
+    for (const CsgOperation op : {CsgOperation::UNION, CsgOperation::SUBTRACT, CsgOperation::INTERSECT})
+        for (const double smooth : {0.0, 0.5, 8.0})
+            expectSameAsScalar(CsgField(op, {hills, ball}, smooth), "csg " + std::to_string(int(op)) + " smooth " +
+                                                                      std::to_string(smooth));
+}
