@@ -144,11 +144,25 @@ namespace {
 constexpr double BUCKET_SIZE = 8.0;
 std::atomic<std::uint64_t> gNextWormId{1};
 
+/// Per thread, the last few buckets used, direct-mapped by key: the sampler
+/// and the bounds pass hop between neighbouring buckets, and the shared
+/// cache costs a lock per miss.
 struct WormThreadCache
 {
-    std::uint64_t id = 0;
-    std::array<std::int64_t, 3> key{};
-    std::shared_ptr<const void> bucket;
+    static constexpr std::size_t SLOTS = 16;
+    struct Slot
+    {
+        std::uint64_t id = 0;
+        std::array<std::int64_t, 3> key{};
+        std::shared_ptr<const void> bucket;
+    };
+    Slot slots[SLOTS];
+    Slot& slotFor(const std::array<std::int64_t, 3>& key)
+    {
+        const std::uint64_t h = std::uint64_t(key[0]) * 0x9e3779b97f4a7c15ULL ^ std::uint64_t(key[1]) * 0xbf58476d1ce4e5b9ULL ^
+                                std::uint64_t(key[2]) * 0x94d049bb133111ebULL;
+        return slots[(h >> 40) % SLOTS];
+    }
 };
 thread_local WormThreadCache tWormCache;
 
@@ -337,7 +351,7 @@ WormCaves::Key bucketKey(const glm::dvec3& p)
 
 const WormCaves::Bucket& WormCaves::threadBucket(const Key& key) const
 {
-    WormThreadCache& cache = tWormCache;
+    WormThreadCache::Slot& cache = tWormCache.slotFor(key);
     if (cache.id != mId || cache.key != key || !cache.bucket) {
         cache.bucket = bucket(key);
         cache.id = mId;

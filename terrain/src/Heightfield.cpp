@@ -111,7 +111,8 @@ void NoiseHeightfield::heights(const double* x, const double* z, std::size_t n, 
 {
     // As height(): base + amplitude·noise(x / wavelength, z / wavelength).
     const double w = mOptions.wavelength;
-    std::vector<double> q(2 * n);
+    thread_local std::vector<double> q; // only FractalNoise::evaluate runs meanwhile
+    q.resize(2 * n);
     for (std::size_t i = 0; i < n; ++i) {
         q[i] = x[i] / w;
         q[n + i] = z[i] / w;

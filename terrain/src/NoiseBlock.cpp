@@ -113,7 +113,10 @@ void basis2(NoiseType type, std::uint64_t s, const double* x, const double* y, s
 
 void FractalNoise::evaluate(const double* x, const double* y, const double* z, std::size_t n, double* out) const
 {
-    std::vector<double> scratch(4 * n);
+    // A leaf: nothing it calls uses the scratch, so one per thread is safe
+    // (and saves an allocation per call).
+    thread_local std::vector<double> scratch;
+    scratch.resize(4 * n);
     double *qx = scratch.data(), *qy = qx + n, *qz = qy + n, *b = qz + n;
     for (std::size_t i = 0; i < n; ++i) out[i] = 0.0;
     for (int octave = 0; octave < mCount; ++octave) {
@@ -131,7 +134,8 @@ void FractalNoise::evaluate(const double* x, const double* y, const double* z, s
 
 void FractalNoise::evaluate(const double* x, const double* y, std::size_t n, double* out) const
 {
-    std::vector<double> scratch(3 * n);
+    thread_local std::vector<double> scratch;
+    scratch.resize(3 * n);
     double *qx = scratch.data(), *qy = qx + n, *b = qy + n;
     for (std::size_t i = 0; i < n; ++i) out[i] = 0.0;
     for (int octave = 0; octave < mCount; ++octave) {
