@@ -63,20 +63,6 @@ bool SampleArray::provablyFar(const std::int64_t v0[3], const std::int64_t v1[3]
         mFarValue = bound > 0.0 ? float(bound - radius) : float(bound + radius);
         return true;
     }
-    // Else the field's interval over the block grown by the margin (usually
-    // much tighter on ground): one sign all over it means no surface there.
-    // The slack keeps rounding in the bound (about 1e-7 relative) from
-    // deciding.
-    const terrain::Interval d = mField->bounds({c0 * mVoxelSize - reach, c1 * mVoxelSize + reach});
-    const double slack = 1e-3 * mVoxelSize + 1e-6 * (std::abs(d.lo) + std::abs(d.hi));
-    if (d.lo > slack) {
-        mFarValue = float(d.lo);
-        return true;
-    }
-    if (d.hi < -slack) {
-        mFarValue = float(d.hi);
-        return true;
-    }
     return false;
 }
 
