@@ -6,6 +6,8 @@
 #include <strata/Error.h>
 
 #include <openvdb/io/Archive.h>
+#include <openvdb/io/GridDescriptor.h>
+#include <openvdb/io/io.h>
 #include <openvdb/io/File.h>
 #include <openvdb/io/Stream.h>
 
@@ -50,6 +52,46 @@ void makeUuidDeterministic(std::string& bytes)
                   static_cast<unsigned long long>(h[1] & 0xffffffffffffull));
     bytes.replace(UUID_OFFSET, UUID_LENGTH, uuid, UUID_LENGTH);
 }
+
+// io::Stream's reader, grid by grid (the same calls as its constructor in
+// OpenVDB 10, without delayed loading), with each grid checked by
+// preflightVdbGrid() at the byte where OpenVDB is about to read it, before
+// OpenVDB parses it: what a grid holds is only known where the previous one
+// ended, whatever the file's recorded offsets say.
+class CheckedStreamReader : public openvdb::io::Archive
+{
+public:
+    /// Reads every grid of `in`, the file at `path`; OpenVDB's exceptions
+    /// and the stream's (failbit) pass through.
+    VdbFile read(std::istream& in, const std::filesystem::path& path)
+    {
+        readHeader(in);
+        auto streamMetadata = std::make_shared<openvdb::io::StreamMetadata>();
+        openvdb::io::setStreamMetadataPtr(in, streamMetadata, /*transfer*/ false);
+        openvdb::io::setVersion(in, libraryVersion(), fileVersion());
+        openvdb::io::setDataCompression(in, compression());
+        openvdb::MetaMap fileMetadata;
+        fileMetadata.readMeta(in);
+        const std::int32_t count = readGridCount(in);
+        VdbFile file;
+        file.grids = std::make_shared<openvdb::GridPtrVec>();
+        std::vector<openvdb::io::GridDescriptor> descriptors;
+        NamedGridMap named;
+        for (std::int32_t i = 0; i < count; ++i) {
+            detail::preflightVdbGrid(path, std::uint64_t(in.tellg()), fileVersion(), i);
+            openvdb::io::GridDescriptor descriptor;
+            const openvdb::GridBase::Ptr grid = descriptor.read(in); // throws for an unregistered type
+            Archive::readGrid(grid, descriptor, in);
+            file.grids->push_back(grid);
+            named[descriptor.uniqueName()] = grid;
+            descriptors.push_back(descriptor);
+        }
+        for (const openvdb::io::GridDescriptor& descriptor : descriptors) connectInstance(descriptor, named);
+        openvdb::io::clearStreamMetadataPtr(in);
+        file.version = version();
+        return file;
+    }
+};
 
 // io::File writes through an std::ofstream whose state it never checks after
 // writing; the archive's stream writer (what io::File calls, with seeking,
@@ -108,9 +150,9 @@ VdbFile readVdbFile(const std::filesystem::path& path)
         // whatever its variables held (reading a truncated file then
         // allocated gigabytes): the stream throws at the first short read.
         in.exceptions(std::ios::failbit | std::ios::badbit);
-        openvdb::io::Stream stream(in, /*delayLoad*/ false);
-        file.grids = stream.getGrids();
-        file.version = stream.version();
+        file = CheckedStreamReader().read(in, path);
+    } catch (const Error&) {
+        throw; // the preflight's, naming the byte
     } catch (const std::ios_base::failure&) {
         throw Error(where + " is truncated or corrupt: it ends before its last grid does");
     } catch (const std::exception& e) {

@@ -4,11 +4,13 @@
 
 #include <openvdb/Metadata.h>
 #include <openvdb/io/DelayedLoadMetadata.h>
+#include <openvdb/math/Maps.h>
 #include <openvdb/openvdb.h>
 
 #include <cstdint>
 #include <cstring>
 #include <fstream>
+#include <sstream>
 #include <string>
 
 namespace strata::meshing::detail {
@@ -121,6 +123,126 @@ void checkMetadata(Reader& r, const char* where)
     }
 }
 
+/// The size in bytes of a value of `grid`'s tree as the root node stores its
+/// background and tile values (sizeof(ValueType), also for half-float
+/// grids): measured from what an empty tree of that type writes (the tree's
+/// buffer count, the background, the tile and child counts), so it holds for
+/// every registered grid type.
+std::uint64_t rootValueSize(const openvdb::GridBase& grid)
+{
+    std::ostringstream out(std::ios::binary);
+    grid.writeTopology(out);
+    const std::uint64_t written = out.str().size();
+    return written - sizeof(std::int32_t) - 2 * sizeof(openvdb::Index);
+}
+
+/// The bytes a registered map's read() consumes after its type name
+/// (openvdb/math/Maps.h), or -1 for a type this check does not know (a map
+/// registered by someone else: OpenVDB reads it, and the check stops there).
+std::int64_t mapSize(Reader& r, const std::string& type, int depth)
+{
+    constexpr std::int64_t VEC3D = 3 * sizeof(double);
+    if (type == "AffineMap" || type == "UnitaryMap") return 16 * sizeof(double); // a Mat4d
+    if (type == "ScaleMap" || type == "UniformScaleMap") return 5 * VEC3D;
+    if (type == "TranslationMap") return VEC3D;
+    if (type == "ScaleTranslateMap" || type == "UniformScaleTranslateMap") return 6 * VEC3D;
+    if (type == "NonlinearFrustumMap") {
+        // A BBoxd, the taper and the depth, then a second map by type name.
+        r.skip(2 * VEC3D + 2 * sizeof(double), "a frustum map");
+        // OpenVDB writes an AffineMap there; a frustum in a frustum reads, but
+        // no writer nests them deeply.
+        if (depth >= 16) r.fail("is corrupt: frustum maps nested 16 deep at byte " + std::to_string(r.offset()));
+        const std::string second = r.string("a frustum's second map type");
+        if (!openvdb::math::MapRegistry::isRegistered(second)) return -1; // OpenVDB refuses it
+        return mapSize(r, second, depth + 1);
+    }
+    return -1;
+}
+
+/// A grid descriptor (io::GridDescriptor::read).
+struct Descriptor
+{
+    std::string type; ///< the grid type, without the "_HalfFloat" suffix
+    bool instance = false;
+    std::int64_t gridPos = 0, blockPos = 0, endPos = 0;
+    std::uint64_t end = 0; ///< the byte after the descriptor
+};
+
+Descriptor checkDescriptor(Reader& r)
+{
+    Descriptor d;
+    r.string("a grid name");
+    d.type = r.string("a grid type");
+    static const std::string HALF = "_HalfFloat";
+    if (d.type.size() >= HALF.size() && d.type.compare(d.type.size() - HALF.size(), HALF.size(), HALF) == 0) {
+        d.type.resize(d.type.size() - HALF.size());
+    }
+    d.instance = !r.string("an instance parent name").empty(); // file versions 216 and later
+    d.gridPos = r.value<std::int64_t>("a grid offset");
+    d.blockPos = r.value<std::int64_t>("a grid offset");
+    d.endPos = r.value<std::int64_t>("a grid offset");
+    d.end = r.offset();
+    return d;
+}
+
+/// The byte at `offset` (already read past) must be 0 or 1: OpenVDB reads
+/// it straight into a bool, and any other byte is undefined behaviour.
+void checkBool(Reader& r, std::uint64_t offset, const std::string& what)
+{
+    const std::uint64_t back = r.offset();
+    r.seek(offset);
+    const auto byte = r.value<std::uint8_t>(what.c_str());
+    r.seek(back);
+    if (byte > 1) {
+        r.fail("is corrupt: " + what + " at byte " + std::to_string(offset) + " is " + std::to_string(byte) +
+               ", not a bool (0 or 1)");
+    }
+}
+
+/// One grid after its descriptor, as io::Archive::readGrid reads it (OpenVDB
+/// 10, file versions 222 and later): the grid's compression flags, its
+/// metadata, its transform (type name and map), then, unless the grid is an
+/// instance, its tree's topology as far as the root node's tiles: the buffer
+/// count, the background, the tile and child counts and every tile record
+/// (origin, value, active byte). RootNode::readTopology reads the active
+/// byte (and a bool grid's values) straight into a bool, so a byte other
+/// than 0 or 1 is refused here. A map or grid type that OpenVDB does not
+/// know ends the check: OpenVDB refuses it before reading further.
+void checkGrid(Reader& r, const Descriptor& d, std::uint32_t fileVersion, std::int32_t index)
+{
+    const std::string grid = "grid " + std::to_string(index);
+    if (fileVersion >= openvdb::OPENVDB_FILE_VERSION_NODE_MASK_COMPRESSION) r.skip(4, "a grid's compression flags");
+    checkMetadata(r, "a grid's");
+    const std::string transform = r.string("a transform type");
+    if (!openvdb::math::MapRegistry::isRegistered(transform)) return;
+    const std::int64_t map = mapSize(r, transform, 0);
+    if (map < 0) return;
+    r.skip(std::uint64_t(map), "a transform");
+    if (d.instance) return; // an instance has no tree of its own
+    if (!openvdb::GridBase::isRegistered(d.type)) return;
+    const openvdb::GridBase::Ptr empty = openvdb::GridBase::createGrid(d.type);
+    const std::uint64_t valueSize = rootValueSize(*empty);
+    const bool boolValues = empty->valueType() == "bool";
+
+    r.skip(sizeof(std::int32_t), "a tree's buffer count");
+    r.skip(valueSize, "a tree's background value");
+    if (boolValues) checkBool(r, r.offset() - valueSize, grid + "'s background value");
+    const auto tiles = r.value<std::uint32_t>("a root node's tile count");
+    r.value<std::uint32_t>("a root node's child count");
+    const std::uint64_t record = 3 * sizeof(std::int32_t) + valueSize + 1;
+    if (std::uint64_t(tiles) * record > r.remaining()) {
+        r.fail("is truncated or corrupt: " + grid + "'s root node at byte " + std::to_string(r.offset() - 8) +
+               " claims " + std::to_string(tiles) + " tiles of " + std::to_string(record) + " bytes, the file has " +
+               std::to_string(r.remaining()) + " bytes left");
+    }
+    for (std::uint32_t t = 0; t < tiles; ++t) {
+        const std::string tile = grid + "'s root tile " + std::to_string(t);
+        r.skip(3 * sizeof(std::int32_t) + valueSize + 1, "a root tile");
+        if (boolValues) checkBool(r, r.offset() - 1 - valueSize, tile + " value");
+        checkBool(r, r.offset() - 1, tile + " active flag");
+    }
+}
+
 } // namespace
 
 void preflightVdbFile(const std::filesystem::path& path)
@@ -146,22 +268,26 @@ void preflightVdbFile(const std::filesystem::path& path)
         r.fail("is truncated or corrupt: it claims " + std::to_string(grids) + " grids");
     }
     for (std::int32_t g = 0; g < grids; ++g) {
-        r.string("a grid name");
-        r.string("a grid type");
-        r.string("an instance parent name");
-        const auto gridPos = r.value<std::int64_t>("a grid offset");
-        const auto blockPos = r.value<std::int64_t>("a grid offset");
-        const auto endPos = r.value<std::int64_t>("a grid offset");
-        if (offsets && (gridPos != std::int64_t(r.offset()) || blockPos < gridPos || endPos < blockPos)) {
-            r.fail("is corrupt: grid " + std::to_string(g) + "'s offsets (" + std::to_string(gridPos) + ", " +
-                   std::to_string(blockPos) + ", " + std::to_string(endPos) + ") are out of order");
+        const Descriptor d = checkDescriptor(r);
+        // An instance has no blocks: OpenVDB leaves its block offset at 0.
+        const bool ordered = d.instance ? d.endPos >= d.gridPos : d.blockPos >= d.gridPos && d.endPos >= d.blockPos;
+        if (offsets && (d.gridPos != std::int64_t(d.end) || !ordered)) {
+            r.fail("is corrupt: grid " + std::to_string(g) + "'s offsets (" + std::to_string(d.gridPos) + ", " +
+                   std::to_string(d.blockPos) + ", " + std::to_string(d.endPos) + ") are out of order");
         }
-        r.skip(4, "a grid's compression flags");
-        checkMetadata(r, "a grid's");
-        r.string("a transform type");
-        if (!offsets) return; // a stream: the tree follows, and its end is not recorded
-        r.seek(std::uint64_t(endPos));
+        checkGrid(r, d, version, g);
+        if (!offsets) return; // a stream: the grid's buffers follow, and their end is not recorded
+        r.seek(std::uint64_t(d.endPos));
     }
+}
+
+void preflightVdbGrid(const std::filesystem::path& path, std::uint64_t offset, std::uint32_t fileVersion,
+                      std::int32_t index)
+{
+    Reader r(path);
+    r.seek(offset);
+    const Descriptor d = checkDescriptor(r);
+    checkGrid(r, d, fileVersion, index);
 }
 
 } // namespace strata::meshing::detail

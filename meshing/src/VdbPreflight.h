@@ -2,10 +2,14 @@
 /// \file
 /// Checks the parts of a .vdb file that OpenVDB's reader trusts blindly
 /// before it reads them: the header, the file's and each grid's metadata,
-/// the grid descriptors and the transform's type name. Every string length,
-/// count and offset there must fit in the file; otherwise OpenVDB allocates
-/// whatever the bytes say (a corrupt 16 KiB file asked for gigabytes).
+/// the grid descriptors, the transforms and the root nodes' tiles. Every
+/// string length, count and offset there must fit in the file; otherwise
+/// OpenVDB allocates whatever the bytes say (a corrupt 16 KiB file asked for
+/// gigabytes). A root tile's active flag must be 0 or 1: OpenVDB reads it
+/// into a bool (undefined behaviour otherwise). Below the root node (the
+/// internal and leaf nodes) nothing is checked.
 
+#include <cstdint>
 #include <filesystem>
 
 namespace strata::meshing::detail {
@@ -17,7 +21,18 @@ constexpr unsigned MIN_VDB_FILE_VERSION = 222;
 /// Throws strata::Error (BadInput) "VDB file 'PATH' ..." naming the first
 /// length, count or offset that does not fit in the file (with its byte
 /// offset), an unsupported format version, or a metadata value whose size
-/// does not match its type. The grids' trees are not checked here.
+/// does not match its type, and (where the file records where its grids
+/// end) each grid as preflightVdbGrid() does.
 void preflightVdbFile(const std::filesystem::path& path);
+
+/// Checks grid `index` of a .vdb file of format version `fileVersion` from
+/// its descriptor at byte `offset` (where OpenVDB's reader is about to read
+/// it) as far as the root node's tiles: the descriptor, the grid's metadata,
+/// its transform, and the root node's background, tile and child counts and
+/// tile records, whose active byte (and a bool grid's values) OpenVDB reads
+/// straight into a bool. Throws strata::Error (BadInput) "VDB file 'PATH'
+/// ..." naming the byte that does not fit or is not 0 or 1.
+void preflightVdbGrid(const std::filesystem::path& path, std::uint64_t offset, std::uint32_t fileVersion,
+                      std::int32_t index);
 
 } // namespace strata::meshing::detail

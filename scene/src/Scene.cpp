@@ -161,14 +161,14 @@ Scene parseScene(std::string_view text, const std::string& source)
     scene.lighting.sunDirection = directionFromAngles(sunAzimuth, sunElevation);
     if (const std::optional<glm::dvec3> color = light.vec3("sun_color", 1e3)) {
         scene.lighting.sunColor = glm::vec3(*color);
-        if (glm::any(glm::lessThan(*color, glm::dvec3(0.0)))) light.fail(nullptr, "sun_color", "must not be negative");
+        if (glm::any(glm::lessThan(*color, glm::dvec3(0.0)))) light.fail(nullptr, "sun_color", light.shown("sun_color") + "must not be negative");
     }
     scene.lighting.exposure = float(light.number("exposure", scene.lighting.exposure, 1e-3, 1e3));
     // [[light.extra]]: up to three more directional lights (fill, rim).
     if (const toml::node* extra = light.node("extra")) {
         const toml::array* lights = extra->as_array();
         if (!lights || !lights->is_array_of_tables() || lights->size() > 3) {
-            light.fail(extra, "extra", "must be an array of at most 3 tables ([[light.extra]])");
+            light.fail(extra, "extra", TableReader::shown(extra) + "must be an array of at most 3 tables ([[light.extra]])");
         }
         for (std::size_t i = 0; i < lights->size(); ++i) {
             TableReader one(lights->get(i)->as_table(), "light.extra[" + std::to_string(i) + "]", source);
@@ -177,7 +177,7 @@ Scene parseScene(std::string_view text, const std::string& source)
                                                        one.number("elevation", 45.0, -90.0, 90.0));
             extraLight.color = glm::vec3(one.vec3("color", 1e3).value_or(glm::dvec3(0.5)));
             if (glm::any(glm::lessThan(extraLight.color, glm::vec3(0.0f)))) {
-                one.fail(nullptr, "color", "must not be negative");
+                one.fail(nullptr, "color", one.shown("color") + "must not be negative");
             }
             one.finish();
             scene.lighting.extraLights.push_back(extraLight);

@@ -89,11 +89,12 @@ void readMapFile(TableReader& maps, int slot, MaterialSettings& settings, const 
     if (const toml::node* node = t.node("channels")) {
         const toml::array* array = node->as_array();
         if (!array || array->size() != 4) {
-            t.fail(node, "channels", "must be an array of four channel names, e.g. [\"r\", \"g\", \"b\", \"1-a\"]");
+            t.fail(node, "channels",
+                   TableReader::shown(node) + "must be an array of four channel names, e.g. [\"r\", \"g\", \"b\", \"1-a\"]");
         }
         for (std::size_t c = 0; c < 4; ++c) {
             const auto value = array->get(c)->value<std::string>();
-            if (!value) t.fail(node, "channels", "must be an array of four strings");
+            if (!value) t.fail(node, "channels", TableReader::shown(node) + "must be an array of four strings");
             f.channels.channels[c] = render::parseChannelSource(*value, t.where("channels"));
         }
     }
@@ -185,12 +186,13 @@ void readMaterialTable(TableReader& m, MaterialSettings& s, const std::filesyste
     s.detailFadeStart = float(m.number("detail_fade_start", s.detailFadeStart, 0.0, 16.0));
     s.detailFadeEnd = float(m.number("detail_fade_end", s.detailFadeEnd, 0.0, 16.0));
     if (s.detailFadeEnd < s.detailFadeStart) {
-        m.fail(nullptr, "detail_fade_end", "must be >= detail_fade_start");
+        m.fail(nullptr, "detail_fade_end", m.shown("detail_fade_end") + "must be >= material.detail_fade_start (" +
+                                               formatNumber(s.detailFadeStart) + ")");
     }
     auto colour = [&](const std::string& key, glm::vec3& value, double limit) {
         if (const std::optional<glm::dvec3> v = m.vec3(key, limit)) {
             for (int c = 0; c < 3; ++c) {
-                if ((*v)[c] < 0.0) m.fail(nullptr, key, "components must be >= 0");
+                if ((*v)[c] < 0.0) m.fail(nullptr, key, m.shown(key) + "must not be negative");
             }
             value = glm::vec3(*v);
         }

@@ -82,7 +82,8 @@ public:
         if (!node->is_table()) {
             const int line = int(node->source().begin.line);
             throw Error(ErrorKind::BadInput,
-                        mSource + ":" + std::to_string(line) + ": terrain.nodes." + name + " must be a table",
+                        mSource + ":" + std::to_string(line) + ": terrain.nodes." + name + " " +
+                            TableReader::shown(node) + "must be a table",
                         {mSource, line, "terrain.nodes." + name, ""});
         }
         if (mVisiting.count(name)) {
@@ -171,7 +172,8 @@ private:
             const std::string& key = e.place().key;
             const std::string what = e.what();
             if (!key.empty() && t.has(key) && what.rfind(key + " ", 0) == 0) {
-                t.fail(nullptr, key, what.substr(key.size() + 1));
+                const std::string rest = what.substr(key.size() + 1);
+                t.fail(nullptr, key, rest.rfind("= ", 0) == 0 ? rest : t.shown(key) + rest);
             }
             // The library's own checks: at the node's type line.
             t.fail(nullptr, "type", "= '" + typeName + "': " + what);
@@ -183,12 +185,12 @@ private:
         const toml::node* node = t.node(key);
         const toml::array* array = node ? node->as_array() : nullptr;
         if (!array || array->size() < 2) {
-            t.fail(node, key, "must be an array of at least two node names, e.g. [\"land\", \"caves\"]");
+            t.fail(node, key, TableReader::shown(node) + "must be an array of at least two node names, e.g. [\"land\", \"caves\"]");
         }
         std::vector<DensityFieldPtr> out;
         for (std::size_t i = 0; i < array->size(); ++i) {
             const toml::node& element = *array->get(i);
-            if (!element.is_string()) t.fail(&element, key, "must hold node names (strings)");
+            if (!element.is_string()) t.fail(&element, key, TableReader::shown(&element) + "must hold node names (strings)");
             out.push_back(build(*element.value<std::string>(), t, key));
         }
         return out;
@@ -199,14 +201,15 @@ private:
         const toml::node* node = t.node(key.name);
         if (!node) return std::get<glm::dvec2>(key.defaultValue);
         const toml::array* array = node->as_array();
-        if (!array || array->size() != 2) t.fail(node, key.name, "must be an array of two numbers [x, z]");
+        if (!array || array->size() != 2) t.fail(node, key.name, TableReader::shown(node) + "must be an array of two numbers [x, z]");
         glm::dvec2 v;
         for (int i = 0; i < 2; ++i) {
             const toml::node& element = *array->get(std::size_t(i));
             const std::optional<double> value = element.value<double>();
             if (!value || element.is_boolean() || !std::isfinite(*value) || *value < key.min || *value > key.max) {
                 t.fail(node, key.name,
-                       "must be an array of two finite numbers [x, z] within ±" + formatNumber(key.max));
+                       TableReader::shown(node) + "must be an array of two finite numbers [x, z] within ±" +
+                           formatNumber(key.max));
             }
             v[i] = *value;
         }

@@ -38,7 +38,7 @@ public:
         const toml::node* node = find(key);
         if (!node) return fallback;
         std::optional<double> value = node->value<double>(); // also accepts integers
-        if (!value || node->is_boolean()) fail(node, key, "must be a number");
+        if (!value || node->is_boolean()) fail(node, key, shown(node) + "must be a number");
         checkRange(node, key, *value, min, max);
         return *value;
     }
@@ -47,7 +47,7 @@ public:
     {
         const toml::node* node = find(key);
         if (!node) return fallback;
-        if (!node->is_integer()) fail(node, key, "must be an integer");
+        if (!node->is_integer()) fail(node, key, shown(node) + "must be an integer");
         const std::int64_t value = *node->value<std::int64_t>();
         if (value < min || value > max) {
             fail(node, key, "= " + std::to_string(value) + " is out of range [" + std::to_string(min) + ", " +
@@ -60,7 +60,7 @@ public:
     {
         const toml::node* node = find(key);
         if (!node) return fallback;
-        if (!node->is_boolean()) fail(node, key, "must be true or false");
+        if (!node->is_boolean()) fail(node, key, shown(node) + "must be true or false");
         return *node->value<bool>();
     }
 
@@ -69,12 +69,14 @@ public:
         const toml::node* node = find(key);
         if (!node) return std::nullopt;
         const toml::array* array = node->as_array();
-        if (!array || array->size() != 3) fail(node, key, "must be an array of three numbers [x, y, z]");
+        if (!array || array->size() != 3) fail(node, key, shown(node) + "must be an array of three numbers [x, y, z]");
         glm::dvec3 v;
         for (int i = 0; i < 3; ++i) {
             const toml::node& element = *array->get(std::size_t(i));
             std::optional<double> value = element.value<double>();
-            if (!value || element.is_boolean()) fail(node, key, "must be an array of three numbers [x, y, z]");
+            if (!value || element.is_boolean()) {
+                fail(node, key, shown(node) + "must be an array of three numbers [x, y, z]");
+            }
             checkRange(&element, key + "[" + std::to_string(i) + "]", *value, -limit, limit);
             v[i] = *value;
         }
@@ -86,7 +88,7 @@ public:
     {
         const toml::node* node = find(key);
         if (!node) return fallback;
-        if (!node->is_string()) fail(node, key, "must be a string");
+        if (!node->is_string()) fail(node, key, shown(node) + "must be a string");
         return *node->value<std::string>();
     }
 
@@ -116,7 +118,7 @@ public:
     TableReader table(const std::string& key)
     {
         const toml::node* node = find(key);
-        if (node && !node->is_table()) fail(node, key, "must be a table");
+        if (node && !node->is_table()) fail(node, key, shown(node) + "must be a table");
         return TableReader(node ? node->as_table() : nullptr, qualified(key), mSource);
     }
 
@@ -132,11 +134,37 @@ public:
         }
     }
 
+    /// "= VALUE " as the user wrote it (strings in single quotes, long
+    /// values cut at 60 characters), for a message "KEY = VALUE must be ...";
+    /// empty for a null node or a table.
+    static std::string shown(const toml::node* node)
+    {
+        if (!node || node->is_table()) return {};
+        std::string text;
+        if (const auto* value = node->as_string()) {
+            text = "'" + value->get() + "'";
+        } else {
+            std::ostringstream out;
+            node->visit([&out](const auto& n) { out << n; });
+            text = out.str();
+        }
+        for (char& c : text) {
+            if (c == '\n' || c == '\r') c = ' ';
+        }
+        if (text.size() > 60) text = text.substr(0, 57) + "...";
+        return "= " + text + " ";
+    }
+
+    /// shown() of `key`'s node in this table (does not mark it as used).
+    std::string shown(const std::string& key) const { return shown(mTable ? mTable->get(key) : nullptr); }
+
     /// Throws "SOURCE:LINE: KEY WHAT"; the line is the node's, or the key's
-    /// own when `node` is null.
+    /// own when `node` is null, or the table's when the key is absent (a
+    /// required key: the table that should hold it).
     [[noreturn]] void fail(const toml::node* node, const std::string& key, const std::string& what) const
     {
         if (!node && mTable) node = mTable->get(key);
+        if (!node) node = mTable;
         throw Error(ErrorKind::BadInput, location(node) + qualified(key) + " " + what, place(node, qualified(key)));
     }
 

@@ -3,12 +3,14 @@
 #include <strata/Error.h>
 #include <strata/meshing/GridIO.h>
 
+#include <openvdb/io/Stream.h>
 #include <openvdb/tools/LevelSetSphere.h>
 
 #include <gtest/gtest.h>
 
 #include <fstream>
 #include <iterator>
+#include <set>
 
 using namespace strata::meshing;
 
@@ -140,4 +142,164 @@ TEST(GridIO, SameGridGivesSameBytes)
     openvdb::io::File otherFile((dir / "c.vdb").string());
     otherFile.open();
     EXPECT_NE(otherFile.getUniqueTag(), uuid);
+}
+
+namespace {
+
+std::string fileBytes(const std::filesystem::path& path)
+{
+    std::ifstream in(path, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+/// A level set sphere with one active root-level tile far from it (origin
+/// (4096·3, 4096·5, −4096·7), value 1.25): root tiles are what the
+/// preflight checks byte by byte.
+openvdb::FloatGrid::Ptr sphereWithRootTile()
+{
+    auto grid = openvdb::tools::createLevelSetSphere<openvdb::FloatGrid>(2.0f, {0.f, 0.f, 0.f}, 0.25f);
+    grid->tree().addTile(3, openvdb::Coord(4096 * 3, 4096 * 5, -4096 * 7), 1.25f, true);
+    return grid;
+}
+
+/// The bytes of a root tile record (origin, value, active) as written.
+template <typename T> std::string tileRecord(const openvdb::Coord& origin, T value, bool active)
+{
+    std::string record(reinterpret_cast<const char*>(origin.asPointer()), 3 * sizeof(std::int32_t));
+    record.append(reinterpret_cast<const char*>(&value), sizeof(T));
+    record.push_back(active ? '\1' : '\0');
+    return record;
+}
+
+} // namespace
+
+// The preflight follows what OpenVDB reads, as far as the root node's tiles,
+// for every registered grid type, transform, half floats, instances and
+// streams: every valid file still reads, with its root tiles.
+TEST(GridIO, ValidFilesOfEveryKindStillRead)
+{
+    openvdb::initialize();
+    const auto dir = strata::test::freshTestDir();
+    const openvdb::Coord far(4096 * 3, 4096 * 5, -4096 * 7);
+    openvdb::GridPtrVec grids;
+    auto add = [&](openvdb::GridBase::Ptr grid, const std::string& name, openvdb::math::Transform::Ptr transform) {
+        grid->setName(name);
+        grid->setTransform(transform);
+        grids.push_back(grid);
+    };
+    auto level = sphereWithRootTile();
+    add(level, "level", openvdb::math::Transform::createLinearTransform(0.5));
+    auto half = sphereWithRootTile();
+    half->setSaveFloatAsHalf(true);
+    add(half, "half", openvdb::math::Transform::createLinearTransform(0.25));
+    auto instance = level->copyGrid(); // shares the tree: written as an instance
+    auto moved = openvdb::math::Transform::createLinearTransform(0.5);
+    moved->postTranslate(openvdb::Vec3d(5, 6, 7)); // a uniform scale and translation
+    add(instance, "instance", moved);
+    auto doubles = openvdb::DoubleGrid::create(-1.0);
+    doubles->tree().addTile(3, far, 2.5, true);
+    doubles->tree().setValue(openvdb::Coord(1, 2, 3), 7.0);
+    add(doubles, "double", std::make_shared<openvdb::math::Transform>(std::make_shared<openvdb::math::ScaleTranslateMap>(
+                               openvdb::Vec3d(1, 2, 3), openvdb::Vec3d(4, 5, 6))));
+    auto bools = openvdb::BoolGrid::create(false);
+    bools->tree().addTile(3, far, true, false);
+    bools->tree().setValue(openvdb::Coord(1, 2, 3), true);
+    auto rotation = openvdb::math::Transform::createLinearTransform(1.0);
+    rotation->preRotate(0.5, openvdb::math::Y_AXIS); // an affine map
+    add(bools, "bool", rotation);
+    auto vectors = openvdb::Vec3SGrid::create(openvdb::Vec3s(0.f));
+    vectors->tree().addTile(3, far, openvdb::Vec3s(1.f, 2.f, 3.f), true);
+    add(vectors, "vec3s", openvdb::math::Transform::createFrustumTransform(
+                              openvdb::BBoxd(openvdb::Vec3d(0), openvdb::Vec3d(10)), 0.5, 4.0, 1.0));
+    auto ints = openvdb::Int64Grid::create(3);
+    ints->tree().addTile(3, far, 9, true);
+    add(ints, "int64", std::make_shared<openvdb::math::Transform>(
+                           std::make_shared<openvdb::math::TranslationMap>(openvdb::Vec3d(5, 6, 7))));
+    auto int32s = openvdb::Int32Grid::create(0);
+    int32s->tree().addTile(3, far, 4, true);
+    add(int32s, "int32", std::make_shared<openvdb::math::Transform>(
+                             std::make_shared<openvdb::math::UnitaryMap>(openvdb::Vec3d(0, 0, 1), 0.5)));
+    auto masks = openvdb::MaskGrid::create();
+    masks->tree().addTile(3, far, true, true);
+    add(masks, "mask", std::make_shared<openvdb::math::Transform>(
+                              std::make_shared<openvdb::math::ScaleMap>(openvdb::Vec3d(1, 2, 3)))); // a scale map
+
+    std::vector<std::string> transforms;
+    for (const auto& grid : grids) transforms.push_back(grid->transform().mapType());
+    const std::set<std::string> kinds(transforms.begin(), transforms.end());
+    // Transform's constructor turns a translation into a uniform scale and
+    // translation and a unitary map into an affine one: no writer stores those two.
+    EXPECT_EQ(kinds, (std::set<std::string>{"AffineMap", "NonlinearFrustumMap", "ScaleMap", "ScaleTranslateMap",
+                                            "UniformScaleMap", "UniformScaleTranslateMap"}));
+    for (const bool seekable : {true, false}) {
+        SCOPED_TRACE(seekable ? "file" : "stream");
+        const auto path = dir / (seekable ? "all.vdb" : "stream.vdb");
+        if (seekable) {
+            openvdb::io::File file(path.string());
+            file.write(grids);
+            file.close();
+        } else {
+            std::ofstream out(path, std::ios::binary);
+            openvdb::io::Stream(out).write(grids);
+        }
+        const VdbFile back = readVdbFile(path);
+        ASSERT_EQ(back.grids->size(), grids.size());
+        for (std::size_t i = 0; i < grids.size(); ++i) {
+            const openvdb::GridBase& read = *(*back.grids)[i];
+            EXPECT_EQ(read.getName(), grids[i]->getName());
+            EXPECT_EQ(read.activeVoxelCount(), grids[i]->activeVoxelCount()) << read.getName();
+            EXPECT_EQ(read.transform().mapType(), transforms[i]) << read.getName();
+        }
+        EXPECT_EQ(readLevelSet(path)->activeVoxelCount(), level->activeVoxelCount());
+    }
+}
+
+// OpenVDB's RootNode::readTopology reads a root tile's active byte (and a bool
+// grid's tile value) straight into a bool: a byte other than 0 or 1 is
+// undefined behaviour (UBSan: "load of value 2, which is not a valid value for
+// type 'bool'"), so the preflight refuses it, naming the file and the byte.
+TEST(GridIO, ARootTileWhoseBoolIsNotZeroOrOneIsRefused)
+{
+    openvdb::initialize();
+    const auto dir = strata::test::freshTestDir();
+    const openvdb::Coord far(4096 * 3, 4096 * 5, -4096 * 7);
+    {
+        writeRaw(sphereWithRootTile(), dir / "tile.vdb");
+        std::string bytes = fileBytes(dir / "tile.vdb");
+        const std::string record = tileRecord(far, 1.25f, true);
+        const std::size_t at = bytes.find(record);
+        ASSERT_NE(at, std::string::npos);
+        ASSERT_EQ(bytes.find(record, at + 1), std::string::npos);
+        EXPECT_NO_THROW(readLevelSet(dir / "tile.vdb"));
+        bytes[at + record.size() - 1] = '\2';
+        std::ofstream(dir / "active-2.vdb", std::ios::binary) << bytes;
+        expectReadError(dir / "active-2.vdb", "grid 0's root tile 0 active flag at byte " +
+                                                  std::to_string(at + record.size() - 1) + " is 2, not a bool");
+    }
+    {
+        // Streams too (no offsets), and a grid after the first one.
+        std::ofstream out(dir / "two.vdb", std::ios::binary);
+        auto bools = openvdb::BoolGrid::create(false);
+        bools->tree().addTile(3, far, true, false);
+        openvdb::io::Stream(out).write({sphereWithRootTile(), bools});
+    }
+    std::string bytes = fileBytes(dir / "two.vdb");
+    const std::string record = tileRecord(far, true, false);
+    const std::size_t at = bytes.find(record, bytes.find(tileRecord(far, 1.25f, true)) + 1);
+    ASSERT_NE(at, std::string::npos);
+    EXPECT_NO_THROW(readVdbFile(dir / "two.vdb"));
+    bytes[at + record.size() - 2] = '\x7f'; // the tile's value
+    std::ofstream(dir / "value-127.vdb", std::ios::binary) << bytes;
+    expectReadError(dir / "value-127.vdb", "grid 1's root tile 0 value at byte " +
+                                                std::to_string(at + record.size() - 2) + " is 127, not a bool");
+}
+
+// The fuzz_vdb finding (fuzz/corpus/vdb/root-tile-active-not-a-bool.vdb,
+// UBSan in RootNode::readTopology): refused before OpenVDB reads the tiles.
+TEST(GridIO, TheFuzzersRootTileFindingIsRefused)
+{
+    const std::filesystem::path path =
+        std::filesystem::path(STRATA_FUZZ_CORPUS_DIR) / "vdb" / "root-tile-active-not-a-bool.vdb";
+    ASSERT_TRUE(std::filesystem::exists(path));
+    expectReadError(path, "grid 0's root node at byte 567 claims 13874 tiles");
 }

@@ -206,8 +206,8 @@ TEST(Quality, SceneFileErrorsNameFileLineAndKey)
     EXPECT_TRUE(contains(errorOf("[quality]\nvoxel_size = inf\n"), "quality.voxel_size = inf must be finite"));
     EXPECT_TRUE(contains(errorOf("[quality]\nsimplify = 0.0\n"), "quality.simplify = 0 is out of range"));
     EXPECT_TRUE(contains(errorOf("[quality]\nadaptivity = -0.5\n"), "quality.adaptivity = -0.5 is out of range"));
-    EXPECT_TRUE(contains(errorOf("[quality]\nprojection = 1.5\n"), "quality.projection must be an integer"));
-    EXPECT_TRUE(contains(errorOf("[quality]\nfiltering = 3\n"), "quality.filtering must be a string"));
+    EXPECT_TRUE(contains(errorOf("[quality]\nprojection = 1.5\n"), "quality.projection = 1.5 must be an integer"));
+    EXPECT_TRUE(contains(errorOf("[quality]\nfiltering = 3\n"), "quality.filtering = 3 must be a string"));
     EXPECT_TRUE(contains(errorOf("[quality]\nvoxel_size = 0.5\nvoxel_scale = 2\n"),
                          "quality.voxel_scale cannot be combined with quality.voxel_size"));
     EXPECT_EQ(errorOf("[quality]\npreset = \"accurate\"\nfiltering = \"bilinear\"\nbackend = \"cpu\"\n"), "");

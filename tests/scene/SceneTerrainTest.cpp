@@ -274,11 +274,11 @@ TEST(SceneTerrain, BadNodesNameFileLineKeyAndValue)
               "cellular_f1, cellular_f2");
     EXPECT_EQ(parseError(oneNode("sphere", "radiuss = 3\n")), "test.toml:5: unknown key 'terrain.nodes.a.radiuss'");
     EXPECT_EQ(parseError(oneNode("box", "size = [1, -2, 3]\n")),
-              "test.toml:5: terrain.nodes.a.size must be positive on every axis");
+              "test.toml:5: terrain.nodes.a.size = [ 1, -2, 3 ] must be positive on every axis");
     EXPECT_EQ(parseError(oneNode("sphere", "[terrain.nodes.b]\ntype = \"sphere\"\n")),
               "test.toml:5: terrain.nodes.b is not used: no node's child or children, nor terrain.root, names it");
     EXPECT_EQ(parseError("[terrain.nodes.a]\ntype = \"sphere\"\n"),
-              "test.toml: terrain.root is required with [terrain.nodes]: the name of the node to sample");
+              "test.toml:1: terrain.root is required with [terrain.nodes]: the name of the node to sample");
     EXPECT_EQ(parseError("[region]\nmin = [0, 0, 0]\nmax = [0, 1, 1]\n").substr(0, 32), "test.toml:3: region.max must be ");
     const std::string missing = parseError(oneNode("image_heightfield", "file = \"/nonexistent/h.png\"\n"));
     EXPECT_EQ(missing, "test.toml:5: terrain.nodes.a.file = '/nonexistent/h.png': no such file");

@@ -74,11 +74,11 @@ TEST(Scene, ErrorsNameFileLineAndKey)
     EXPECT_EQ(parseError("[sampling]\nvoxel_size = inf\n"), "test.toml:2: sampling.voxel_size = inf must be finite");
     EXPECT_EQ(parseError("seed = 1\n[terrain.height]\noctaves = 100\n"),
               "test.toml:3: terrain.height.octaves = 100 is out of range [1, 24]");
-    EXPECT_EQ(parseError("[terrain.height]\noctaves = 2.5\n"), "test.toml:2: terrain.height.octaves must be an integer");
+    EXPECT_EQ(parseError("[terrain.height]\noctaves = 2.5\n"), "test.toml:2: terrain.height.octaves = 2.5 must be an integer");
     EXPECT_EQ(parseError("[terrain.caves]\nradiuss = 2\n"), "test.toml:2: unknown key 'terrain.caves.radiuss'");
     EXPECT_EQ(parseError("seeds = 2\n"), "test.toml:1: unknown key 'seeds'");
     EXPECT_EQ(parseError("[camera]\nposition = [1, 2]\n"),
-              "test.toml:2: camera.position must be an array of three numbers [x, y, z]");
+              "test.toml:2: camera.position = [ 1, 2 ] must be an array of three numbers [x, y, z]");
     EXPECT_EQ(parseError("[material]\ntexture_size = 300\n"), "test.toml:2: material.texture_size = 300 must be a power of two");
     EXPECT_EQ(parseError("[region]\nmin = [0, 0, 0]\nmax = [1, 0, 1]\n"),
               "test.toml:3: region.max must be greater than region.min on every axis (axis y: 0 >= 0)");
@@ -279,10 +279,10 @@ azimuth = 180
 TEST(Scene, LightErrorsNameTheKey)
 {
     EXPECT_EQ(parseError("[light]\nexposure = 0\n"), "test.toml:2: light.exposure = 0 is out of range [0.001, 1000]");
-    EXPECT_EQ(parseError("[light]\nsun_color = [1, -1, 1]\n"), "test.toml:2: light.sun_color must not be negative");
+    EXPECT_EQ(parseError("[light]\nsun_color = [1, -1, 1]\n"), "test.toml:2: light.sun_color = [ 1, -1, 1 ] must not be negative");
     EXPECT_EQ(parseError("[[light.extra]]\nazimuth = 0\ncolour = [1, 1, 1]\n"),
               "test.toml:3: unknown key 'light.extra[0].colour'");
     EXPECT_EQ(parseError("[light]\nextra = 3\n"),
-              "test.toml:2: light.extra must be an array of at most 3 tables ([[light.extra]])");
+              "test.toml:2: light.extra = 3 must be an array of at most 3 tables ([[light.extra]])");
     EXPECT_EQ(parseError("[[light.extra]]\n[[light.extra]]\n[[light.extra]]\n[[light.extra]]\n").rfind("test.toml:", 0), 0u);
 }
