@@ -78,10 +78,20 @@ public:
         std::vector<openvdb::io::GridDescriptor> descriptors;
         NamedGridMap named;
         for (std::int32_t i = 0; i < count; ++i) {
-            detail::preflightVdbGrid(path, std::uint64_t(in.tellg()), fileVersion(), i);
+            const std::optional<std::uint64_t> end =
+                detail::preflightVdbGrid(path, std::uint64_t(in.tellg()), fileVersion(), i);
             openvdb::io::GridDescriptor descriptor;
             const openvdb::GridBase::Ptr grid = descriptor.read(in); // throws for an unregistered type
             Archive::readGrid(grid, descriptor, in);
+            // The preflight followed the grid's bytes as OpenVDB reads them:
+            // both must end at the same byte, or the checks were of other bytes.
+            if (end && std::uint64_t(in.tellg()) != *end) {
+                throw Error(ErrorKind::BadInput,
+                            "VDB file '" + path.string() + "' is corrupt: grid " + std::to_string(i) +
+                                " ends at byte " + std::to_string(std::uint64_t(in.tellg())) + ", not at byte " +
+                                std::to_string(*end) + " where its nodes say",
+                            {.file = path.string()});
+            }
             file.grids->push_back(grid);
             named[descriptor.uniqueName()] = grid;
             descriptors.push_back(descriptor);

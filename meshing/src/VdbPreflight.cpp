@@ -3,13 +3,18 @@
 #include <strata/Error.h>
 
 #include <openvdb/Metadata.h>
+#include <openvdb/io/Compression.h>
 #include <openvdb/io/DelayedLoadMetadata.h>
 #include <openvdb/math/Maps.h>
 #include <openvdb/openvdb.h>
 
+#include <array>
+#include <bit>
 #include <cstdint>
 #include <cstring>
 #include <fstream>
+#include <map>
+#include <optional>
 #include <sstream>
 #include <string>
 
@@ -84,6 +89,27 @@ private:
     std::uint64_t mOffset = 0;
 };
 
+/// A blosc 1 block of `count` bytes at the reader's position (block start
+/// `at`): its header (version, version, flags, type size, then the
+/// uncompressed size, the block size and the compressed size, 32-bit each)
+/// must say `expected` bytes in `count`, since blosc trusts it. Leaves the
+/// reader after the header.
+void checkBloscHeader(Reader& r, std::uint64_t at, std::uint64_t count, std::uint64_t expected,
+                      const std::string& what)
+{
+    if (count < 16) r.fail("is corrupt: " + what + " at byte " + std::to_string(at) + " is too short for blosc");
+    std::uint8_t header[16] = {};
+    r.bytes(header, 16, what.c_str());
+    std::uint32_t nbytes = 0, cbytes = 0;
+    std::memcpy(&nbytes, header + 4, 4);
+    std::memcpy(&cbytes, header + 12, 4);
+    if (nbytes != expected || cbytes != count) {
+        r.fail("is corrupt: " + what + " at byte " + std::to_string(at) + ": its blosc header says " +
+               std::to_string(nbytes) + " bytes in " + std::to_string(cbytes) + ", not " + std::to_string(expected) +
+               " in " + std::to_string(count));
+    }
+}
+
 /// MetaMap::readMeta: a count, then name, type name, byte count and value.
 void checkMetadata(Reader& r, const char* where)
 {
@@ -101,12 +127,39 @@ void checkMetadata(Reader& r, const char* where)
             // A 32-bit count of leaves comes first, and OpenVDB sizes two
             // arrays by it (a byte and a 64-bit size per leaf); both are
             // stored compressed, but per-leaf sizes never shrink 64-fold.
-            if (size >= 4) {
+            // DelayedLoadMetadata::readValue then reads, whatever the size
+            // says, a byte count and the masks (blosc or raw), and a byte
+            // count (all ones: none) and the sizes: all of it must lie within
+            // the value, each blosc block agree with its header.
+            if (size > 0) {
                 const std::uint64_t start = r.offset();
+                if (size > r.remaining()) r.skip(size, "a metadata value"); // fails with the message
+                const std::string what = "metadata '" + name + "'";
+                auto within = [&](std::uint64_t n) {
+                    if (r.offset() + n > start + size) {
+                        r.fail("is corrupt: " + what + " at byte " + std::to_string(start) + " reads past its " +
+                               std::to_string(size) + " bytes");
+                    }
+                };
+                within(8);
                 const auto masks = r.value<std::uint32_t>("a delayed-load mask count");
                 if (std::uint64_t(masks) > 64 * std::uint64_t(size)) {
-                    r.fail("is corrupt: metadata '" + name + "' at byte " + std::to_string(start) + " claims " +
+                    r.fail("is corrupt: " + what + " at byte " + std::to_string(start) + " claims " +
                            std::to_string(masks) + " masks in " + std::to_string(size) + " bytes");
+                }
+                for (const std::uint64_t itemSize : {std::uint64_t(1), std::uint64_t(8)}) { // masks, then sizes
+                    if (itemSize == 8) within(4);
+                    const std::uint64_t at = r.offset();
+                    const auto bytes = r.value<std::uint32_t>("a delayed-load block size");
+                    if (itemSize == 8 && bytes == 0xffffffffu) break; // no sizes stored
+                    if (bytes > 0) {
+                        within(bytes);
+                        checkBloscHeader(r, at, bytes, masks * itemSize, what);
+                        r.seek(at + 4 + bytes);
+                    } else {
+                        within(masks * itemSize);
+                        r.skip(masks * itemSize, "delayed-load values");
+                    }
                 }
                 r.seek(start);
             }
@@ -163,6 +216,7 @@ std::int64_t mapSize(Reader& r, const std::string& type, int depth)
 struct Descriptor
 {
     std::string type; ///< the grid type, without the "_HalfFloat" suffix
+    bool half = false; ///< the type had the suffix: real values are stored as halves
     bool instance = false;
     std::int64_t gridPos = 0, blockPos = 0, endPos = 0;
     std::uint64_t end = 0; ///< the byte after the descriptor
@@ -176,6 +230,7 @@ Descriptor checkDescriptor(Reader& r)
     static const std::string HALF = "_HalfFloat";
     if (d.type.size() >= HALF.size() && d.type.compare(d.type.size() - HALF.size(), HALF.size(), HALF) == 0) {
         d.type.resize(d.type.size() - HALF.size());
+        d.half = true;
     }
     d.instance = !r.string("an instance parent name").empty(); // file versions 216 and later
     d.gridPos = r.value<std::int64_t>("a grid offset");
@@ -199,6 +254,145 @@ void checkBool(Reader& r, std::uint64_t offset, const std::string& what)
     }
 }
 
+/// How a tree of one of OpenVDB's standard 5-4-3 value types stores its
+/// values below the root node (InternalNode and LeafNode<T, 3>).
+struct ValueLayout
+{
+    std::uint64_t valueSize = 0;  ///< sizeof(ValueType): inactive values in the node records
+    std::uint64_t storedSize = 0; ///< the size of a stored value (a half for half-float grids)
+    bool halves = false;          ///< stored as halves: io::HalfReader reads nothing for no values
+    std::uint32_t compression = 0; ///< the grid's io::COMPRESS_* flags
+};
+
+/// The layout of `d`'s tree below the root, or nothing for a type whose
+/// leaves are not plain value arrays (bool, mask and point grids): their
+/// nodes are not checked.
+std::optional<ValueLayout> valueLayout(const Descriptor& d, std::uint64_t valueSize)
+{
+    struct Type
+    {
+        const char* name;
+        std::uint64_t halfSize; ///< 0: not a real type (HalfReader<false> reads the values as they are)
+    };
+    static const Type TYPES[] = {{"Tree_float_5_4_3", 2}, {"Tree_double_5_4_3", 2}, {"Tree_vec3s_5_4_3", 6},
+                                 {"Tree_vec3d_5_4_3", 6}, {"Tree_int32_5_4_3", 0},  {"Tree_int64_5_4_3", 0},
+                                 {"Tree_vec3i_5_4_3", 0}};
+    for (const Type& type : TYPES) {
+        if (d.type == type.name) {
+            ValueLayout layout;
+            layout.valueSize = valueSize;
+            layout.halves = d.half && type.halfSize;
+            layout.storedSize = layout.halves ? type.halfSize : valueSize;
+            return layout;
+        }
+    }
+    return std::nullopt;
+}
+
+/// A compressed block as io::readData reads it: with blosc or zip, a 64-bit
+/// byte count (negative: stored uncompressed) and the bytes. OpenVDB 10
+/// allocates whatever a positive count says, and reads a negative count's
+/// bytes into a buffer of the expected size before comparing the two (an
+/// overflow): both are checked here first. A blosc block's own header
+/// (uncompressed and compressed sizes) must agree, since blosc trusts it.
+void checkDataBlock(Reader& r, std::uint64_t expected, std::uint32_t compression, const std::string& what)
+{
+    if (!(compression & (openvdb::io::COMPRESS_BLOSC | openvdb::io::COMPRESS_ZIP))) {
+        r.skip(expected, what.c_str());
+        return;
+    }
+    const std::uint64_t at = r.offset();
+    const auto count = r.value<std::int64_t>(what.c_str());
+    if (count <= 0) {
+        const std::uint64_t raw = count == 0 ? 0 : std::uint64_t(-(count + 1)) + 1; // |count|, also for INT64_MIN
+        if (raw != expected) {
+            r.fail("is corrupt: " + what + " at byte " + std::to_string(at) + " holds " + std::to_string(raw) +
+                   " uncompressed bytes, not " + std::to_string(expected));
+        }
+        r.skip(expected, what.c_str());
+        return;
+    }
+    if (std::uint64_t(count) > r.remaining()) {
+        r.fail("is truncated or corrupt: " + what + " at byte " + std::to_string(at) + " claims " +
+               std::to_string(count) + " compressed bytes, the file has " + std::to_string(r.remaining()) + " left");
+    }
+    if (compression & openvdb::io::COMPRESS_BLOSC) {
+        checkBloscHeader(r, at, std::uint64_t(count), expected, what);
+        r.skip(std::uint64_t(count) - 16, what.c_str());
+    } else {
+        r.skip(std::uint64_t(count), what.c_str());
+    }
+}
+
+/// A node mask of `bits` bits, read.
+std::vector<std::uint8_t> readMask(Reader& r, std::uint64_t bits, const char* what)
+{
+    std::vector<std::uint8_t> mask(bits / 8);
+    r.bytes(mask.data(), mask.size(), what);
+    return mask;
+}
+
+/// The children a mask's set bits name.
+std::uint64_t countOn(const std::vector<std::uint8_t>& mask)
+{
+    std::uint64_t n = 0;
+    for (const std::uint8_t byte : mask) n += std::uint64_t(std::popcount(byte));
+    return n;
+}
+
+/// A node's values as io::readCompressedValues reads them (file versions
+/// 222 and later): the metadata byte, up to two inactive values, a selection
+/// mask, then the values (only the active ones with mask compression).
+void checkCompressedValues(Reader& r, const ValueLayout& layout, std::uint64_t count,
+                           const std::vector<std::uint8_t>& valueMask, const std::string& what)
+{
+    const auto metadata = r.value<std::int8_t>("a node's compression metadata");
+    // io/Compression.h: NO_MASK_AND_ONE_INACTIVE_VAL 2, MASK_AND_NO_INACTIVE_VALS 3,
+    // MASK_AND_ONE_INACTIVE_VAL 4, MASK_AND_TWO_INACTIVE_VALS 5, NO_MASK_AND_ALL_VALS 6.
+    if (metadata == 2 || metadata == 4 || metadata == 5) r.skip(layout.valueSize, "an inactive value");
+    if (metadata == 5) r.skip(layout.valueSize, "an inactive value");
+    if (metadata == 3 || metadata == 4 || metadata == 5) r.skip(valueMask.size(), "a selection mask");
+    const bool maskCompressed = (layout.compression & openvdb::io::COMPRESS_ACTIVE_MASK) && metadata != 6;
+    const std::uint64_t stored = maskCompressed ? countOn(valueMask) : count;
+    if (layout.halves && stored == 0) return;
+    checkDataBlock(r, stored * layout.storedSize, layout.compression, what);
+}
+
+/// The tree below the root node's tiles for `children` root children:
+/// each child's topology (InternalNode<5>: child and value masks of 32768
+/// bits, its values, its children; InternalNode<4>: 4096 bits; leaves: a
+/// 512-bit value mask), then the leaves' buffers (a value mask and the
+/// values) for the children the root keeps (one per origin: a later child
+/// of the same origin replaces an earlier one).
+void checkTree(Reader& r, const ValueLayout& layout, std::uint32_t children, const std::string& grid)
+{
+    std::map<std::array<std::int32_t, 3>, std::uint64_t> leavesByOrigin;
+    for (std::uint32_t c = 0; c < children; ++c) {
+        std::array<std::int32_t, 3> origin{};
+        r.bytes(origin.data(), sizeof(origin), "a root child's origin");
+        const std::string node = grid + "'s root child " + std::to_string(c);
+        const std::vector<std::uint8_t> childMask5 = readMask(r, 32768, "an internal node's child mask");
+        const std::vector<std::uint8_t> valueMask5 = readMask(r, 32768, "an internal node's value mask");
+        checkCompressedValues(r, layout, 32768, valueMask5, node + "'s values");
+        std::uint64_t leaves = 0;
+        for (std::uint64_t i = 0, n = countOn(childMask5); i < n; ++i) {
+            const std::vector<std::uint8_t> childMask4 = readMask(r, 4096, "an internal node's child mask");
+            const std::vector<std::uint8_t> valueMask4 = readMask(r, 4096, "an internal node's value mask");
+            checkCompressedValues(r, layout, 4096, valueMask4, node + "'s internal node values");
+            const std::uint64_t n4 = countOn(childMask4);
+            r.skip(n4 * 64, "leaf value masks");
+            leaves += n4;
+        }
+        leavesByOrigin[origin] = leaves;
+    }
+    std::uint64_t leaves = 0;
+    for (const auto& [origin, n] : leavesByOrigin) leaves += n;
+    for (std::uint64_t i = 0; i < leaves; ++i) {
+        const std::vector<std::uint8_t> valueMask = readMask(r, 512, "a leaf's value mask");
+        checkCompressedValues(r, layout, 512, valueMask, grid + "'s leaf " + std::to_string(i) + " values");
+    }
+}
+
 /// One grid after its descriptor, as io::Archive::readGrid reads it (OpenVDB
 /// 10, file versions 222 and later): the grid's compression flags, its
 /// metadata, its transform (type name and map), then, unless the grid is an
@@ -207,19 +401,24 @@ void checkBool(Reader& r, std::uint64_t offset, const std::string& what)
 /// (origin, value, active byte). RootNode::readTopology reads the active
 /// byte (and a bool grid's values) straight into a bool, so a byte other
 /// than 0 or 1 is refused here. A map or grid type that OpenVDB does not
-/// know ends the check: OpenVDB refuses it before reading further.
-void checkGrid(Reader& r, const Descriptor& d, std::uint32_t fileVersion, std::int32_t index)
+/// know ends the check: OpenVDB refuses it before reading further. Returns
+/// whether the grid was followed to its end (not for bool, mask or point
+/// trees, whose nodes below the root are not checked).
+bool checkGrid(Reader& r, const Descriptor& d, std::uint32_t fileVersion, std::int32_t index)
 {
     const std::string grid = "grid " + std::to_string(index);
-    if (fileVersion >= openvdb::OPENVDB_FILE_VERSION_NODE_MASK_COMPRESSION) r.skip(4, "a grid's compression flags");
+    std::uint32_t compression = 0;
+    if (fileVersion >= openvdb::OPENVDB_FILE_VERSION_NODE_MASK_COMPRESSION) {
+        compression = r.value<std::uint32_t>("a grid's compression flags");
+    }
     checkMetadata(r, "a grid's");
     const std::string transform = r.string("a transform type");
-    if (!openvdb::math::MapRegistry::isRegistered(transform)) return;
+    if (!openvdb::math::MapRegistry::isRegistered(transform)) return false;
     const std::int64_t map = mapSize(r, transform, 0);
-    if (map < 0) return;
+    if (map < 0) return false;
     r.skip(std::uint64_t(map), "a transform");
-    if (d.instance) return; // an instance has no tree of its own
-    if (!openvdb::GridBase::isRegistered(d.type)) return;
+    if (d.instance) return true; // an instance has no tree of its own
+    if (!openvdb::GridBase::isRegistered(d.type)) return false;
     const openvdb::GridBase::Ptr empty = openvdb::GridBase::createGrid(d.type);
     const std::uint64_t valueSize = rootValueSize(*empty);
     const bool boolValues = empty->valueType() == "bool";
@@ -228,7 +427,7 @@ void checkGrid(Reader& r, const Descriptor& d, std::uint32_t fileVersion, std::i
     r.skip(valueSize, "a tree's background value");
     if (boolValues) checkBool(r, r.offset() - valueSize, grid + "'s background value");
     const auto tiles = r.value<std::uint32_t>("a root node's tile count");
-    r.value<std::uint32_t>("a root node's child count");
+    const auto children = r.value<std::uint32_t>("a root node's child count");
     const std::uint64_t record = 3 * sizeof(std::int32_t) + valueSize + 1;
     if (std::uint64_t(tiles) * record > r.remaining()) {
         r.fail("is truncated or corrupt: " + grid + "'s root node at byte " + std::to_string(r.offset() - 8) +
@@ -241,6 +440,12 @@ void checkGrid(Reader& r, const Descriptor& d, std::uint32_t fileVersion, std::i
         if (boolValues) checkBool(r, r.offset() - 1 - valueSize, tile + " value");
         checkBool(r, r.offset() - 1, tile + " active flag");
     }
+    if (tiles == 0 && children == 0) return true; // an empty tree: RootNode::readTopology stops here
+    std::optional<ValueLayout> layout = valueLayout(d, valueSize);
+    if (!layout) return false;
+    layout->compression = compression;
+    checkTree(r, *layout, children, grid);
+    return true;
 }
 
 } // namespace
@@ -281,13 +486,15 @@ void preflightVdbFile(const std::filesystem::path& path)
     }
 }
 
-void preflightVdbGrid(const std::filesystem::path& path, std::uint64_t offset, std::uint32_t fileVersion,
+std::optional<std::uint64_t> preflightVdbGrid(const std::filesystem::path& path, std::uint64_t offset,
+                                              std::uint32_t fileVersion,
                       std::int32_t index)
 {
     Reader r(path);
     r.seek(offset);
     const Descriptor d = checkDescriptor(r);
-    checkGrid(r, d, fileVersion, index);
+    if (!checkGrid(r, d, fileVersion, index)) return std::nullopt;
+    return r.offset();
 }
 
 } // namespace strata::meshing::detail

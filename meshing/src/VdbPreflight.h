@@ -6,11 +6,12 @@
 /// string length, count and offset there must fit in the file; otherwise
 /// OpenVDB allocates whatever the bytes say (a corrupt 16 KiB file asked for
 /// gigabytes). A root tile's active flag must be 0 or 1: OpenVDB reads it
-/// into a bool (undefined behaviour otherwise). Below the root node (the
-/// internal and leaf nodes) nothing is checked.
+/// into a bool (undefined behaviour otherwise). For the standard value trees
+/// the nodes below the root are followed too, to every compressed block.
 
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 
 namespace strata::meshing::detail {
 
@@ -27,12 +28,17 @@ void preflightVdbFile(const std::filesystem::path& path);
 
 /// Checks grid `index` of a .vdb file of format version `fileVersion` from
 /// its descriptor at byte `offset` (where OpenVDB's reader is about to read
-/// it) as far as the root node's tiles: the descriptor, the grid's metadata,
-/// its transform, and the root node's background, tile and child counts and
-/// tile records, whose active byte (and a bool grid's values) OpenVDB reads
-/// straight into a bool. Throws strata::Error (BadInput) "VDB file 'PATH'
-/// ..." naming the byte that does not fit or is not 0 or 1.
-void preflightVdbGrid(const std::filesystem::path& path, std::uint64_t offset, std::uint32_t fileVersion,
-                      std::int32_t index);
+/// it): the descriptor, the grid's metadata, its transform, the root node's
+/// background, tile and child counts and tile records (whose active byte,
+/// and a bool grid's values, OpenVDB reads straight into a bool), and for
+/// the standard value trees (float, double, int32, int64, vec3s/d/i) every
+/// node below: masks, compression metadata, and each compressed block's
+/// byte count against the file and the node (OpenVDB allocates what a count
+/// says). Throws strata::Error (BadInput) "VDB file 'PATH' ..." naming the
+/// byte that does not fit. Returns the byte where the grid ends, or nothing
+/// where the check stopped early (bool, mask and point trees below the root;
+/// a map or grid type OpenVDB does not know).
+std::optional<std::uint64_t> preflightVdbGrid(const std::filesystem::path& path, std::uint64_t offset,
+                                              std::uint32_t fileVersion, std::int32_t index);
 
 } // namespace strata::meshing::detail

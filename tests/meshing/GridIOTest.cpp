@@ -231,16 +231,23 @@ TEST(GridIO, ValidFilesOfEveryKindStillRead)
     // translation and a unitary map into an affine one: no writer stores those two.
     EXPECT_EQ(kinds, (std::set<std::string>{"AffineMap", "NonlinearFrustumMap", "ScaleMap", "ScaleTranslateMap",
                                             "UniformScaleMap", "UniformScaleTranslateMap"}));
+    namespace io = openvdb::io;
+    for (const std::uint32_t compression : std::vector<std::uint32_t>{
+             io::COMPRESS_NONE, io::COMPRESS_ZIP, io::COMPRESS_BLOSC, io::COMPRESS_ACTIVE_MASK,
+             io::COMPRESS_ZIP | io::COMPRESS_ACTIVE_MASK, io::COMPRESS_BLOSC | io::COMPRESS_ACTIVE_MASK})
     for (const bool seekable : {true, false}) {
-        SCOPED_TRACE(seekable ? "file" : "stream");
-        const auto path = dir / (seekable ? "all.vdb" : "stream.vdb");
+        SCOPED_TRACE((seekable ? "file, compression " : "stream, compression ") + std::to_string(compression));
+        const auto path = dir / ((seekable ? "all-" : "stream-") + std::to_string(compression) + ".vdb");
         if (seekable) {
             openvdb::io::File file(path.string());
+            file.setCompression(compression);
             file.write(grids);
             file.close();
         } else {
             std::ofstream out(path, std::ios::binary);
-            openvdb::io::Stream(out).write(grids);
+            openvdb::io::Stream stream(out);
+            stream.setCompression(compression);
+            stream.write(grids);
         }
         const VdbFile back = readVdbFile(path);
         ASSERT_EQ(back.grids->size(), grids.size());
@@ -294,12 +301,51 @@ TEST(GridIO, ARootTileWhoseBoolIsNotZeroOrOneIsRefused)
                                                 std::to_string(at + record.size() - 2) + " is 127, not a bool");
 }
 
-// The fuzz_vdb finding (fuzz/corpus/vdb/root-tile-active-not-a-bool.vdb,
-// UBSan in RootNode::readTopology): refused before OpenVDB reads the tiles.
-TEST(GridIO, TheFuzzersRootTileFindingIsRefused)
+// The fuzz_vdb findings in fuzz/corpus/vdb/, refused before OpenVDB reads
+// the bytes: root tiles whose active byte is 49 (UBSan in
+// RootNode::readTopology), and a blosc block whose byte count says 2^44
+// (ASan: bloscFromStream allocates it).
+TEST(GridIO, TheFuzzersFindingsAreRefused)
 {
-    const std::filesystem::path path =
-        std::filesystem::path(STRATA_FUZZ_CORPUS_DIR) / "vdb" / "root-tile-active-not-a-bool.vdb";
-    ASSERT_TRUE(std::filesystem::exists(path));
-    expectReadError(path, "grid 0's root node at byte 567 claims 13874 tiles");
+    const std::filesystem::path corpus = std::filesystem::path(STRATA_FUZZ_CORPUS_DIR) / "vdb";
+    expectReadError(corpus / "root-tile-active-not-a-bool.vdb", "grid 0's root node at byte 567 claims 13874 tiles");
+    expectReadError(corpus / "blosc-block-size-allocation.vdb", "claims 17592186044416 compressed bytes");
+    // DelayedLoadMetadata::readValue allocates its blocks' byte counts (here
+    // 2^32 − 1) whatever the metadata's size says (libFuzzer: out-of-memory).
+    expectReadError(corpus / "delayed-load-block-size-allocation.vdb", "reads past its");
+    // Made by hand: a leaf's blosc block stored raw with a byte count of
+    // -4096 for a 32-byte buffer (ASan: heap-buffer-overflow, a 4096-byte
+    // write in bloscFromStream).
+    expectReadError(corpus / "blosc-raw-overflow.vdb", "grid 0's leaf 0 values at byte 9971 holds 4096 uncompressed bytes, not 32");
+}
+
+// A leaf's values stored uncompressed in a compressed file: a negative byte
+// count that is not the leaf's size. OpenVDB 10 reads that many bytes into
+// the leaf's buffer before it compares the two (blosc) or allocates nothing
+// and fails (zip): refused first either way.
+TEST(GridIO, ABlockLargerThanItsNodeIsRefused)
+{
+    openvdb::initialize();
+    const auto dir = strata::test::freshTestDir();
+    auto grid = openvdb::FloatGrid::create(0.5f); // not a level set: OpenVDB zips no level set
+    // 8 active values of 512, all different: zlib cannot shrink their 32 bytes.
+    const float values[8] = {-0.031f, -0.117f, -0.229f, -0.303f, -0.389f, -0.421f, -0.457f, -0.499f};
+    for (int i = 0; i < 8; ++i) grid->tree().setValue(openvdb::Coord(i, 0, 0), values[i]);
+    {
+        openvdb::io::File file((dir / "leaf.vdb").string());
+        file.setCompression(openvdb::io::COMPRESS_ZIP | openvdb::io::COMPRESS_ACTIVE_MASK);
+        file.write({grid});
+        file.close();
+    }
+    std::string bytes = fileBytes(dir / "leaf.vdb");
+    EXPECT_NO_THROW(readVdbFile(dir / "leaf.vdb"));
+    // The leaf's eight active floats, stored raw: -32, then 32 bytes.
+    const std::int64_t raw = -32;
+    const std::string count(reinterpret_cast<const char*>(&raw), sizeof(raw));
+    const std::size_t at = bytes.rfind(count);
+    ASSERT_NE(at, std::string::npos);
+    const std::int64_t larger = -4096;
+    bytes.replace(at, sizeof(larger), reinterpret_cast<const char*>(&larger), sizeof(larger));
+    std::ofstream(dir / "overflow.vdb", std::ios::binary) << bytes;
+    expectReadError(dir / "overflow.vdb", "holds 4096 uncompressed bytes, not 32");
 }
