@@ -6,7 +6,7 @@ set -euo pipefail
 PACKAGES=(
   build-essential cmake ninja-build ccache pkg-config
   libopenvdb-dev libboost-iostreams-dev libtbb-dev
-  libopenmesh-dev libglm-dev libmeshoptimizer-dev libtinygltf-dev
+  libopenmesh-dev libglm-dev libhwy-dev libmeshoptimizer-dev libtinygltf-dev
   libopenimageio-dev openimageio-tools
   libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri libepoxy-dev libglfw3-dev
   libcli11-dev libtomlplusplus-dev nlohmann-json3-dev libfmt-dev

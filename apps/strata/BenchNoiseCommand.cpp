@@ -5,6 +5,7 @@
 #include "Commands.h"
 
 #include <strata/terrain/NoiseThroughput.h>
+#include <strata/terrain/SimdTarget.h>
 
 #include <cstdio>
 #include <iostream>
@@ -23,18 +24,23 @@ std::string millions(double rate)
 
 int runNoiseBench(const terrain::NoiseThroughputOptions& options)
 {
+    std::string targets;
+    for (const std::string& name : terrain::availableSimdTargets()) targets += (targets.empty() ? "" : ", ") + name;
     std::cout << "Noise throughput, one core, processor time (best of 3), M points/s.\n"
               << "Points: 64 blocks of 8^3 voxels " << options.spacing
               << " noise units apart (lattice order); 'scattered': the same count spread over 64 cells.\n"
-              << "Block path: FractalNoise::evaluate, lattice hashes reused within a cell (scalar arithmetic, "
-                 "no SIMD; same bits as the scalar path).\n\n"
-              << "| noise | dims | scalar, scattered | scalar, voxels | block, voxels | block / scalar |\n"
-              << "|---|---:|---:|---:|---:|---:|\n";
+              << "Block path: FractalNoise::evaluate, lattice hashes reused within a cell, the arithmetic in "
+                 "SIMD lanes; the same bits as the scalar path on every target.\n"
+              << "SIMD target in use: " << terrain::simdTarget() << " (this machine: " << targets << ").\n\n"
+              << "| noise | dims | scalar, scattered | scalar, voxels | block, no SIMD | block, " << terrain::simdTarget()
+              << " | block / scalar |\n"
+              << "|---|---:|---:|---:|---:|---:|---:|\n";
     for (const terrain::NoiseThroughput& row : terrain::measureNoiseThroughput(options)) {
         char ratio[32];
         std::snprintf(ratio, sizeof(ratio), "%.2fx", row.blockRate / row.scalarRate);
         std::cout << "| " << row.name << " | " << row.dimensions << "D | " << millions(row.scatteredRate) << " | "
-                  << millions(row.scalarRate) << " | " << millions(row.blockRate) << " | " << ratio << " |"
+                  << millions(row.scalarRate) << " | " << millions(row.blockScalarTargetRate) << " | "
+                  << millions(row.blockRate) << " | " << ratio << " |"
                   << std::endl;
     }
     return 0;

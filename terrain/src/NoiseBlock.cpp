@@ -1,14 +1,19 @@
-// Block evaluation of the noise bases and their fractal sums: each point is
-// split into its lattice cell and its fraction as in the scalar path, and
-// the cell's hashes (gradients, lattice values, feature points) are reused
-// while consecutive points stay in one cell. Hashing is most of a basis'
-// cost (14 to 81 64-bit mixes), and in a block of voxels smaller than the
-// noise's cells most points share their neighbour's cell. The arithmetic is
-// the scalar path's own (NoiseKernels.h), so the bits are the same.
+// Block evaluation of the noise bases and their fractal sums, in three
+// passes per octave:
+//   1. split every point into its lattice cell and its fraction (SIMD);
+//   2. walk the points in order and hash a cell only when a point leaves the
+//      previous point's cell (scalar: 64-bit mixes, 14 to 81 per cell), which
+//      in a block of voxels smaller than the noise's cells is rare;
+//   3. the arithmetic inside the cell for each run of points sharing one,
+//      the cell broadcast to every lane (SIMD).
+// Passes 1 and 3 do the scalar path's operations in its order (NoiseSimd.h)
+// and pass 2 calls its cell functions (NoiseKernels.h), so the bits are the
+// scalar path's on every instruction set.
 
 #include <strata/terrain/FractalNoise.h>
 
 #include "NoiseKernels.h"
+#include "NoiseSimd.h"
 
 #include <cmath>
 #include <vector>
@@ -19,94 +24,141 @@ namespace {
 
 using namespace detail;
 
-/// Runs `inCell` at every point, rebuilding the cell only when a point
-/// leaves the previous point's cell.
-template <class Cell, class Split, class Splitter, class MakeCell, class InCell>
-void overCells(std::size_t n, double* out, Splitter split, MakeCell makeCell, InCell inCell)
+/// Scratch for one basis evaluation (a leaf: one per thread is safe).
+struct BasisScratch
 {
-    Cell cell{};
-    Split last{};
-    bool have = false;
-    for (std::size_t i = 0; i < n; ++i) {
-        const Split q = split(i);
-        if (!have || !q.sameCell(last)) {
-            makeCell(q, cell);
-            last = q;
-            have = true;
+    std::vector<double> split;     ///< cellX, cellY, cellZ, x, y, z: n each
+    std::vector<std::uint32_t> end; ///< run ends
+    std::vector<double> cells;     ///< cell data, cellSize() per run
+};
+
+/// The cell data NoiseSimd.cpp's kernels read, from NoiseKernels.h's cells.
+void cellData(InCell kind, std::uint64_t s, const Split3& q, double* out)
+{
+    switch (kind) {
+    case InCell::GRADIENT3:
+    case InCell::SIMPLEX3: {
+        GradientCell3 c;
+        if (kind == InCell::GRADIENT3) gradientCell(s, q, c);
+        else simplexCell(s, q, c);
+        for (int corner = 0; corner < 8; ++corner)
+            for (int k = 0; k < 3; ++k) out[3 * corner + k] = c.g[corner][k];
+        return;
+    }
+    case InCell::VALUE3: {
+        ValueCell3 c;
+        valueCell(s, q, c);
+        for (int corner = 0; corner < 8; ++corner) out[corner] = c.v[corner];
+        return;
+    }
+    default: {
+        CellularCell3 c;
+        cellularCell(s, q, c);
+        for (int n = 0; n < 27; ++n) {
+            out[n] = c.x[n];
+            out[27 + n] = c.y[n];
+            out[54 + n] = c.z[n];
         }
-        out[i] = inCell(cell, q);
-    }
-}
-
-void basis3(NoiseType type, std::uint64_t s, const double* x, const double* y, const double* z, std::size_t n,
-            double* out)
-{
-    const auto cube = [&](std::size_t i) { return splitCube({x[i], y[i], z[i]}); };
-    switch (type) {
-    case NoiseType::GRADIENT:
-        overCells<GradientCell3, Split3>(
-            n, out, cube, [s](const Split3& q, GradientCell3& c) { gradientCell(s, q, c); },
-            [](const GradientCell3& c, const Split3& q) { return gradientInCell(c, q); });
-        return;
-    case NoiseType::VALUE:
-        overCells<ValueCell3, Split3>(
-            n, out, cube, [s](const Split3& q, ValueCell3& c) { valueCell(s, q, c); },
-            [](const ValueCell3& c, const Split3& q) { return valueInCell(c, q); });
-        return;
-    case NoiseType::SIMPLEX:
-        overCells<GradientCell3, Split3>(
-            n, out, [&](std::size_t i) { return splitSimplex(glm::dvec3(x[i], y[i], z[i])); },
-            [s](const Split3& q, GradientCell3& c) { simplexCell(s, q, c); },
-            [](const GradientCell3& c, const Split3& q) { return simplexInCell(c, q); });
-        return;
-    case NoiseType::CELLULAR_F1:
-    case NoiseType::CELLULAR_F2: {
-        const bool second = type == NoiseType::CELLULAR_F2;
-        overCells<CellularCell3, Split3>(
-            n, out, cube, [s](const Split3& q, CellularCell3& c) { cellularCell(s, q, c); },
-            [second](const CellularCell3& c, const Split3& q) {
-                double f1, f2;
-                cellularInCell(c, q, f1, f2);
-                return second ? 2.0 * std::sqrt(f2) - 1.4 : 2.0 * std::sqrt(f1) - 1.0;
-            });
         return;
     }
     }
 }
 
-void basis2(NoiseType type, std::uint64_t s, const double* x, const double* y, std::size_t n, double* out)
+void cellData(InCell kind, std::uint64_t s, const Split2& q, double* out)
 {
-    const auto square = [&](std::size_t i) { return splitSquare({x[i], y[i]}); };
+    switch (kind) {
+    case InCell::GRADIENT2:
+    case InCell::SIMPLEX2: {
+        GradientCell2 c;
+        if (kind == InCell::GRADIENT2) gradientCell(s, q, c);
+        else simplexCell(s, q, c);
+        for (int corner = 0; corner < 4; ++corner)
+            for (int k = 0; k < 2; ++k) out[2 * corner + k] = c.g[corner][k];
+        return;
+    }
+    case InCell::VALUE2: {
+        ValueCell2 c;
+        valueCell(s, q, c);
+        for (int corner = 0; corner < 4; ++corner) out[corner] = c.v[corner];
+        return;
+    }
+    default: {
+        CellularCell2 c;
+        cellularCell(s, q, c);
+        for (int n = 0; n < 9; ++n) {
+            out[n] = c.x[n];
+            out[9 + n] = c.y[n];
+        }
+        return;
+    }
+    }
+}
+
+InCell inCell3(NoiseType type)
+{
     switch (type) {
-    case NoiseType::GRADIENT:
-        overCells<GradientCell2, Split2>(
-            n, out, square, [s](const Split2& q, GradientCell2& c) { gradientCell(s, q, c); },
-            [](const GradientCell2& c, const Split2& q) { return gradientInCell(c, q); });
-        return;
-    case NoiseType::VALUE:
-        overCells<ValueCell2, Split2>(
-            n, out, square, [s](const Split2& q, ValueCell2& c) { valueCell(s, q, c); },
-            [](const ValueCell2& c, const Split2& q) { return valueInCell(c, q); });
-        return;
-    case NoiseType::SIMPLEX:
-        overCells<GradientCell2, Split2>(
-            n, out, [&](std::size_t i) { return splitSimplex(glm::dvec2(x[i], y[i])); },
-            [s](const Split2& q, GradientCell2& c) { simplexCell(s, q, c); },
-            [](const GradientCell2& c, const Split2& q) { return simplexInCell(c, q); });
-        return;
-    case NoiseType::CELLULAR_F1:
-    case NoiseType::CELLULAR_F2: {
-        const bool second = type == NoiseType::CELLULAR_F2;
-        overCells<CellularCell2, Split2>(
-            n, out, square, [s](const Split2& q, CellularCell2& c) { cellularCell(s, q, c); },
-            [second](const CellularCell2& c, const Split2& q) {
-                double f1, f2;
-                cellularInCell(c, q, f1, f2);
-                return second ? 2.0 * std::sqrt(f2) - 1.4 : 2.0 * std::sqrt(f1) - 1.0;
-            });
-        return;
+    case NoiseType::GRADIENT: return InCell::GRADIENT3;
+    case NoiseType::VALUE: return InCell::VALUE3;
+    case NoiseType::SIMPLEX: return InCell::SIMPLEX3;
+    case NoiseType::CELLULAR_F1: return InCell::CELLULAR3_F1;
+    case NoiseType::CELLULAR_F2: return InCell::CELLULAR3_F2;
     }
+    return InCell::GRADIENT3;
+}
+
+InCell inCell2(NoiseType type)
+{
+    switch (type) {
+    case NoiseType::GRADIENT: return InCell::GRADIENT2;
+    case NoiseType::VALUE: return InCell::VALUE2;
+    case NoiseType::SIMPLEX: return InCell::SIMPLEX2;
+    case NoiseType::CELLULAR_F1: return InCell::CELLULAR2_F1;
+    case NoiseType::CELLULAR_F2: return InCell::CELLULAR2_F2;
     }
+    return InCell::GRADIENT2;
+}
+
+/// One basis at n points: z == nullptr for 2D.
+void basisAt(NoiseType type, std::uint64_t s, const double* x, const double* y, const double* z, std::size_t n,
+           double* out)
+{
+    if (n == 0) return;
+    thread_local BasisScratch scratch;
+    const bool threeD = z != nullptr;
+    const InCell kind = threeD ? inCell3(type) : inCell2(type);
+    const std::size_t size = cellSize(kind);
+
+    scratch.split.resize(6 * n);
+    double* p = scratch.split.data();
+    const SplitPoints split{p, p + n, p + 2 * n, p + 3 * n, p + 4 * n, p + 5 * n};
+    splitPoints(type == NoiseType::SIMPLEX ? Lattice::SIMPLEX : Lattice::CUBE, x, y, z, n, split);
+
+    // Pass 2. Equal floors are one cell; floors that differ but saturate to
+    // one lattice index (beyond 2^62) only cost a second, identical cell.
+    scratch.end.clear();
+    scratch.cells.clear();
+    const auto sameCell = [&](std::size_t a, std::size_t b) {
+        return split.cellX[a] == split.cellX[b] && split.cellY[a] == split.cellY[b] &&
+               (!threeD || split.cellZ[a] == split.cellZ[b]);
+    };
+    for (std::size_t i = 0; i < n; ++i) {
+        if (i > 0 && sameCell(i, i - 1)) continue;
+        if (i > 0) scratch.end.push_back(std::uint32_t(i));
+        scratch.cells.resize(scratch.cells.size() + size);
+        double* data = scratch.cells.data() + scratch.cells.size() - size;
+        if (threeD) {
+            const Split3 q{latticeIndex(split.cellX[i]), latticeIndex(split.cellY[i]), latticeIndex(split.cellZ[i]), 0,
+                           0, 0};
+            cellData(kind, s, q, data);
+        } else {
+            const Split2 q{latticeIndex(split.cellX[i]), latticeIndex(split.cellY[i]), 0, 0};
+            cellData(kind, s, q, data);
+        }
+    }
+    scratch.end.push_back(std::uint32_t(n));
+
+    const CellRuns runs{scratch.end.data(), scratch.end.size(), scratch.cells.data()};
+    evaluateRuns(kind, runs, split.x, split.y, threeD ? split.z : nullptr, out);
 }
 
 } // namespace
@@ -127,7 +179,7 @@ void FractalNoise::evaluate(const double* x, const double* y, const double* z, s
             qy[i] = y[i] * o.frequency + o.offset[1];
             qz[i] = z[i] * o.frequency + o.offset[2];
         }
-        basis3(mOptions.noise, o.seed, qx, qy, qz, n, b);
+        basisAt(mOptions.noise, o.seed, qx, qy, qz, n, b);
         for (std::size_t i = 0; i < n; ++i) out[i] += o.weight * shape(b[i]);
     }
 }
@@ -144,7 +196,7 @@ void FractalNoise::evaluate(const double* x, const double* y, std::size_t n, dou
             qx[i] = x[i] * o.frequency + o.offset[0];
             qy[i] = y[i] * o.frequency + o.offset[1];
         }
-        basis2(mOptions.noise, o.seed, qx, qy, n, b);
+        basisAt(mOptions.noise, o.seed, qx, qy, nullptr, n, b);
         for (std::size_t i = 0; i < n; ++i) out[i] += o.weight * shape(b[i]);
     }
 }

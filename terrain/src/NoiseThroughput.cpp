@@ -1,4 +1,5 @@
 #include <strata/terrain/NoiseThroughput.h>
+#include <strata/terrain/SimdTarget.h>
 
 #include <ctime>
 #include <functional>
@@ -93,6 +94,11 @@ std::vector<NoiseThroughput> measureNoiseThroughput(const NoiseThroughputOptions
                  {"value", NoiseType::VALUE},
                  {"cellular F1", NoiseType::CELLULAR_F1},
                  {"cellular F2", NoiseType::CELLULAR_F2}};
+    // The block path also runs on Highway's SCALAR target (no SIMD); then
+    // the target that was in use comes back.
+    const std::string inUse = simdTarget();
+    const bool best = inUse == availableSimdTargets().front();
+    const auto restore = [&] { useSimdTarget(best ? std::string() : inUse); };
     std::vector<NoiseThroughput> rows;
     for (const int dimensions : {3, 2})
         for (const int octaves : {1, 5})
@@ -112,8 +118,7 @@ std::vector<NoiseThroughput> measureNoiseThroughput(const NoiseThroughputOptions
                 };
                 row.scalarRate = rate(scalarOver(blocks), n, options.seconds);
                 row.scatteredRate = rate(scalarOver(scattered), n, options.seconds);
-                row.blockRate = rate(
-                    [&] {
+                const auto blockPath = [&] {
                         for (std::size_t at = 0; at < n; at += Blocks::BLOCK) {
                             if (dimensions == 3)
                                 noise.evaluate(&blocks.x[at], &blocks.y[at], &blocks.z[at], Blocks::BLOCK, &out[at]);
@@ -121,8 +126,11 @@ std::vector<NoiseThroughput> measureNoiseThroughput(const NoiseThroughputOptions
                                 noise.evaluate(&blocks.x[at], &blocks.z[at], Blocks::BLOCK, &out[at]);
                         }
                         sink = sink + out[n / 2];
-                    },
-                    n, options.seconds);
+                };
+                row.blockRate = rate(blockPath, n, options.seconds);
+                useSimdTarget("SCALAR");
+                row.blockScalarTargetRate = rate(blockPath, n, options.seconds);
+                restore();
                 rows.push_back(row);
             }
     return rows;

@@ -10,6 +10,7 @@
 #include <strata/terrain/Heightfield.h>
 #include <strata/terrain/NodeRegistry.h>
 #include <strata/terrain/Primitives.h>
+#include <strata/terrain/SimdTarget.h>
 
 #include <gtest/gtest.h>
 
@@ -79,6 +80,9 @@ std::vector<std::pair<std::string, Block>> testBlocks()
         {"one point", voxels({0.3, 0.7, -0.2}, 1.0, 1)},
         {"empty", Block{}},
         {"scattered", scattered({0.0, 0.0, 0.0}, 200.0, 300, 7)},
+        // Past 2^52 every double is an integer (a zero fraction); past 2^62
+        // the lattice index saturates.
+        {"2^3 beyond 2^52 and 2^62", voxels({4.6e15, 1e19, -1e300}, 1e6, 2)},
     };
 }
 
@@ -104,7 +108,9 @@ void expectSameAsScalar(const DensityField& field, const std::string& name, bool
 {
     auto blocks = testBlocks();
     const auto surface = surfaceBlocks(field);
-    if (needSurface) EXPECT_FALSE(surface.empty()) << name << ": no surface found to test on";
+    if (needSurface) {
+        EXPECT_FALSE(surface.empty()) << name << ": no surface found to test on";
+    }
     blocks.insert(blocks.end(), surface.begin(), surface.end());
     for (const auto& [label, block] : blocks) {
         const PointBlock view = block.view();
@@ -123,9 +129,8 @@ void expectSameAsScalar(const DensityField& field, const std::string& name, bool
     }
 }
 
-} // namespace
-
-TEST(BlockEvaluation, EveryNoiseAndFractalGivesTheScalarBits)
+/// Every basis and fractal sum, 3D and 2D, block against scalar.
+void expectNoiseSameAsScalar(const std::string& target)
 {
     const NoiseType noises[] = {NoiseType::GRADIENT, NoiseType::SIMPLEX, NoiseType::VALUE, NoiseType::CELLULAR_F1,
                                 NoiseType::CELLULAR_F2};
@@ -141,13 +146,35 @@ TEST(BlockEvaluation, EveryNoiseAndFractalGivesTheScalarBits)
                 for (std::size_t i = 0; i < n; ++i) {
                     const double s3 = f({block.x[i], block.y[i], block.z[i]});
                     const double s2 = f(glm::dvec2(block.x[i], block.z[i]));
-                    ASSERT_TRUE(sameBits(out3[i], s3)) << "noise " << int(noise) << " fractal " << int(fractal) << ", "
+                    ASSERT_TRUE(sameBits(out3[i], s3)) << target << ": noise " << int(noise) << " fractal " << int(fractal) << ", "
                                                        << label << ", point " << i << ": " << out3[i] << " vs " << s3;
-                    ASSERT_TRUE(sameBits(out2[i], s2)) << "2D noise " << int(noise) << " fractal " << int(fractal)
+                    ASSERT_TRUE(sameBits(out2[i], s2)) << target << ": 2D noise " << int(noise) << " fractal " << int(fractal)
                                                        << ", " << label << ", point " << i;
                 }
             }
         }
+}
+
+} // namespace
+
+TEST(BlockEvaluation, EveryNoiseAndFractalGivesTheScalarBits) { expectNoiseSameAsScalar(simdTarget()); }
+
+TEST(BlockEvaluation, EverySimdTargetGivesTheScalarBits)
+{
+    // Each instruction set this machine can run, forced in turn: the block
+    // path's lanes must give the scalar path's bits on all of them.
+    const std::vector<std::string> targets = availableSimdTargets();
+    ASSERT_FALSE(targets.empty());
+    EXPECT_EQ(targets.back(), "SCALAR") << "the portable fallback is always there";
+    for (const std::string& target : targets) {
+        useSimdTarget(target);
+        ASSERT_EQ(simdTarget(), target);
+        expectNoiseSameAsScalar(target);
+        expectSameAsScalar(*strata::test::defaultSceneTree(true), target + ": default scene (terraced)");
+    }
+    useSimdTarget("");
+    EXPECT_EQ(simdTarget(), targets.front());
+    EXPECT_THROW(useSimdTarget("NEON9000"), std::invalid_argument);
 }
 
 TEST(BlockEvaluation, EveryNodeTypeGivesTheScalarBits)

@@ -2,8 +2,8 @@
 /// \file
 /// Measures the noise family's throughput on one core: each basis and its
 /// 5-octave fBm, 3D and 2D, through the scalar path (one call per point)
-/// and the block path (FractalNoise::evaluate on 8³ blocks of voxels), on
-/// the same points. Backs `strata bench noise`; numbers only, no verdict.
+/// and the block path (FractalNoise::evaluate on 8³ blocks of voxels) with
+/// and without SIMD, on the same points. Backs `strata bench noise`; numbers only, no verdict.
 
 #include <strata/terrain/FractalNoise.h>
 
@@ -26,12 +26,13 @@ struct NoiseThroughput
     std::string name;       ///< "gradient", "gradient fBm 5", ...
     int dimensions = 3;     ///< 3 or 2
     double scalarRate = 0;  ///< points per second, one core, lattice order
-    double blockRate = 0;   ///< points per second, one core, same points
+    double blockRate = 0;   ///< points per second, one core, same points, SIMD target in use
+    double blockScalarTargetRate = 0; ///< the block path without SIMD (Highway's SCALAR target)
     double scatteredRate = 0; ///< scalar path, points scattered over 64 cells
 };
 
 /// Every basis alone and as 5-octave fBm, 3D then 2D. Runs on the calling
-/// thread; takes about 20 · 3 · options.seconds.
+/// thread; takes about 20 · 4 · options.seconds.
 std::vector<NoiseThroughput> measureNoiseThroughput(const NoiseThroughputOptions& options = {});
 
 } // namespace strata::terrain

@@ -1,0 +1,428 @@
+// The vector halves of block noise evaluation (see NoiseSimd.h), compiled
+// once per instruction set by Highway's foreach_target and dispatched at run
+// time. Each kernel below is its scalar twin in NoiseKernels.h written in
+// lanes: the same operations in the same order, so the same bits. Keep them
+// in step: BlockEvaluationTest compares the two on every target.
+
+#undef HWY_TARGET_INCLUDE
+#define HWY_TARGET_INCLUDE "NoiseSimd.cpp" // found through this folder's include path
+#include <hwy/foreach_target.h> // IWYU pragma: keep
+#include <hwy/highway.h>
+
+#include "NoiseSimd.h"
+
+#include <strata/terrain/SimdTarget.h>
+
+#include <algorithm>
+#include <stdexcept>
+
+HWY_BEFORE_NAMESPACE();
+namespace strata::terrain::detail {
+namespace HWY_NAMESPACE {
+
+namespace hn = hwy::HWY_NAMESPACE;
+// Every kernel is a template on the lane count: full vectors for the body
+// of a run, then 4, 2 and 1 lanes for its tail (runs at the fine octaves of
+// a fractal sum are a point or two long; padding them to a full vector
+// would waste most of its lanes).
+#define STRATA_LANES template <class D, class V = hn::Vec<D>>
+
+// A tail of split points shorter than a vector goes through a zero-padded
+// buffer this long.
+constexpr std::size_t MAX_LANES = HWY_MAX_BYTES / sizeof(double);
+
+// ---- shared arithmetic (NoiseHash.h) ------------------------------------------
+
+STRATA_LANES HWY_INLINE V fade(D d, V t)
+{
+    // t * t * t * (t * (t * 6.0 - 15.0) + 10.0)
+    const V cube = hn::Mul(hn::Mul(t, t), t);
+    const V inner = hn::Add(hn::Mul(t, hn::Sub(hn::Mul(t, hn::Set(d, 6.0)), hn::Set(d, 15.0))), hn::Set(d, 10.0));
+    return hn::Mul(cube, inner);
+}
+
+template <class V>
+HWY_INLINE V lerp(V a, V b, V t) { return hn::Add(a, hn::Mul(t, hn::Sub(b, a))); }
+
+STRATA_LANES HWY_INLINE V dot3(D d, const double* g, V x, V y, V z)
+{
+    return hn::Add(hn::Add(hn::Mul(hn::Set(d, g[0]), x), hn::Mul(hn::Set(d, g[1]), y)), hn::Mul(hn::Set(d, g[2]), z));
+}
+
+STRATA_LANES HWY_INLINE V dot2(D d, const double* g, V x, V y)
+{
+    return hn::Add(hn::Mul(hn::Set(d, g[0]), x), hn::Mul(hn::Set(d, g[1]), y));
+}
+
+// ---- kernels: NoiseKernels.h's *InCell, lane-wise ---------------------------
+
+struct Gradient3
+{
+    STRATA_LANES static V at(D d, const double* c, V x, V y, V z)
+    {
+        const V one = hn::Set(d, 1.0);
+        const V x1 = hn::Sub(x, one), y1 = hn::Sub(y, one), z1 = hn::Sub(z, one);
+        const V n000 = dot3(d, c + 0, x, y, z), n001 = dot3(d, c + 3, x, y, z1);
+        const V n010 = dot3(d, c + 6, x, y1, z), n011 = dot3(d, c + 9, x, y1, z1);
+        const V n100 = dot3(d, c + 12, x1, y, z), n101 = dot3(d, c + 15, x1, y, z1);
+        const V n110 = dot3(d, c + 18, x1, y1, z), n111 = dot3(d, c + 21, x1, y1, z1);
+        const V u = fade(d, x), v = fade(d, y), w = fade(d, z);
+        const V n00 = lerp(n000, n001, w), n01 = lerp(n010, n011, w);
+        const V n10 = lerp(n100, n101, w), n11 = lerp(n110, n111, w);
+        return lerp(lerp(n00, n01, v), lerp(n10, n11, v), u);
+    }
+};
+
+struct Value3
+{
+    STRATA_LANES static V at(D d, const double* c, V x, V y, V z)
+    {
+        const V u = fade(d, x), v = fade(d, y), w = fade(d, z);
+        const V n00 = lerp(hn::Set(d, c[0]), hn::Set(d, c[1]), w), n01 = lerp(hn::Set(d, c[2]), hn::Set(d, c[3]), w);
+        const V n10 = lerp(hn::Set(d, c[4]), hn::Set(d, c[5]), w), n11 = lerp(hn::Set(d, c[6]), hn::Set(d, c[7]), w);
+        return lerp(lerp(n00, n01, v), lerp(n10, n11, v), u);
+    }
+};
+
+// simplexKernel3/2: t⁴·(g·d) inside the kernel's support, +0 outside.
+STRATA_LANES HWY_INLINE V simplexKernel3(D d, V gx, V gy, V gz, V x, V y, V z)
+{
+    const V t = hn::Sub(hn::Sub(hn::Sub(hn::Set(d, 0.5), hn::Mul(x, x)), hn::Mul(y, y)), hn::Mul(z, z));
+    const V t2 = hn::Mul(t, t);
+    const V dot = hn::Add(hn::Add(hn::Mul(gx, x), hn::Mul(gy, y)), hn::Mul(gz, z));
+    return hn::IfThenElseZero(hn::Gt(t, hn::Zero(d)), hn::Mul(hn::Mul(t2, t2), dot));
+}
+
+STRATA_LANES HWY_INLINE V simplexKernel2(D d, V gx, V gy, V x, V y)
+{
+    const V t = hn::Sub(hn::Sub(hn::Set(d, 0.5), hn::Mul(x, x)), hn::Mul(y, y));
+    const V t2 = hn::Mul(t, t);
+    const V dot = hn::Add(hn::Mul(gx, x), hn::Mul(gy, y));
+    return hn::IfThenElseZero(hn::Gt(t, hn::Zero(d)), hn::Mul(hn::Mul(t2, t2), dot));
+}
+
+struct Simplex3
+{
+    STRATA_LANES static V at(D d, const double* c, V x0, V y0, V z0)
+    {
+        constexpr double G3 = 1.0 / 6.0;
+        // simplexInCell's branches as masks: the second corner is one of
+        // (1,0,0) (0,1,0) (0,0,1), the third one of (1,1,0) (1,0,1) (0,1,1).
+        const auto xy = hn::Ge(x0, y0), yz = hn::Ge(y0, z0), xz = hn::Ge(x0, z0);
+        const auto i1 = hn::And(xy, xz), j1 = hn::AndNot(xy, yz);
+        const auto i2 = hn::Or(xy, xz), j2 = hn::Or(hn::Not(xy), yz), k2 = hn::Not(hn::And(xz, yz));
+        const V zero = hn::Zero(d), one = hn::Set(d, 1.0);
+        // Corner gradients at 3·(4a + 2b + c): (1,0,0) → 12, (0,1,0) → 6, (0,0,1) → 3,
+        // (1,1,0) → 18, (1,0,1) → 15, (0,1,1) → 9.
+        V g1[3], g2[3];
+        for (int k = 0; k < 3; ++k) {
+            g1[k] = hn::IfThenElse(i1, hn::Set(d, c[12 + k]), hn::IfThenElse(j1, hn::Set(d, c[6 + k]), hn::Set(d, c[3 + k])));
+            // the third: (1,1,0) unless k2; then (1,0,1) if i2, else (0,1,1)
+            g2[k] = hn::IfThenElse(k2, hn::IfThenElse(i2, hn::Set(d, c[15 + k]), hn::Set(d, c[9 + k])), hn::Set(d, c[18 + k]));
+        }
+        const V di1 = hn::IfThenElseZero(i1, one), dj1 = hn::IfThenElseZero(j1, one);
+        const V dk1 = hn::IfThenElse(hn::Or(i1, j1), zero, one);
+        const V di2 = hn::IfThenElseZero(i2, one), dj2 = hn::IfThenElseZero(j2, one), dk2 = hn::IfThenElseZero(k2, one);
+        const V g = hn::Set(d, G3), g2x = hn::Set(d, 2.0 * G3), g3x = hn::Set(d, 3.0 * G3);
+        V n = simplexKernel3(d, hn::Set(d, c[0]), hn::Set(d, c[1]), hn::Set(d, c[2]), x0, y0, z0);
+        n = hn::Add(n, simplexKernel3(d, g1[0], g1[1], g1[2], hn::Add(hn::Sub(x0, di1), g),
+                                      hn::Add(hn::Sub(y0, dj1), g), hn::Add(hn::Sub(z0, dk1), g)));
+        n = hn::Add(n, simplexKernel3(d, g2[0], g2[1], g2[2], hn::Add(hn::Sub(x0, di2), g2x),
+                                      hn::Add(hn::Sub(y0, dj2), g2x), hn::Add(hn::Sub(z0, dk2), g2x)));
+        n = hn::Add(n, simplexKernel3(d, hn::Set(d, c[21]), hn::Set(d, c[22]), hn::Set(d, c[23]),
+                                      hn::Add(hn::Sub(x0, one), g3x), hn::Add(hn::Sub(y0, one), g3x),
+                                      hn::Add(hn::Sub(z0, one), g3x)));
+        return hn::Mul(hn::Set(d, SIMPLEX3_SCALE), n);
+    }
+    static constexpr double SIMPLEX3_SCALE = 77.0;
+};
+
+// keepTwoNearest() without branches: the same two minima.
+template <class V>
+HWY_INLINE void keepTwoNearest(V d2, V& f1, V& f2)
+{
+    f2 = hn::Min(f2, hn::Max(f1, d2));
+    f1 = hn::Min(f1, d2);
+}
+
+template <bool SECOND>
+struct Cellular3
+{
+    STRATA_LANES static V at(D d, const double* c, V x, V y, V z)
+    {
+        V f1 = hn::Set(d, 1e9), f2 = f1;
+        for (int n = 0; n < 27; ++n) {
+            const V dx = hn::Sub(x, hn::Set(d, c[n])), dy = hn::Sub(y, hn::Set(d, c[27 + n]));
+            const V dz = hn::Sub(z, hn::Set(d, c[54 + n]));
+            keepTwoNearest(hn::Add(hn::Add(hn::Mul(dx, dx), hn::Mul(dy, dy)), hn::Mul(dz, dz)), f1, f2);
+        }
+        if (SECOND) return hn::Sub(hn::Mul(hn::Set(d, 2.0), hn::Sqrt(f2)), hn::Set(d, 1.4));
+        return hn::Sub(hn::Mul(hn::Set(d, 2.0), hn::Sqrt(f1)), hn::Set(d, 1.0));
+    }
+};
+
+struct Gradient2
+{
+    STRATA_LANES static V at(D d, const double* c, V x, V y, V)
+    {
+        const V one = hn::Set(d, 1.0);
+        const V x1 = hn::Sub(x, one), y1 = hn::Sub(y, one);
+        const V n00 = dot2(d, c + 0, x, y), n01 = dot2(d, c + 2, x, y1);
+        const V n10 = dot2(d, c + 4, x1, y), n11 = dot2(d, c + 6, x1, y1);
+        const V u = fade(d, x), v = fade(d, y);
+        return hn::Mul(hn::Set(d, NOISE2_SCALE), lerp(lerp(n00, n01, v), lerp(n10, n11, v), u));
+    }
+    static constexpr double NOISE2_SCALE = 1.41421356237309504880;
+};
+
+struct Value2
+{
+    STRATA_LANES static V at(D d, const double* c, V x, V y, V)
+    {
+        const V u = fade(d, x), v = fade(d, y);
+        return lerp(lerp(hn::Set(d, c[0]), hn::Set(d, c[1]), v), lerp(hn::Set(d, c[2]), hn::Set(d, c[3]), v), u);
+    }
+};
+
+struct Simplex2
+{
+    STRATA_LANES static V at(D d, const double* c, V x0, V y0, V)
+    {
+        const double G2 = (3.0 - 1.7320508075688772) / 6.0; // SIMPLEX2_G
+        const V one = hn::Set(d, 1.0), g = hn::Set(d, G2), g2x = hn::Set(d, 2.0 * G2);
+        const auto i1 = hn::Gt(x0, y0); // second corner (1,0) → 4, else (0,1) → 2
+        const V di1 = hn::IfThenElseZero(i1, one), dj1 = hn::Sub(one, di1);
+        const V gx = hn::IfThenElse(i1, hn::Set(d, c[4]), hn::Set(d, c[2]));
+        const V gy = hn::IfThenElse(i1, hn::Set(d, c[5]), hn::Set(d, c[3]));
+        V n = simplexKernel2(d, hn::Set(d, c[0]), hn::Set(d, c[1]), x0, y0);
+        n = hn::Add(n, simplexKernel2(d, gx, gy, hn::Add(hn::Sub(x0, di1), g), hn::Add(hn::Sub(y0, dj1), g)));
+        n = hn::Add(n, simplexKernel2(d, hn::Set(d, c[6]), hn::Set(d, c[7]), hn::Add(hn::Sub(x0, one), g2x),
+                                      hn::Add(hn::Sub(y0, one), g2x)));
+        return hn::Mul(hn::Set(d, 99.0), n); // SIMPLEX2_SCALE
+    }
+};
+
+template <bool SECOND>
+struct Cellular2
+{
+    STRATA_LANES static V at(D d, const double* c, V x, V y, V)
+    {
+        V f1 = hn::Set(d, 1e9), f2 = f1;
+        for (int n = 0; n < 9; ++n) {
+            const V dx = hn::Sub(x, hn::Set(d, c[n])), dy = hn::Sub(y, hn::Set(d, c[9 + n]));
+            keepTwoNearest(hn::Add(hn::Mul(dx, dx), hn::Mul(dy, dy)), f1, f2);
+        }
+        if (SECOND) return hn::Sub(hn::Mul(hn::Set(d, 2.0), hn::Sqrt(f2)), hn::Set(d, 1.4));
+        return hn::Sub(hn::Mul(hn::Set(d, 2.0), hn::Sqrt(f1)), hn::Set(d, 1.0));
+    }
+};
+
+// ---- drivers ------------------------------------------------------------------
+
+/// Kernel over the points [i, end) of one cell, as many as fill whole
+/// vectors of d's lanes; returns where it stopped.
+template <class Kernel, class D>
+HWY_INLINE std::size_t withLanes(D d, const double* cell, std::size_t i, std::size_t end, const double* x,
+                                 const double* y, const double* z, double* out)
+{
+    const std::size_t lanes = hn::Lanes(d);
+    for (; i + lanes <= end; i += lanes) {
+        const auto vz = z ? hn::LoadU(d, z + i) : hn::Zero(d);
+        hn::StoreU(Kernel::at(d, cell, hn::LoadU(d, x + i), hn::LoadU(d, y + i), vz), d, out + i);
+    }
+    return i;
+}
+
+template <class Kernel>
+void overRuns(const CellRuns& runs, std::size_t size, const double* x, const double* y, const double* z, double* out)
+{
+    std::size_t begin = 0;
+    for (std::size_t r = 0; r < runs.count; ++r) {
+        const std::size_t end = runs.end[r];
+        const double* cell = runs.cells + r * size;
+        std::size_t i = withLanes<Kernel>(hn::ScalableTag<double>(), cell, begin, end, x, y, z, out);
+        i = withLanes<Kernel>(hn::CappedTag<double, 4>(), cell, i, end, x, y, z, out);
+        i = withLanes<Kernel>(hn::CappedTag<double, 2>(), cell, i, end, x, y, z, out);
+        withLanes<Kernel>(hn::CappedTag<double, 1>(), cell, i, end, x, y, z, out);
+        begin = end;
+    }
+}
+
+void EvaluateRuns(InCell kind, const CellRuns& runs, const double* x, const double* y, const double* z, double* out)
+{
+    const std::size_t size = cellSize(kind);
+    switch (kind) {
+    case InCell::GRADIENT3: return overRuns<Gradient3>(runs, size, x, y, z, out);
+    case InCell::VALUE3: return overRuns<Value3>(runs, size, x, y, z, out);
+    case InCell::SIMPLEX3: return overRuns<Simplex3>(runs, size, x, y, z, out);
+    case InCell::CELLULAR3_F1: return overRuns<Cellular3<false>>(runs, size, x, y, z, out);
+    case InCell::CELLULAR3_F2: return overRuns<Cellular3<true>>(runs, size, x, y, z, out);
+    case InCell::GRADIENT2: return overRuns<Gradient2>(runs, size, x, y, nullptr, out);
+    case InCell::VALUE2: return overRuns<Value2>(runs, size, x, y, nullptr, out);
+    case InCell::SIMPLEX2: return overRuns<Simplex2>(runs, size, x, y, nullptr, out);
+    case InCell::CELLULAR2_F1: return overRuns<Cellular2<false>>(runs, size, x, y, nullptr, out);
+    case InCell::CELLULAR2_F2: return overRuns<Cellular2<true>>(runs, size, x, y, nullptr, out);
+    }
+}
+
+// splitCube / splitSquare / splitSimplex (NoiseKernels.h), lane-wise.
+struct Splitter
+{
+    Lattice lattice;
+    bool threeD;
+
+    STRATA_LANES void operator()(D d, V x, V y, V z, V& cx, V& cy, V& cz, V& fx, V& fy, V& fz) const
+    {
+        if (lattice == Lattice::CUBE) {
+            cx = hn::Floor(x);
+            cy = hn::Floor(y);
+            cz = hn::Floor(z);
+            fx = hn::Sub(x, cx);
+            fy = hn::Sub(y, cy);
+            fz = hn::Sub(z, cz);
+        } else if (threeD) {
+            const V skew = hn::Mul(hn::Add(hn::Add(x, y), z), hn::Set(d, 1.0 / 3.0));
+            cx = hn::Floor(hn::Add(x, skew));
+            cy = hn::Floor(hn::Add(y, skew));
+            cz = hn::Floor(hn::Add(z, skew));
+            const V unskew = hn::Mul(hn::Add(hn::Add(cx, cy), cz), hn::Set(d, 1.0 / 6.0));
+            fx = hn::Add(hn::Sub(x, cx), unskew);
+            fy = hn::Add(hn::Sub(y, cy), unskew);
+            fz = hn::Add(hn::Sub(z, cz), unskew);
+        } else {
+            const double F2 = 0.5 * (1.7320508075688772 - 1.0), G2 = (3.0 - 1.7320508075688772) / 6.0;
+            const V skew = hn::Mul(hn::Add(x, y), hn::Set(d, F2));
+            cx = hn::Floor(hn::Add(x, skew));
+            cy = hn::Floor(hn::Add(y, skew));
+            cz = hn::Zero(d);
+            const V unskew = hn::Mul(hn::Add(cx, cy), hn::Set(d, G2));
+            fx = hn::Add(hn::Sub(x, cx), unskew);
+            fy = hn::Add(hn::Sub(y, cy), unskew);
+            fz = hn::Zero(d);
+        }
+    }
+};
+
+void SplitPointsImpl(Lattice lattice, const double* x, const double* y, const double* z, std::size_t n,
+                     const SplitPoints& o)
+{
+    using V = hn::Vec<hn::ScalableTag<double>>;
+    const hn::ScalableTag<double> d;
+    const std::size_t lanes = hn::Lanes(d);
+    const bool threeD = z != nullptr;
+    const Splitter split{lattice, threeD};
+    std::size_t i = 0;
+    for (; i + lanes <= n; i += lanes) {
+        V cx, cy, cz, fx, fy, fz;
+        split(d, hn::LoadU(d, x + i), hn::LoadU(d, y + i), threeD ? hn::LoadU(d, z + i) : hn::Zero(d), cx, cy, cz,
+              fx, fy, fz);
+        hn::StoreU(cx, d, o.cellX + i);
+        hn::StoreU(cy, d, o.cellY + i);
+        hn::StoreU(fx, d, o.x + i);
+        hn::StoreU(fy, d, o.y + i);
+        if (threeD) {
+            hn::StoreU(cz, d, o.cellZ + i);
+            hn::StoreU(fz, d, o.z + i);
+        }
+    }
+    if (i < n) {
+        HWY_ALIGN double b[9][MAX_LANES] = {};
+        const std::size_t m = n - i;
+        std::copy(x + i, x + n, b[0]);
+        std::copy(y + i, y + n, b[1]);
+        if (threeD) std::copy(z + i, z + n, b[2]);
+        V cx, cy, cz, fx, fy, fz;
+        split(d, hn::Load(d, b[0]), hn::Load(d, b[1]), hn::Load(d, b[2]), cx, cy, cz, fx, fy, fz);
+        hn::Store(cx, d, b[3]);
+        hn::Store(cy, d, b[4]);
+        hn::Store(cz, d, b[5]);
+        hn::Store(fx, d, b[6]);
+        hn::Store(fy, d, b[7]);
+        hn::Store(fz, d, b[8]);
+        std::copy(b[3], b[3] + m, o.cellX + i);
+        std::copy(b[4], b[4] + m, o.cellY + i);
+        std::copy(b[6], b[6] + m, o.x + i);
+        std::copy(b[7], b[7] + m, o.y + i);
+        if (threeD) {
+            std::copy(b[5], b[5] + m, o.cellZ + i);
+            std::copy(b[8], b[8] + m, o.z + i);
+        }
+    }
+}
+
+#undef STRATA_LANES
+
+const char* TargetInUse() { return hwy::TargetName(HWY_TARGET); }
+
+} // namespace HWY_NAMESPACE
+} // namespace strata::terrain::detail
+HWY_AFTER_NAMESPACE();
+
+#if HWY_ONCE
+namespace strata::terrain {
+namespace detail {
+
+HWY_EXPORT(EvaluateRuns);
+HWY_EXPORT(SplitPointsImpl);
+HWY_EXPORT(TargetInUse);
+
+std::size_t cellSize(InCell kind)
+{
+    switch (kind) {
+    case InCell::GRADIENT3:
+    case InCell::SIMPLEX3: return 24;
+    case InCell::VALUE3: return 8;
+    case InCell::CELLULAR3_F1:
+    case InCell::CELLULAR3_F2: return 81;
+    case InCell::GRADIENT2:
+    case InCell::SIMPLEX2: return 8;
+    case InCell::VALUE2: return 4;
+    case InCell::CELLULAR2_F1:
+    case InCell::CELLULAR2_F2: return 18;
+    }
+    return 0;
+}
+
+void evaluateRuns(InCell kind, const CellRuns& runs, const double* x, const double* y, const double* z, double* out)
+{
+    HWY_DYNAMIC_DISPATCH(EvaluateRuns)(kind, runs, x, y, z, out);
+}
+
+void splitPoints(Lattice lattice, const double* x, const double* y, const double* z, std::size_t n,
+                 const SplitPoints& out)
+{
+    HWY_DYNAMIC_DISPATCH(SplitPointsImpl)(lattice, x, y, z, n, out);
+}
+
+} // namespace detail
+
+std::vector<std::string> availableSimdTargets()
+{
+    std::vector<std::string> names;
+    for (const std::int64_t target : hwy::SupportedAndGeneratedTargets()) names.emplace_back(hwy::TargetName(target));
+    // (Highway numbers better targets with lower bits: best first already.)
+    return names;
+}
+
+std::string simdTarget() { return HWY_DYNAMIC_DISPATCH(detail::TargetInUse)(); }
+
+void useSimdTarget(const std::string& name)
+{
+    if (name.empty()) {
+        hwy::SetSupportedTargetsForTest(0);
+        return;
+    }
+    hwy::SetSupportedTargetsForTest(0); // the real list, to look the name up in
+    for (const std::int64_t target : hwy::SupportedAndGeneratedTargets()) {
+        if (name == hwy::TargetName(target)) {
+            hwy::SetSupportedTargetsForTest(target);
+            return;
+        }
+    }
+    std::string known;
+    for (const std::string& n : availableSimdTargets()) known += (known.empty() ? "" : ", ") + n;
+    throw std::invalid_argument("unknown SIMD target '" + name + "' (this machine: " + known + ")");
+}
+
+} // namespace strata::terrain
+#endif // HWY_ONCE

@@ -1,0 +1,71 @@
+#pragma once
+/// \file
+/// Internal: the two vector halves of block noise evaluation (NoiseBlock.cpp),
+/// in SIMD lanes through Google Highway, dispatched at run time to the best
+/// instruction set the CPU has (NoiseSimd.cpp):
+///   1. splitting points into their lattice cells and fractions, as
+///      splitCube() and splitSimplex() do;
+///   2. the arithmetic inside a cell (NoiseKernels.h's *InCell functions) for
+///      runs of consecutive points that share one cell, the cell's data
+///      broadcast to every lane.
+/// Hashing the cells stays scalar, between the two (64-bit multiplies, once
+/// per cell). Every lane performs the scalar code's operations in its order,
+/// unfused (-ffp-contract=off; no MulAdd), and Floor and Sqrt are exact, so
+/// every target gives the scalar path's bits.
+
+#include <cstddef>
+#include <cstdint>
+
+namespace strata::terrain::detail {
+
+/// Points in structure-of-arrays form, split: the floor of each (skewed)
+/// coordinate (the cell, still as a double) and the offset in the cell.
+struct SplitPoints
+{
+    double *cellX, *cellY, *cellZ; ///< cellZ unused in 2D
+    double *x, *y, *z;             ///< z unused in 2D
+};
+
+enum class Lattice
+{
+    CUBE,   ///< splitCube() / splitSquare()
+    SIMPLEX ///< splitSimplex()
+};
+
+/// Splits n points; z == nullptr splits 2D points.
+void splitPoints(Lattice lattice, const double* x, const double* y, const double* z, std::size_t n,
+                 const SplitPoints& out);
+
+/// Runs of consecutive points in one cell: run r is the points
+/// [end[r − 1], end[r]) (from 0 for r = 0), its cell's data at cells + r·size.
+struct CellRuns
+{
+    const std::uint32_t* end;
+    std::size_t count;
+    const double* cells;
+};
+
+/// What a cell's data is, and the arithmetic inside it.
+enum class InCell
+{
+    GRADIENT3,    ///< 8 corner gradients, corner c's (x, y, z) at 3c
+    VALUE3,       ///< 8 corner values
+    SIMPLEX3,     ///< as GRADIENT3, for the skewed cube
+    CELLULAR3_F1, ///< 27 feature points: x[27], y[27], z[27]
+    CELLULAR3_F2,
+    GRADIENT2, ///< 4 corner gradients, corner c's (x, y) at 2c
+    VALUE2,    ///< 4 corner values
+    SIMPLEX2,  ///< as GRADIENT2
+    CELLULAR2_F1, ///< 9 feature points: x[9], y[9]
+    CELLULAR2_F2,
+};
+
+/// Doubles of cell data per run for `kind`.
+std::size_t cellSize(InCell kind);
+
+/// The noise value (before the fractal shape) at every point of the runs,
+/// from the split offsets x, y (and z in 3D).
+void evaluateRuns(InCell kind, const CellRuns& runs, const double* x, const double* y, const double* z,
+                  double* out);
+
+} // namespace strata::terrain::detail
