@@ -1,5 +1,7 @@
 #include <strata/terrain/Heightfield.h>
 
+#include "BlockColumns.h"
+
 #include "NodeRegistrations.h"
 #include <strata/Format.h>
 #include <strata/terrain/NodeRegistry.h>
@@ -44,41 +46,11 @@ void HeightfieldBase::densities(const PointBlock& points, double* out) const
 {
     const std::size_t n = points.count;
     if (n == 0) return;
-    // Distinct columns by their bits, in an open-addressing table twice the
-    // block's size (−0 and +0 are distinct keys: height() may tell them apart).
-    std::size_t slots = 16;
-    while (slots < 2 * n) slots *= 2;
-    std::vector<std::uint32_t> table(slots, UINT32_MAX), column(n);
-    std::vector<double> cx, cz;
-    cx.reserve(n);
-    cz.reserve(n);
-    const auto bits = [](double v) {
-        std::uint64_t b;
-        std::memcpy(&b, &v, sizeof b);
-        return b;
-    };
-    for (std::size_t i = 0; i < n; ++i) {
-        const std::uint64_t bx = bits(points.x[i]), bz = bits(points.z[i]);
-        const std::uint64_t h = (bx * 0x9e3779b97f4a7c15ULL) ^ ((bz + 0x632be59bd9b4e019ULL) * 0xbf58476d1ce4e5b9ULL);
-        std::size_t slot = std::size_t(h >> 32) & (slots - 1);
-        for (;; slot = (slot + 1) & (slots - 1)) {
-            const std::uint32_t c = table[slot];
-            if (c == UINT32_MAX) {
-                table[slot] = std::uint32_t(cx.size());
-                column[i] = std::uint32_t(cx.size());
-                cx.push_back(points.x[i]);
-                cz.push_back(points.z[i]);
-                break;
-            }
-            if (bits(cx[c]) == bx && bits(cz[c]) == bz) {
-                column[i] = c;
-                break;
-            }
-        }
-    }
-    std::vector<double> h(cx.size());
-    heights(cx.data(), cz.data(), cx.size(), h.data());
-    for (std::size_t i = 0; i < n; ++i) out[i] = (points.y[i] - h[column[i]]) * mScale;
+    detail::BlockColumns columns;
+    detail::findColumns(points, columns);
+    std::vector<double> h(columns.x.size());
+    heights(columns.x.data(), columns.z.data(), h.size(), h.data());
+    for (std::size_t i = 0; i < n; ++i) out[i] = (points.y[i] - h[columns.of[i]]) * mScale;
 }
 
 Interval HeightfieldBase::heightBounds(const glm::dvec2& min, const glm::dvec2& max) const

@@ -11,6 +11,7 @@
 // scalar path's on every instruction set.
 
 #include <strata/terrain/FractalNoise.h>
+#include <strata/terrain/Noise.h>
 
 #include "NoiseKernels.h"
 #include "NoiseSimd.h"
@@ -199,6 +200,43 @@ void FractalNoise::evaluate(const double* x, const double* y, std::size_t n, dou
         basisAt(mOptions.noise, o.seed, qx, qy, nullptr, n, b);
         for (std::size_t i = 0; i < n; ++i) out[i] += o.weight * shape(b[i]);
     }
+}
+
+void Fbm::evaluate(const double* x, const double* y, const double* z, std::size_t n, float* out) const
+{
+    thread_local std::vector<double> scratch;
+    scratch.resize(5 * n);
+    double *qx = scratch.data(), *qy = qx + n, *qz = qy + n, *b = qz + n, *sum = b + n;
+    for (std::size_t i = 0; i < n; ++i) sum[i] = 0.0;
+    for (int octave = 0; octave < mCount; ++octave) {
+        const Octave& o = mOctaves[octave];
+        for (std::size_t i = 0; i < n; ++i) {
+            qx[i] = x[i] * o.frequency + o.offset[0];
+            qy[i] = y[i] * o.frequency + o.offset[1];
+            qz[i] = z[i] * o.frequency + o.offset[2];
+        }
+        basisAt(NoiseType::GRADIENT, o.hashedSeed, qx, qy, qz, n, b);
+        for (std::size_t i = 0; i < n; ++i) sum[i] += o.weight * b[i];
+    }
+    for (std::size_t i = 0; i < n; ++i) out[i] = float(sum[i]);
+}
+
+void Fbm::evaluate(const double* x, const double* y, std::size_t n, float* out) const
+{
+    thread_local std::vector<double> scratch;
+    scratch.resize(4 * n);
+    double *qx = scratch.data(), *qy = qx + n, *b = qy + n, *sum = b + n;
+    for (std::size_t i = 0; i < n; ++i) sum[i] = 0.0;
+    for (int octave = 0; octave < mCount; ++octave) {
+        const Octave& o = mOctaves[octave];
+        for (std::size_t i = 0; i < n; ++i) {
+            qx[i] = x[i] * o.frequency + o.offset[0];
+            qy[i] = y[i] * o.frequency + o.offset[1];
+        }
+        basisAt(NoiseType::GRADIENT, o.hashedSeed, qx, qy, nullptr, n, b);
+        for (std::size_t i = 0; i < n; ++i) sum[i] += o.weight * b[i];
+    }
+    for (std::size_t i = 0; i < n; ++i) out[i] = float(sum[i]);
 }
 
 } // namespace strata::terrain

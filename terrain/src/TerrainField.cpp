@@ -1,5 +1,7 @@
 #include <strata/terrain/TerrainField.h>
 
+#include "BlockColumns.h"
+
 #include <strata/Error.h>
 #include <strata/Format.h>
 
@@ -133,6 +135,57 @@ double TerrainField::density(const glm::dvec3& p) const
     const double deepestCave = std::min(mCaveNoiseRadius * mCaveScale, mOptions.caves.maxHeight - p.y);
     if (ground >= deepestCave) return ground;
     return std::max(ground, -caveDistance(p));
+}
+
+void TerrainField::densities(const PointBlock& points, double* out) const
+{
+    const std::size_t n = points.count;
+    if (n == 0) return;
+    const HeightfieldOptions& h = mOptions.height;
+    const CaveOptions& c = mOptions.caves;
+
+    // height() once per column: q = (x, z) / wavelength, as height() divides.
+    detail::BlockColumns columns;
+    detail::findColumns(points, columns);
+    const std::size_t m = columns.x.size();
+    std::vector<double> qx(m), qz(m);
+    std::vector<float> noise(m);
+    for (std::size_t i = 0; i < m; ++i) {
+        qx[i] = columns.x[i] / h.wavelength;
+        qz[i] = columns.z[i] / h.wavelength;
+    }
+    mHeight.evaluate(qx.data(), qz.data(), m, noise.data());
+    for (std::size_t i = 0; i < n; ++i) {
+        const double height = h.baseHeight + h.amplitude * double(noise[columns.of[i]]);
+        out[i] = (points.y[i] - height) * mHeightScale;
+    }
+    if (!c.enabled) return;
+
+    // The caves where density() evaluates them (its early return, per point).
+    std::vector<std::uint32_t> deep;
+    for (std::size_t i = 0; i < n; ++i) {
+        const double deepestCave = std::min(mCaveNoiseRadius * mCaveScale, c.maxHeight - points.y[i]);
+        if (!(out[i] >= deepestCave)) deep.push_back(std::uint32_t(i));
+    }
+    if (deep.empty()) return;
+    const std::size_t k = deep.size();
+    std::vector<double> px(k), py(k), pz(k);
+    std::vector<float> n1(k), n2(k);
+    for (std::size_t j = 0; j < k; ++j) {
+        const std::size_t i = deep[j];
+        px[j] = points.x[i] / c.wavelength;
+        py[j] = points.y[i] * c.verticalSquash / c.wavelength;
+        pz[j] = points.z[i] / c.wavelength;
+    }
+    mCaveA.evaluate(px.data(), py.data(), pz.data(), k, n1.data());
+    mCaveB.evaluate(px.data(), py.data(), pz.data(), k, n2.data());
+    for (std::size_t j = 0; j < k; ++j) {
+        const std::size_t i = deep[j];
+        const double a = n1[j], b = n2[j];
+        const double tube = (std::sqrt(a * a + b * b) - mCaveNoiseRadius) * mCaveScale;
+        const double caveDistance = std::max(tube, points.y[i] - c.maxHeight);
+        out[i] = std::max(out[i], -caveDistance);
+    }
 }
 
 } // namespace strata::terrain

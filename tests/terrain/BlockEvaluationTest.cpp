@@ -11,6 +11,7 @@
 #include <strata/terrain/NodeRegistry.h>
 #include <strata/terrain/Primitives.h>
 #include <strata/terrain/SimdTarget.h>
+#include <strata/terrain/TerrainField.h>
 
 #include <gtest/gtest.h>
 
@@ -129,6 +130,23 @@ void expectSameAsScalar(const DensityField& field, const std::string& name, bool
     }
 }
 
+/// The float Fbm (TerrainField's noise), block against scalar.
+void expectFbmSameAsScalar(const std::string& target)
+{
+    const Fbm fbm(42, FbmOptions{6, 2.0, 0.45});
+    for (const auto& [label, block] : testBlocks()) {
+        const std::size_t n = block.x.size();
+        std::vector<float> out3(n), out2(n);
+        fbm.evaluate(block.x.data(), block.y.data(), block.z.data(), n, out3.data());
+        fbm.evaluate(block.x.data(), block.z.data(), n, out2.data());
+        for (std::size_t i = 0; i < n; ++i) {
+            const float s3 = fbm({block.x[i], block.y[i], block.z[i]}), s2 = fbm(glm::dvec2(block.x[i], block.z[i]));
+            ASSERT_EQ(std::memcmp(&out3[i], &s3, sizeof s3), 0) << target << ": Fbm 3D, " << label << ", point " << i;
+            ASSERT_EQ(std::memcmp(&out2[i], &s2, sizeof s2), 0) << target << ": Fbm 2D, " << label << ", point " << i;
+        }
+    }
+}
+
 /// Every basis and fractal sum, 3D and 2D, block against scalar.
 void expectNoiseSameAsScalar(const std::string& target)
 {
@@ -138,6 +156,7 @@ void expectNoiseSameAsScalar(const std::string& target)
     for (const NoiseType noise : noises)
         for (const FractalType fractal : fractals) {
             const FractalNoise f(99, {noise, fractal, 4, 2.0, 0.5});
+            if (noise == NoiseType::GRADIENT && fractal == FractalType::FBM) expectFbmSameAsScalar(target);
             for (const auto& [label, block] : testBlocks()) {
                 const std::size_t n = block.x.size();
                 std::vector<double> out3(n), out2(n);
@@ -171,6 +190,7 @@ TEST(BlockEvaluation, EverySimdTargetGivesTheScalarBits)
         ASSERT_EQ(simdTarget(), target);
         expectNoiseSameAsScalar(target);
         expectSameAsScalar(*strata::test::defaultSceneTree(true), target + ": default scene (terraced)");
+        expectSameAsScalar(TerrainField(TerrainOptions{}), target + ": terrain field with caves");
     }
     useSimdTarget("");
     EXPECT_EQ(simdTarget(), targets.front());
@@ -214,6 +234,10 @@ TEST(BlockEvaluation, SmoothCsgAndTheDefaultSceneGiveTheScalarBits)
 {
     expectSameAsScalar(*strata::test::defaultSceneTree(true), "default scene (terraced)");
     expectSameAsScalar(*strata::test::defaultSceneTree(false), "default scene");
+    TerrainOptions terrain;
+    expectSameAsScalar(TerrainField(terrain), "terrain field with caves");
+    terrain.caves.enabled = false;
+    expectSameAsScalar(TerrainField(terrain), "terrain field without caves");
     const DensityFieldPtr hills = std::make_shared<NoiseHeightfield>(5, NoiseHeightfieldOptions{});
     const DensityFieldPtr ball = std::make_shared<SphereField>(glm::dvec3(-8.0, -2.0, -9.0), 12.0);
     for (const CsgOperation op : {CsgOperation::UNION, CsgOperation::SUBTRACT, CsgOperation::INTERSECT})

@@ -56,6 +56,12 @@ public:
     float operator()(const glm::dvec3& p) const;
     float operator()(const glm::dvec2& p) const;
 
+    /// operator() at n points given as arrays, into out[0, n): the same
+    /// bits, evaluated as a block (FractalNoise::evaluate's path).
+    void evaluate(const double* x, const double* y, const double* z, std::size_t n, float* out) const;
+    /// The 2D sum at (x[i], y[i]).
+    void evaluate(const double* x, const double* y, std::size_t n, float* out) const;
+
     const FbmOptions& options() const { return mOptions; }
 
 private:

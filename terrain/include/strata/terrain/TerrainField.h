@@ -69,6 +69,9 @@ public:
     explicit TerrainField(const TerrainOptions& options);
 
     double density(const glm::dvec3& p) const override;
+    /// density() at a block of points, the same bits: the height once per
+    /// (x, z) column, the cave noise only where density() needs it.
+    void densities(const PointBlock& points, double* out) const override;
     double lipschitz() const override { return 1.0; }
 
     /// The heightfield alone: surface height at (x, z), metres.

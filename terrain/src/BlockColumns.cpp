@@ -1,0 +1,43 @@
+#include "BlockColumns.h"
+
+#include <cstring>
+
+namespace strata::terrain::detail {
+
+void findColumns(const PointBlock& points, BlockColumns& columns)
+{
+    const std::size_t n = points.count;
+    columns.of.resize(n);
+    columns.x.clear();
+    columns.z.clear();
+    // Open addressing in a table at least twice the block's size.
+    std::size_t slots = 16;
+    while (slots < 2 * n) slots *= 2;
+    std::vector<std::uint32_t> table(slots, UINT32_MAX);
+    const auto bits = [](double v) {
+        std::uint64_t b;
+        std::memcpy(&b, &v, sizeof b);
+        return b;
+    };
+    for (std::size_t i = 0; i < n; ++i) {
+        const std::uint64_t bx = bits(points.x[i]), bz = bits(points.z[i]);
+        const std::uint64_t h = (bx * 0x9e3779b97f4a7c15ULL) ^ ((bz + 0x632be59bd9b4e019ULL) * 0xbf58476d1ce4e5b9ULL);
+        std::size_t slot = std::size_t(h >> 32) & (slots - 1);
+        for (;; slot = (slot + 1) & (slots - 1)) {
+            const std::uint32_t c = table[slot];
+            if (c == UINT32_MAX) {
+                table[slot] = std::uint32_t(columns.x.size());
+                columns.of[i] = std::uint32_t(columns.x.size());
+                columns.x.push_back(points.x[i]);
+                columns.z.push_back(points.z[i]);
+                break;
+            }
+            if (bits(columns.x[c]) == bx && bits(columns.z[c]) == bz) {
+                columns.of[i] = c;
+                break;
+            }
+        }
+    }
+}
+
+} // namespace strata::terrain::detail
