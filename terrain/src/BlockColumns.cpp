@@ -12,7 +12,11 @@ void findColumns(const PointBlock& points, BlockColumns& columns)
     columns.z.clear();
     // Open addressing in a table at least twice the block's size.
     std::size_t slots = 16;
-    while (slots < 2 * n) slots *= 2;
+    int shift = 64 - 4;
+    while (slots < 2 * n) {
+        slots *= 2;
+        --shift;
+    }
     std::vector<std::uint32_t> table(slots, UINT32_MAX);
     const auto bits = [](double v) {
         std::uint64_t b;
@@ -22,7 +26,9 @@ void findColumns(const PointBlock& points, BlockColumns& columns)
     for (std::size_t i = 0; i < n; ++i) {
         const std::uint64_t bx = bits(points.x[i]), bz = bits(points.z[i]);
         const std::uint64_t h = (bx * 0x9e3779b97f4a7c15ULL) ^ ((bz + 0x632be59bd9b4e019ULL) * 0xbf58476d1ce4e5b9ULL);
-        std::size_t slot = std::size_t(h >> 32) & (slots - 1);
+        // The top bits: the products push the coordinates' entropy up (round
+        // coordinates have all-zero low mantissa bits).
+        std::size_t slot = std::size_t(h >> shift);
         for (;; slot = (slot + 1) & (slots - 1)) {
             const std::uint32_t c = table[slot];
             if (c == UINT32_MAX) {
