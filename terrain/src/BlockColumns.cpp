@@ -17,7 +17,8 @@ void findColumns(const PointBlock& points, BlockColumns& columns)
         slots *= 2;
         --shift;
     }
-    std::vector<std::uint32_t> table(slots, UINT32_MAX);
+    thread_local std::vector<std::uint32_t> table; // calls nothing: one per thread is safe
+    table.assign(slots, UINT32_MAX);
     const auto bits = [](double v) {
         std::uint64_t b;
         std::memcpy(&b, &v, sizeof b);

@@ -144,41 +144,54 @@ void TerrainField::densities(const PointBlock& points, double* out) const
     const HeightfieldOptions& h = mOptions.height;
     const CaveOptions& c = mOptions.caves;
 
+    // A leaf (Fbm calls nothing back): scratch kept per thread, not per call.
+    thread_local struct
+    {
+        detail::BlockColumns columns;
+        std::vector<double> qx, qy, qz;
+        std::vector<float> n1, n2;
+        std::vector<std::uint32_t> deep;
+    } scratch;
+    auto& [columns, qx, qy, qz, n1, n2, deep] = scratch;
+
     // height() once per column: q = (x, z) / wavelength, as height() divides.
-    detail::BlockColumns columns;
     detail::findColumns(points, columns);
     const std::size_t m = columns.x.size();
-    std::vector<double> qx(m), qz(m);
-    std::vector<float> noise(m);
+    qx.resize(m);
+    qz.resize(m);
+    n1.resize(m); // the columns' height noise first, the first cave noise after
     for (std::size_t i = 0; i < m; ++i) {
         qx[i] = columns.x[i] / h.wavelength;
         qz[i] = columns.z[i] / h.wavelength;
     }
-    mHeight.evaluate(qx.data(), qz.data(), m, noise.data());
+    mHeight.evaluate(qx.data(), qz.data(), m, n1.data());
     for (std::size_t i = 0; i < n; ++i) {
-        const double height = h.baseHeight + h.amplitude * double(noise[columns.of[i]]);
+        const double height = h.baseHeight + h.amplitude * double(n1[columns.of[i]]);
         out[i] = (points.y[i] - height) * mHeightScale;
     }
     if (!c.enabled) return;
 
     // The caves where density() evaluates them (its early return, per point).
-    std::vector<std::uint32_t> deep;
+    deep.clear();
     for (std::size_t i = 0; i < n; ++i) {
         const double deepestCave = std::min(mCaveNoiseRadius * mCaveScale, c.maxHeight - points.y[i]);
         if (!(out[i] >= deepestCave)) deep.push_back(std::uint32_t(i));
     }
     if (deep.empty()) return;
     const std::size_t k = deep.size();
-    std::vector<double> px(k), py(k), pz(k);
-    std::vector<float> n1(k), n2(k);
+    qx.resize(k);
+    qy.resize(k);
+    qz.resize(k);
+    n1.resize(k);
+    n2.resize(k);
     for (std::size_t j = 0; j < k; ++j) {
         const std::size_t i = deep[j];
-        px[j] = points.x[i] / c.wavelength;
-        py[j] = points.y[i] * c.verticalSquash / c.wavelength;
-        pz[j] = points.z[i] / c.wavelength;
+        qx[j] = points.x[i] / c.wavelength;
+        qy[j] = points.y[i] * c.verticalSquash / c.wavelength;
+        qz[j] = points.z[i] / c.wavelength;
     }
-    mCaveA.evaluate(px.data(), py.data(), pz.data(), k, n1.data());
-    mCaveB.evaluate(px.data(), py.data(), pz.data(), k, n2.data());
+    mCaveA.evaluate(qx.data(), qy.data(), qz.data(), k, n1.data());
+    mCaveB.evaluate(qx.data(), qy.data(), qz.data(), k, n2.data());
     for (std::size_t j = 0; j < k; ++j) {
         const std::size_t i = deep[j];
         const double a = n1[j], b = n2[j];
