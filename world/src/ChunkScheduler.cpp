@@ -113,6 +113,10 @@ void ChunkScheduler::runTask(Job& job)
     else mTracker.abandoned(job.key);
     if (error && !failure) failure = error;
     --inFlight;
+    // Refill the pool now rather than at the next poll(): between two polls
+    // (a frame) the workers would otherwise run dry once the tasks in
+    // flight are done, which capped streaming at maxInFlight chunks a frame.
+    if (!stopping && !failure) schedule();
     mFinishedSignal.notify_all();
 }
 

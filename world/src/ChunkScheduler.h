@@ -40,7 +40,8 @@ public:
                    std::condition_variable& finishedSignal);
 
     /// With the mutex held: launches the dirty chunks not in flight, in
-    /// order, up to maxInFlight tasks.
+    /// order, up to maxInFlight tasks. The World calls it at each poll(),
+    /// and each task as it ends.
     void schedule();
 
     /// Guarded by the mutex.
