@@ -33,62 +33,60 @@ struct BasisScratch
     std::vector<double> cells;     ///< cell data, cellSize() per run
 };
 
-/// The cell data NoiseSimd.cpp's kernels read, from NoiseKernels.h's cells.
-void cellData(InCell kind, std::uint64_t s, const Split3& q, double* out)
+/// NoiseKernels.h's cell types per dimension.
+template <int D>
+struct Cells;
+template <>
+struct Cells<3>
 {
+    using Split = Split3;
+    using Gradient = GradientCell3;
+    using Value = ValueCell3;
+    using Cellular = CellularCell3;
+    static constexpr int CORNERS = 8, FEATURES = 27;
+};
+template <>
+struct Cells<2>
+{
+    using Split = Split2;
+    using Gradient = GradientCell2;
+    using Value = ValueCell2;
+    using Cellular = CellularCell2;
+    static constexpr int CORNERS = 4, FEATURES = 9;
+};
+
+/// The cell data NoiseSimd.cpp's kernels read (NoiseSimd.h's layouts), from
+/// NoiseKernels.h's cells.
+template <int D>
+void cellData(InCell kind, std::uint64_t s, const typename Cells<D>::Split& q, double* out)
+{
+    using C = Cells<D>;
     switch (kind) {
     case InCell::GRADIENT3:
-    case InCell::SIMPLEX3: {
-        GradientCell3 c;
-        if (kind == InCell::GRADIENT3) gradientCell(s, q, c);
-        else simplexCell(s, q, c);
-        for (int corner = 0; corner < 8; ++corner)
-            for (int k = 0; k < 3; ++k) out[3 * corner + k] = c.g[corner][k];
-        return;
-    }
-    case InCell::VALUE3: {
-        ValueCell3 c;
-        valueCell(s, q, c);
-        for (int corner = 0; corner < 8; ++corner) out[corner] = c.v[corner];
-        return;
-    }
-    default: {
-        CellularCell3 c;
-        cellularCell(s, q, c);
-        for (int n = 0; n < 27; ++n) {
-            out[n] = c.x[n];
-            out[27 + n] = c.y[n];
-            out[54 + n] = c.z[n];
-        }
-        return;
-    }
-    }
-}
-
-void cellData(InCell kind, std::uint64_t s, const Split2& q, double* out)
-{
-    switch (kind) {
     case InCell::GRADIENT2:
+    case InCell::SIMPLEX3:
     case InCell::SIMPLEX2: {
-        GradientCell2 c;
-        if (kind == InCell::GRADIENT2) gradientCell(s, q, c);
+        typename C::Gradient c;
+        if (kind == InCell::GRADIENT3 || kind == InCell::GRADIENT2) gradientCell(s, q, c);
         else simplexCell(s, q, c);
-        for (int corner = 0; corner < 4; ++corner)
-            for (int k = 0; k < 2; ++k) out[2 * corner + k] = c.g[corner][k];
+        for (int corner = 0; corner < C::CORNERS; ++corner)
+            for (int k = 0; k < D; ++k) out[D * corner + k] = c.g[corner][k];
         return;
     }
+    case InCell::VALUE3:
     case InCell::VALUE2: {
-        ValueCell2 c;
+        typename C::Value c;
         valueCell(s, q, c);
-        for (int corner = 0; corner < 4; ++corner) out[corner] = c.v[corner];
+        for (int corner = 0; corner < C::CORNERS; ++corner) out[corner] = c.v[corner];
         return;
     }
     default: {
-        CellularCell2 c;
+        typename C::Cellular c;
         cellularCell(s, q, c);
-        for (int n = 0; n < 9; ++n) {
+        for (int n = 0; n < C::FEATURES; ++n) {
             out[n] = c.x[n];
-            out[9 + n] = c.y[n];
+            out[C::FEATURES + n] = c.y[n];
+            if constexpr (D == 3) out[2 * C::FEATURES + n] = c.z[n];
         }
         return;
     }
@@ -150,10 +148,10 @@ void basisAt(NoiseType type, std::uint64_t s, const double* x, const double* y, 
         if (threeD) {
             const Split3 q{latticeIndex(split.cellX[i]), latticeIndex(split.cellY[i]), latticeIndex(split.cellZ[i]), 0,
                            0, 0};
-            cellData(kind, s, q, data);
+            cellData<3>(kind, s, q, data);
         } else {
             const Split2 q{latticeIndex(split.cellX[i]), latticeIndex(split.cellY[i]), 0, 0};
-            cellData(kind, s, q, data);
+            cellData<2>(kind, s, q, data);
         }
     }
     scratch.end.push_back(std::uint32_t(n));
@@ -162,80 +160,65 @@ void basisAt(NoiseType type, std::uint64_t s, const double* x, const double* y, 
     evaluateRuns(kind, runs, split.x, split.y, threeD ? split.z : nullptr, out);
 }
 
+/// A fractal sum at n points (z == nullptr: 2D) as the scalar operator()s
+/// compute it: octave by octave, the basis at p·frequency + offset, through
+/// `shape`, times the octave's weight, added to sum[i] from 0.
+template <class Octave, class SeedOf, class Shape>
+void octaveSum(NoiseType type, const Octave* octaves, int count, SeedOf seedOf, Shape shape, const double* x,
+               const double* y, const double* z, std::size_t n, double* sum)
+{
+    // Nothing this calls uses the scratch: one per thread is safe.
+    thread_local std::vector<double> scratch;
+    scratch.resize(4 * n);
+    double *qx = scratch.data(), *qy = qx + n, *qz = qy + n, *b = qz + n;
+    for (std::size_t i = 0; i < n; ++i) sum[i] = 0.0;
+    for (int octave = 0; octave < count; ++octave) {
+        const Octave& o = octaves[octave];
+        for (std::size_t i = 0; i < n; ++i) {
+            qx[i] = x[i] * o.frequency + o.offset[0];
+            qy[i] = y[i] * o.frequency + o.offset[1];
+        }
+        if (z) {
+            for (std::size_t i = 0; i < n; ++i) qz[i] = z[i] * o.frequency + o.offset[2];
+        }
+        basisAt(type, seedOf(o), qx, qy, z ? qz : nullptr, n, b);
+        for (std::size_t i = 0; i < n; ++i) sum[i] += o.weight * shape(b[i]);
+    }
+}
+
 } // namespace
 
 void FractalNoise::evaluate(const double* x, const double* y, const double* z, std::size_t n, double* out) const
 {
-    // A leaf: nothing it calls uses the scratch, so one per thread is safe
-    // (and saves an allocation per call).
-    thread_local std::vector<double> scratch;
-    scratch.resize(4 * n);
-    double *qx = scratch.data(), *qy = qx + n, *qz = qy + n, *b = qz + n;
-    for (std::size_t i = 0; i < n; ++i) out[i] = 0.0;
-    for (int octave = 0; octave < mCount; ++octave) {
-        const Octave& o = mOctaves[octave];
-        // As operator(): q = p·f + offset, per component.
-        for (std::size_t i = 0; i < n; ++i) {
-            qx[i] = x[i] * o.frequency + o.offset[0];
-            qy[i] = y[i] * o.frequency + o.offset[1];
-            qz[i] = z[i] * o.frequency + o.offset[2];
-        }
-        basisAt(mOptions.noise, o.seed, qx, qy, qz, n, b);
-        for (std::size_t i = 0; i < n; ++i) out[i] += o.weight * shape(b[i]);
-    }
+    octaveSum(
+        mOptions.noise, mOctaves, mCount, [](const Octave& o) { return o.seed; },
+        [this](double v) { return shape(v); }, x, y, z, n, out);
 }
 
 void FractalNoise::evaluate(const double* x, const double* y, std::size_t n, double* out) const
 {
-    thread_local std::vector<double> scratch;
-    scratch.resize(3 * n);
-    double *qx = scratch.data(), *qy = qx + n, *b = qy + n;
-    for (std::size_t i = 0; i < n; ++i) out[i] = 0.0;
-    for (int octave = 0; octave < mCount; ++octave) {
-        const Octave& o = mOctaves[octave];
-        for (std::size_t i = 0; i < n; ++i) {
-            qx[i] = x[i] * o.frequency + o.offset[0];
-            qy[i] = y[i] * o.frequency + o.offset[1];
-        }
-        basisAt(mOptions.noise, o.seed, qx, qy, nullptr, n, b);
-        for (std::size_t i = 0; i < n; ++i) out[i] += o.weight * shape(b[i]);
-    }
+    octaveSum(
+        mOptions.noise, mOctaves, mCount, [](const Octave& o) { return o.seed; },
+        [this](double v) { return shape(v); }, x, y, nullptr, n, out);
 }
 
 void Fbm::evaluate(const double* x, const double* y, const double* z, std::size_t n, float* out) const
 {
-    thread_local std::vector<double> scratch;
-    scratch.resize(5 * n);
-    double *qx = scratch.data(), *qy = qx + n, *qz = qy + n, *b = qz + n, *sum = b + n;
-    for (std::size_t i = 0; i < n; ++i) sum[i] = 0.0;
-    for (int octave = 0; octave < mCount; ++octave) {
-        const Octave& o = mOctaves[octave];
-        for (std::size_t i = 0; i < n; ++i) {
-            qx[i] = x[i] * o.frequency + o.offset[0];
-            qy[i] = y[i] * o.frequency + o.offset[1];
-            qz[i] = z[i] * o.frequency + o.offset[2];
-        }
-        basisAt(NoiseType::GRADIENT, o.hashedSeed, qx, qy, qz, n, b);
-        for (std::size_t i = 0; i < n; ++i) sum[i] += o.weight * b[i];
-    }
+    thread_local std::vector<double> sum;
+    sum.resize(n);
+    octaveSum(
+        NoiseType::GRADIENT, mOctaves, mCount, [](const Octave& o) { return o.hashedSeed; },
+        [](double v) { return v; }, x, y, z, n, sum.data());
     for (std::size_t i = 0; i < n; ++i) out[i] = float(sum[i]);
 }
 
 void Fbm::evaluate(const double* x, const double* y, std::size_t n, float* out) const
 {
-    thread_local std::vector<double> scratch;
-    scratch.resize(4 * n);
-    double *qx = scratch.data(), *qy = qx + n, *b = qy + n, *sum = b + n;
-    for (std::size_t i = 0; i < n; ++i) sum[i] = 0.0;
-    for (int octave = 0; octave < mCount; ++octave) {
-        const Octave& o = mOctaves[octave];
-        for (std::size_t i = 0; i < n; ++i) {
-            qx[i] = x[i] * o.frequency + o.offset[0];
-            qy[i] = y[i] * o.frequency + o.offset[1];
-        }
-        basisAt(NoiseType::GRADIENT, o.hashedSeed, qx, qy, nullptr, n, b);
-        for (std::size_t i = 0; i < n; ++i) sum[i] += o.weight * b[i];
-    }
+    thread_local std::vector<double> sum;
+    sum.resize(n);
+    octaveSum(
+        NoiseType::GRADIENT, mOctaves, mCount, [](const Octave& o) { return o.hashedSeed; },
+        [](double v) { return v; }, x, y, nullptr, n, sum.data());
     for (std::size_t i = 0; i < n; ++i) out[i] = float(sum[i]);
 }
 
