@@ -209,7 +209,7 @@ TEST(SampleLevelSet, TerracedWarpedSceneMatchesDenseSamplingOpenAndClosed)
                   << stats.evaluatedPoints << " evaluated (" << stats.boundEvaluations << " bounds), ratio " << ratio
                   << "\n";
         EXPECT_GT(stats.activeVoxels, 50000u);
-        EXPECT_LT(ratio, 2.5);
+        EXPECT_LT(ratio, 3.5); // 3.1: mixed 4³ blocks are evaluated whole (SUB_DIMS)
     }
 }
 
@@ -316,12 +316,13 @@ TEST(SampleLevelSet, PruningKeepsTheDefaultSceneCheap)
                   << stats.tilesSkipped << "/" << stats.tilesVisited << ", memUsage " << grid->memUsage() / 1024
                   << " KiB\n";
         EXPECT_EQ(stats.activeVoxels, grid->activeVoxelCount());
-        // Pruning evaluates little beyond the band itself...
-        EXPECT_LT(double(stats.evaluatedPoints), 1.6 * double(stats.activeVoxels));
+        // Pruning evaluates little beyond the band itself (1.9 and 1.3 times
+        // the active voxels: mixed 4³ blocks are evaluated whole)...
+        EXPECT_LT(double(stats.evaluatedPoints), 2.2 * double(stats.activeVoxels));
         // ... and the band is thin for the heightfield alone. The cave term's
         // gradient bound is loose (about tenfold, see CaveOptions), which
         // widens the band around tunnels: more of the volume is evaluated.
-        EXPECT_LT(double(stats.evaluatedPoints), (caves ? 0.75 : 0.25) * dense);
+        EXPECT_LT(double(stats.evaluatedPoints), (caves ? 0.75 : 0.35) * dense);
     }
 }
 

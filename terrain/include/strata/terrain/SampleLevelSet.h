@@ -72,7 +72,7 @@ struct SampleStats
 /// (voxel (i,j,k) is centred on world (i,j,k)·voxelSize).
 ///
 /// Pruning: 128³ blocks are bounded and subdivided down to 8³ tiles, and
-/// inside each remaining tile 4³ and then 2³ sub-blocks; a part is skipped
+/// inside each remaining tile 4³ sub-blocks; a part is skipped
 /// when field.bounds() over the box of its voxel centres lies entirely at or
 /// beyond ±background (with `closed`, intersected with the region box's
 /// distance). That proves every voxel of the part would be stored as an
