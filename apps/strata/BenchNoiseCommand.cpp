@@ -22,8 +22,9 @@ std::string millions(double rate)
     return text;
 }
 
-int runNoiseBench(const terrain::NoiseThroughputOptions& options)
+int runNoiseBench(const terrain::NoiseThroughputOptions& options, const std::string& simd)
 {
+    if (!simd.empty()) terrain::useSimdTarget(simd); // throws naming the machine's targets
     std::string targets;
     for (const std::string& name : terrain::availableSimdTargets()) targets += (targets.empty() ? "" : ", ") + name;
     std::cout << "Noise throughput, one core, processor time (best of 3), M points/s.\n"
@@ -51,6 +52,7 @@ int runNoiseBench(const terrain::NoiseThroughputOptions& options)
 Command registerBenchNoiseCommand(CLI::App& bench)
 {
     auto options = std::make_shared<terrain::NoiseThroughputOptions>();
+    auto simd = std::make_shared<std::string>();
     CLI::App* noise = bench.add_subcommand(
         "noise", "Points per second per core of each noise basis and 5-octave fBm: scalar path against block path");
     noise->add_option("--spacing", options->spacing, "Voxel spacing in noise units")
@@ -59,7 +61,10 @@ Command registerBenchNoiseCommand(CLI::App& bench)
     noise->add_option("--seconds", options->seconds, "Processor seconds per measurement")
         ->check(CLI::Range(0.01, 60.0))
         ->capture_default_str();
-    return {noise, [options]() { return runNoiseBench(*options); }};
+    noise->add_option("--simd", *simd,
+                      "Run the block path on this SIMD target (AVX3, AVX2, SSE4, SSSE3, SCALAR; default: the best "
+                      "this machine has)");
+    return {noise, [options, simd]() { return runNoiseBench(*options, *simd); }};
 }
 
 } // namespace strata::app

@@ -132,14 +132,22 @@ void basisAt(NoiseType type, std::uint64_t s, const double* x, const double* y, 
     const SplitPoints split{p, p + n, p + 2 * n, p + 3 * n, p + 4 * n, p + 5 * n};
     splitPoints(type == NoiseType::SIMPLEX ? Lattice::SIMPLEX : Lattice::CUBE, x, y, z, n, split);
 
-    // Pass 2. Equal floors are one cell; floors that differ but saturate to
-    // one lattice index (beyond 2^62) only cost a second, identical cell.
-    scratch.end.clear();
-    scratch.cells.clear();
     const auto sameCell = [&](std::size_t a, std::size_t b) {
         return split.cellX[a] == split.cellX[b] && split.cellY[a] == split.cellY[b] &&
                (!threeD || split.cellZ[a] == split.cellZ[b]);
     };
+    if (type == NoiseType::GRADIENT && lanesAlways()) {
+        // Where 64-bit lanes multiply natively (AVX-512), each lane hashes its
+        // own point's cell: no runs to find, and the fine octaves of a sum,
+        // a cell per point, run as fast as the coarse ones.
+        gradientLanes(s, split, n, threeD, out);
+        return;
+    }
+
+    // Pass 2. Equal floors are one cell; floors that differ but saturate to
+    // one lattice index (beyond 2^62) only cost a second, identical cell.
+    scratch.end.clear();
+    scratch.cells.clear();
     for (std::size_t i = 0; i < n; ++i) {
         if (i > 0 && sameCell(i, i - 1)) continue;
         if (i > 0) scratch.end.push_back(std::uint32_t(i));

@@ -68,4 +68,12 @@ std::size_t cellSize(InCell kind);
 void evaluateRuns(InCell kind, const CellRuns& runs, const double* x, const double* y, const double* z,
                   double* out);
 
+/// Gradient noise (3D, or 2D when !threeD) at n split points, each lane
+/// hashing its own point's cell: for points that seldom share a cell.
+void gradientLanes(std::uint64_t seed, const SplitPoints& split, std::size_t n, bool threeD, double* out);
+
+/// Whether gradientLanes() is the faster path for gradient noise on the
+/// target in use (AVX-512: native 64-bit multiplies).
+bool lanesAlways();
+
 } // namespace strata::terrain::detail

@@ -27,7 +27,7 @@ struct NoiseThroughput
     int dimensions = 3;     ///< 3 or 2
     double scalarRate = 0;  ///< points per second, one core, lattice order
     double blockRate = 0;   ///< points per second, one core, same points, SIMD target in use
-    double blockScalarTargetRate = 0; ///< the block path without SIMD (Highway's SCALAR target)
+    double blockScalarTargetRate = 0; ///< the block path without SIMD (Highway's portable target)
     double scatteredRate = 0; ///< scalar path, points scattered over 64 cells
 };
 
