@@ -72,8 +72,8 @@ void evaluateRuns(InCell kind, const CellRuns& runs, const double* x, const doub
 /// hashing its own point's cell: for points that seldom share a cell.
 void gradientLanes(std::uint64_t seed, const SplitPoints& split, std::size_t n, bool threeD, double* out);
 
-/// Whether gradientLanes() is the faster path for gradient noise on the
-/// target in use (AVX-512: native 64-bit multiplies).
-bool lanesAlways();
+/// Whether the target in use multiplies 64-bit lanes natively (AVX-512),
+/// which makes gradientLanes() the faster path where runs are short.
+bool nativeLaneHashing();
 
 } // namespace strata::terrain::detail
