@@ -1,5 +1,7 @@
 #include <strata/terrain/Caves.h>
 
+#include "WormSimd.h"
+
 #include "NodeRegistrations.h"
 #include <strata/Format.h>
 #include <strata/terrain/NodeRegistry.h>
@@ -393,14 +395,20 @@ void WormCaves::densities(const PointBlock& points, double* out) const
     // dropping it first leaves each point's sequence of minima, and its
     // bits, unchanged.
     const Bucket& all = threadBucket(key);
-    std::vector<Cone> near;
+    thread_local std::vector<detail::LaneCone> near; // a leaf: one per thread is safe
+    near.clear();
     for (const Cone& c : all) {
         const glm::dvec3 gap = glm::max(glm::max(points.box.min - c.mid, c.mid - points.box.max), 0.0);
         const double reach = CAP + c.reach + 1e-3;
-        if (glm::dot(gap, gap) < reach * reach) near.push_back(c);
+        if (glm::dot(gap, gap) < reach * reach) {
+            detail::LaneCone& l = near.emplace_back();
+            l = {c.s.a.x, c.s.a.y, c.s.a.z, c.s.b.x, c.s.b.y, c.s.b.z, c.s.ra, c.s.rb, c.mid.x, c.mid.y, c.mid.z,
+                 c.reach, 0, 0, 0, 0, 0, 0};
+            detail::deriveLaneCone(l);
+        }
     }
-    for (std::size_t i = 0; i < points.count; ++i)
-        out[i] = distanceAmong({points.x[i], points.y[i], points.z[i]}, near.data(), near.size());
+    // Then distanceAmong() point by point, a point per SIMD lane.
+    detail::wormDistances(near.data(), near.size(), CAP, points.x, points.y, points.z, points.count, out);
 }
 
 Interval WormCaves::bounds(const WorldBox& box) const
