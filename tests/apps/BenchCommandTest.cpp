@@ -7,6 +7,7 @@
 #include "TestDir.h"
 
 #include <strata/render/Image.h>
+#include <strata/terrain/SimdTarget.h>
 
 #include <gtest/gtest.h>
 
@@ -138,4 +139,19 @@ TEST(BenchCommand, NeedsAnOutputDirectory)
     const CommandResult run = runStrata("bench --tiny", dir);
     EXPECT_EQ(run.exitCode, 2);
     EXPECT_NE(run.output.find("-o DIR"), std::string::npos) << run.output;
+}
+
+TEST(BenchNoiseCommand, PrintsEveryBasisOnTheChosenSimdTargetAndRefusesAnUnknownOne)
+{
+    const auto dir = strata::test::freshTestDir();
+    const std::string portable = strata::terrain::availableSimdTargets().back(); // SCALAR (EMU128 with clang)
+    const CommandResult run = runStrata("bench noise --seconds 0.01 --simd " + portable, dir);
+    ASSERT_EQ(run.exitCode, 0) << run.output;
+    EXPECT_NE(run.output.find("SIMD target in use: " + portable), std::string::npos) << run.output;
+    for (const char* row : {"| gradient | 3D |", "| cellular F2 fBm 5 | 3D |", "| simplex | 2D |", "| value fBm 5 | 2D |"})
+        EXPECT_NE(run.output.find(row), std::string::npos) << row << "\n" << run.output;
+
+    const CommandResult bad = runStrata("bench noise --seconds 0.01 --simd NEON9000", dir);
+    EXPECT_EQ(bad.exitCode, 2);
+    EXPECT_EQ(bad.output.rfind("strata: error: --simd: NEON9000", 0), 0u) << bad.output;
 }
