@@ -41,6 +41,8 @@ public:
         return mPath;
     }
 
+    const std::filesystem::path& path() const { return mPath; }
+
 private:
     std::filesystem::path mPath;
 };

@@ -1,10 +1,13 @@
 // libFuzzer target for the heightmap loader of the scene's image_heightfield
-// node (strata::scene::readHeightImageFile, OpenImageIO underneath), on the
-// bytes written to a .png file (OpenImageIO tries its other readers when
-// the PNG reader refuses the bytes). It may return an image or throw
-// strata::Error; anything else is a bug.
+// node (strata::scene::readHeightImageFile, OpenImageIO underneath). The
+// loader opens a file with its extension's reader only, so the bytes are
+// written under the extension their first bytes ask for
+// (imageExtensionFor()): every reader Strata lets OpenImageIO use gets
+// fuzzed. It may return an image or throw strata::Error; anything else is
+// a bug.
 
 #include "FuzzTempFile.h"
+#include "ImageExtension.h"
 
 #include "HeightImageFile.h" // scene/src
 
@@ -12,10 +15,15 @@
 
 #include <cstdio>
 #include <cstdlib>
+#include <map>
+#include <string>
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size)
 {
-    static const strata::fuzz::TempFile file(".png");
+    // One file per extension, kept for the process (TempFile removes it at exit).
+    static std::map<std::string, strata::fuzz::TempFile> files;
+    const std::string extension = strata::fuzz::imageExtensionFor(data, size);
+    const strata::fuzz::TempFile& file = files.try_emplace(extension, extension).first->second;
     try {
         const strata::terrain::HeightImage image = strata::scene::readHeightImageFile(file.write(data, size));
         if (image.width < 2 || image.height < 2 ||

@@ -11,9 +11,12 @@ PACKAGES=(
   libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri libepoxy-dev libglfw3-dev
   libcli11-dev libtomlplusplus-dev nlohmann-json3-dev libfmt-dev
   libgtest-dev libbenchmark-dev libssl-dev
+  clang libclang-rt-dev llvm
   slurm-wlm munge python3 python3-yaml
   xvfb xauth
 )
+# clang with its sanitizer and libFuzzer runtimes (libclang-rt-dev) and
+# llvm-symbolizer (llvm) build and run scripts/sanitizers.sh, which CI runs.
 # Node.js and npm run the Khronos glTF validator test (npm installs
 # gltf-validator into the build tree). A machine may already have them from
 # another source (e.g. a nodejs package that bundles npm, where Debian's npm

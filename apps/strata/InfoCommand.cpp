@@ -30,8 +30,11 @@ void describeVdb(const std::filesystem::path& path, std::ostream& out)
     const meshing::VdbFile file = meshing::readVdbFile(path);
     const openvdb::GridPtrVecPtr& grids = file.grids;
     const std::string& version = file.version;
-    out << path.string() << ": OpenVDB file (version " << version << "), " << (grids ? grids->size() : 0)
-        << " grid(s)\n";
+    out << path.string() << ": OpenVDB file (version " << version << "), "
+        << (grids ? grids->size() : 0) + file.unread.size() << " grid(s)\n";
+    for (const meshing::UnreadGrid& grid : file.unread) {
+        out << "  grid '" << grid.name << "': " << grid.type << ", not read (Strata reads float, double, integer and vector grids)\n";
+    }
     if (!grids) return;
     for (const openvdb::GridBase::Ptr& grid : *grids) {
         out << "  grid '" << grid->getName() << "': " << grid->valueType() << ", class "

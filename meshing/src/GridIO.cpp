@@ -16,6 +16,7 @@
 #include <cstring>
 #include <fstream>
 #include <cstdio>
+#include <set>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -77,11 +78,22 @@ public:
         file.grids = std::make_shared<openvdb::GridPtrVec>();
         std::vector<openvdb::io::GridDescriptor> descriptors;
         NamedGridMap named;
+        std::set<openvdb::Name> skipped;
         for (std::int32_t i = 0; i < count; ++i) {
             const std::optional<std::uint64_t> end =
                 detail::preflightVdbGrid(path, std::uint64_t(in.tellg()), fileVersion(), i);
             openvdb::io::GridDescriptor descriptor;
             const openvdb::GridBase::Ptr grid = descriptor.read(in); // throws for an unregistered type
+            const bool parentSkipped =
+                descriptor.isInstance() && skipped.count(openvdb::Name(descriptor.instanceParentName()));
+            if (!end || parentSkipped) {
+                // A tree the preflight cannot follow (bool, mask, points) or an
+                // instance of one: jump over it, unread.
+                skipGrid(in, descriptor, path, i);
+                file.unread.push_back({descriptor.gridName(), descriptor.gridType()});
+                skipped.insert(descriptor.uniqueName());
+                continue;
+            }
             Archive::readGrid(grid, descriptor, in);
             // The preflight followed the grid's bytes as OpenVDB reads them:
             // both must end at the same byte, or the checks were of other bytes.
@@ -100,6 +112,34 @@ public:
         openvdb::io::clearStreamMetadataPtr(in);
         file.version = version();
         return file;
+    }
+
+private:
+    /// Moves `in` to the end of the grid whose descriptor was just read,
+    /// through the offsets the file records (every file io::File writes
+    /// has them; a stream has none, and then the grid cannot be skipped).
+    void skipGrid(std::istream& in, const openvdb::io::GridDescriptor& descriptor,
+                  const std::filesystem::path& path, std::int32_t index)
+    {
+        const std::string which = "grid " + std::to_string(index) + " ('" + descriptor.gridName() + "', " +
+                                  descriptor.gridType() + ")";
+        if (!inputHasGridOffsets()) {
+            throw Error(ErrorKind::BadInput,
+                        "VDB file '" + path.string() + "': " + which +
+                            " is of a kind Strata does not read, and the file records no grid offsets to skip it",
+                        {.file = path.string()});
+        }
+        const std::int64_t here = std::int64_t(in.tellg());
+        in.seekg(0, std::ios::end);
+        const std::int64_t size = std::int64_t(in.tellg());
+        if (descriptor.getEndPos() < here || descriptor.getEndPos() > size) {
+            throw Error(ErrorKind::BadInput,
+                        "VDB file '" + path.string() + "' is corrupt: " + which + " ends at byte " +
+                            std::to_string(descriptor.getEndPos()) + ", outside bytes " + std::to_string(here) +
+                            " to " + std::to_string(size),
+                        {.file = path.string()});
+        }
+        in.seekg(descriptor.getEndPos());
     }
 };
 
@@ -175,8 +215,12 @@ VdbFile readVdbFile(const std::filesystem::path& path)
 openvdb::FloatGrid::Ptr readLevelSet(const std::filesystem::path& path)
 {
     const std::string where = "VDB file '" + path.string() + "'";
-    const openvdb::GridPtrVecPtr grids = readVdbFile(path).grids;
+    const VdbFile file = readVdbFile(path);
+    const openvdb::GridPtrVecPtr& grids = file.grids;
     if (!grids || grids->empty()) {
+        if (!file.unread.empty()) {
+            throw Error(where + " holds no float grid (found '" + file.unread.front().type + "', not read)");
+        }
         throw Error(where + " holds no grid");
     }
     openvdb::FloatGrid::Ptr grid;

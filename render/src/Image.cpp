@@ -5,6 +5,8 @@
 #include <strata/StderrCapture.h>
 #include <strata/render/ImageFileStructure.h>
 
+#include "OpenImage.h"
+
 #include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 
@@ -141,16 +143,18 @@ Image readImage(const fs::path& path)
 {
     OIIO::ImageSpec config;
     config.attribute("oiio:UnassociatedAlpha", 1);
+    std::string reader;
     try {
-        checkImageFileStructure(path);
+        reader = checkImageFileStructure(path);
     } catch (const Error& e) {
         throw Error("cannot read image '" + path.string() + "': " + e.what());
     }
     // libpng prints its complaints on stderr; OpenImageIO's error says the same.
     StderrCapture libraryLines;
-    auto input = OIIO::ImageInput::open(path.string(), &config);
+    std::string error;
+    auto input = openImageWith(reader, path, config, error);
     if (!input) {
-        throw Error("cannot read image '" + path.string() + "': " + oiioError({}));
+        throw Error("cannot read image '" + path.string() + "' as a ." + reader + " image: " + oiioError(error));
     }
     const OIIO::ImageSpec& spec = input->spec();
     const int channels = spec.nchannels;

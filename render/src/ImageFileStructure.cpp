@@ -2,6 +2,8 @@
 
 #include <strata/Error.h>
 
+#include <algorithm>
+#include <cctype>
 #include <cstdint>
 #include <cstring>
 #include <fstream>
@@ -94,18 +96,38 @@ void checkExr(std::ifstream& in, std::uint64_t size)
 
 } // namespace
 
-void checkImageFileStructure(const std::filesystem::path& path)
+const std::vector<std::string>& imageExtensions()
 {
+    static const std::vector<std::string> extensions = {"png", "jpg", "jpeg", "tif", "tiff", "exr",
+                                                        "hdr", "tga", "bmp", "pgm", "ppm", "pnm"};
+    return extensions;
+}
+
+std::string checkImageFileStructure(const std::filesystem::path& path)
+{
+    std::string extension = path.extension().string();
+    if (!extension.empty()) extension.erase(0, 1);
+    std::transform(extension.begin(), extension.end(), extension.begin(),
+                   [](unsigned char c) { return char(std::tolower(c)); });
+    const std::vector<std::string>& known = imageExtensions();
+    if (std::find(known.begin(), known.end(), extension) == known.end()) {
+        std::string list;
+        for (const std::string& e : known) list += (list.empty() ? "." : ", .") + e;
+        throw Error(extension.empty() ? "has no file extension to say its image format (one of " + list + ")"
+                                      : "has the extension '." + printable(extension) +
+                                            "', not an image format Strata reads (" + list + ")");
+    }
     static const unsigned char PNG[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
     static const unsigned char EXR[4] = {0x76, 0x2f, 0x31, 0x01};
     std::error_code ec;
     const std::uint64_t size = std::filesystem::file_size(path, ec);
-    if (ec) return; // the reader reports it
+    if (ec) return extension; // the reader reports it
     std::ifstream in(path, std::ios::binary);
     unsigned char header[8] = {};
-    if (size < 8 || !in.read(reinterpret_cast<char*>(header), 8)) return;
-    if (std::memcmp(header, PNG, 8) == 0) return checkPng(in, size);
-    if (std::memcmp(header, EXR, 4) == 0) return checkExr(in, size);
+    if (size < 8 || !in.read(reinterpret_cast<char*>(header), 8)) return extension;
+    if (std::memcmp(header, PNG, 8) == 0) checkPng(in, size);
+    if (std::memcmp(header, EXR, 4) == 0) checkExr(in, size);
+    return extension;
 }
 
 } // namespace strata::render

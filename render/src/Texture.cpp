@@ -4,6 +4,8 @@
 #include <strata/StderrCapture.h>
 #include <strata/render/ImageFileStructure.h>
 
+#include "OpenImage.h"
+
 #include <OpenImageIO/imageio.h>
 
 #include <glm/geometric.hpp>
@@ -219,11 +221,11 @@ Image loadMapImage(const std::filesystem::path& path, MapKind kind, int minChann
 {
     auto fail = [&](const std::string& why) -> Error { return Error(what + ": '" + path.string() + "': " + why); };
     std::error_code ec;
-    if (!std::filesystem::is_regular_file(path, ec)) {
-        throw fail("no such file");
-    }
+    if (!std::filesystem::exists(path, ec)) throw fail("no such file");
+    if (!std::filesystem::is_regular_file(path, ec)) throw fail("is not a file");
+    std::string reader;
     try {
-        checkImageFileStructure(path);
+        reader = checkImageFileStructure(path);
     } catch (const Error& e) {
         throw fail(e.what());
     }
@@ -231,9 +233,10 @@ Image loadMapImage(const std::filesystem::path& path, MapKind kind, int minChann
     config.attribute("oiio:UnassociatedAlpha", 1);
     // libpng prints its complaints on stderr; OpenImageIO's error says the same.
     StderrCapture libraryLines;
-    auto input = OIIO::ImageInput::open(path.string(), &config);
+    std::string error;
+    auto input = openImageWith(reader, path, config, error);
     if (!input) {
-        throw fail("cannot read: " + oneLineError(OIIO::geterror(), libraryLines.release()));
+        throw fail("cannot read as a ." + reader + " image: " + oneLineError(error, libraryLines.release()));
     }
     const OIIO::ImageSpec& spec = input->spec();
     const int channels = spec.nchannels;

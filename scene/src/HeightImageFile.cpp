@@ -29,16 +29,21 @@ std::string oneLine(std::string message, const char* fallback)
 terrain::HeightImage readHeightImageFile(const std::filesystem::path& path)
 {
     std::error_code ec;
-    if (!std::filesystem::is_regular_file(path, ec)) throw Error("no such file");
-    render::checkImageFileStructure(path);
+    if (!std::filesystem::exists(path, ec)) throw Error("no such file");
+    if (!std::filesystem::is_regular_file(path, ec)) throw Error("is not a file");
+    const std::string reader = render::checkImageFileStructure(path);
     OIIO::ImageSpec config;
     config.attribute("oiio:UnassociatedAlpha", 1);
     // libpng prints its complaints on stderr; OpenImageIO's error says the same.
     StderrCapture libraryLines;
-    std::unique_ptr<OIIO::ImageInput> in = OIIO::ImageInput::open(path.string(), &config);
-    if (!in) {
+    // The extension's reader only (see checkImageFileStructure()).
+    std::unique_ptr<OIIO::ImageInput> in = OIIO::ImageInput::create(reader);
+    OIIO::ImageSpec opened;
+    if (!in || !in->open(path.string(), opened, config)) {
         const std::string printed = libraryLines.release();
-        throw Error("cannot be read as an image: " + oneLine(OIIO::geterror(), printed.empty() ? "unknown format" : printed.c_str()));
+        const std::string why = in ? in->geterror() : OIIO::geterror();
+        throw Error("cannot be read as a ." + reader + " image: " +
+                    oneLine(why, printed.empty() ? "unknown format" : printed.c_str()));
     }
     const OIIO::ImageSpec& spec = in->spec();
     if (spec.width < 2 || spec.height < 2 || spec.depth != 1 || spec.nchannels < 1 ||

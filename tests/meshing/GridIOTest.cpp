@@ -231,6 +231,15 @@ TEST(GridIO, ValidFilesOfEveryKindStillRead)
     // translation and a unitary map into an affine one: no writer stores those two.
     EXPECT_EQ(kinds, (std::set<std::string>{"AffineMap", "NonlinearFrustumMap", "ScaleMap", "ScaleTranslateMap",
                                             "UniformScaleMap", "UniformScaleTranslateMap"}));
+    // Bool and mask grids are skipped unread through a file's grid offsets
+    // (their trees hold bools OpenVDB reads unchecked); a stream has none.
+    openvdb::GridPtrVec readable;
+    std::vector<std::string> readableTransforms;
+    for (std::size_t i = 0; i < grids.size(); ++i) {
+        if (grids[i]->getName() == "bool" || grids[i]->getName() == "mask") continue;
+        readable.push_back(grids[i]);
+        readableTransforms.push_back(transforms[i]);
+    }
     namespace io = openvdb::io;
     for (const std::uint32_t compression : std::vector<std::uint32_t>{
              io::COMPRESS_NONE, io::COMPRESS_ZIP, io::COMPRESS_BLOSC, io::COMPRESS_ACTIVE_MASK,
@@ -247,18 +256,59 @@ TEST(GridIO, ValidFilesOfEveryKindStillRead)
             std::ofstream out(path, std::ios::binary);
             openvdb::io::Stream stream(out);
             stream.setCompression(compression);
-            stream.write(grids);
+            stream.write(readable);
         }
         const VdbFile back = readVdbFile(path);
-        ASSERT_EQ(back.grids->size(), grids.size());
-        for (std::size_t i = 0; i < grids.size(); ++i) {
+        ASSERT_EQ(back.grids->size(), readable.size());
+        for (std::size_t i = 0; i < readable.size(); ++i) {
             const openvdb::GridBase& read = *(*back.grids)[i];
-            EXPECT_EQ(read.getName(), grids[i]->getName());
-            EXPECT_EQ(read.activeVoxelCount(), grids[i]->activeVoxelCount()) << read.getName();
-            EXPECT_EQ(read.transform().mapType(), transforms[i]) << read.getName();
+            EXPECT_EQ(read.getName(), readable[i]->getName());
+            EXPECT_EQ(read.activeVoxelCount(), readable[i]->activeVoxelCount()) << read.getName();
+            EXPECT_EQ(read.transform().mapType(), readableTransforms[i]) << read.getName();
+        }
+        ASSERT_EQ(back.unread.size(), seekable ? 2u : 0u);
+        if (seekable) {
+            EXPECT_EQ(back.unread[0].name, "bool");
+            EXPECT_EQ(back.unread[0].type, "Tree_bool_5_4_3");
+            EXPECT_EQ(back.unread[1].name, "mask");
+            EXPECT_EQ(back.unread[1].type, "Tree_mask_5_4_3");
         }
         EXPECT_EQ(readLevelSet(path)->activeVoxelCount(), level->activeVoxelCount());
     }
+    {
+        // A stream records no grid offsets: a mask grid there cannot be skipped.
+        std::ofstream out(dir / "stream-mask.vdb", std::ios::binary);
+        openvdb::io::Stream(out).write({level, masks});
+    }
+    expectReadError(dir / "stream-mask.vdb", "grid 1 ('mask', Tree_mask_5_4_3) is of a kind Strata does not read");
+    // Only unread grids: the level-set reader says what it found.
+    openvdb::io::File onlyBools((dir / "bools.vdb").string());
+    onlyBools.write({bools});
+    onlyBools.close();
+    expectReadError(dir / "bools.vdb", "holds no float grid (found 'Tree_bool_5_4_3', not read)");
+}
+
+// An instance of a skipped grid is skipped with it (it shares that tree).
+TEST(GridIO, AnInstanceOfASkippedGridIsSkipped)
+{
+    openvdb::initialize();
+    const auto dir = strata::test::freshTestDir();
+    auto bools = openvdb::BoolGrid::create(false);
+    bools->setName("bools");
+    bools->tree().setValue(openvdb::Coord(1, 2, 3), true);
+    auto copy = bools->copyGrid(); // shares the tree: written as an instance
+    copy->setName("copy");
+    auto level = sphereWithRootTile();
+    level->setName("level");
+    openvdb::io::File file((dir / "instance.vdb").string());
+    file.write({bools, copy, level});
+    file.close();
+    const VdbFile back = readVdbFile(dir / "instance.vdb");
+    ASSERT_EQ(back.grids->size(), 1u);
+    EXPECT_EQ((*back.grids)[0]->getName(), "level");
+    ASSERT_EQ(back.unread.size(), 2u);
+    EXPECT_EQ(back.unread[0].name, "bools");
+    EXPECT_EQ(back.unread[1].name, "copy");
 }
 
 // OpenVDB's RootNode::readTopology reads a root tile's active byte (and a bool
@@ -284,17 +334,19 @@ TEST(GridIO, ARootTileWhoseBoolIsNotZeroOrOneIsRefused)
                                                   std::to_string(at + record.size() - 1) + " is 2, not a bool");
     }
     {
-        // Streams too (no offsets), and a grid after the first one.
-        std::ofstream out(dir / "two.vdb", std::ios::binary);
+        // A grid after the first one; a bool grid, checked to its root
+        // tiles, then skipped unread.
         auto bools = openvdb::BoolGrid::create(false);
         bools->tree().addTile(3, far, true, false);
-        openvdb::io::Stream(out).write({sphereWithRootTile(), bools});
+        openvdb::io::File file((dir / "two.vdb").string());
+        file.write({sphereWithRootTile(), bools});
+        file.close();
     }
     std::string bytes = fileBytes(dir / "two.vdb");
     const std::string record = tileRecord(far, true, false);
     const std::size_t at = bytes.find(record, bytes.find(tileRecord(far, 1.25f, true)) + 1);
     ASSERT_NE(at, std::string::npos);
-    EXPECT_NO_THROW(readVdbFile(dir / "two.vdb"));
+    EXPECT_EQ(readVdbFile(dir / "two.vdb").unread.size(), 1u);
     bytes[at + record.size() - 2] = '\x7f'; // the tile's value
     std::ofstream(dir / "value-127.vdb", std::ios::binary) << bytes;
     expectReadError(dir / "value-127.vdb", "grid 1's root tile 0 value at byte " +

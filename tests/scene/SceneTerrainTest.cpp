@@ -207,6 +207,42 @@ TEST(SceneTerrain, ImageHeightfieldReproducesARampWithinOneStep)
     }
 }
 
+// A heightmap is opened by its extension's reader only: bytes of another
+// format are refused, not handed to every other reader in turn; unknown
+// extensions and folders are refused naming why.
+TEST(SceneTerrain, ImageHeightfieldOpensAFileByItsExtensionOnly)
+{
+    const auto dir = strata::test::freshTestDir();
+    writeRamp(dir / "ramp.png", 16, 8, false);
+    std::filesystem::copy_file(dir / "ramp.png", dir / "ramp-really-png.tif");
+    std::filesystem::copy_file(dir / "ramp.png", dir / "ramp.xyz");
+    std::filesystem::copy_file(dir / "ramp.png", dir / "RAMP.PNG");
+    std::filesystem::create_directory(dir / "folder.png");
+    auto error = [&](const std::string& file) {
+        std::ofstream(dir / "scene.toml") << oneNode("image_heightfield", "file = \"" + file + "\"\n");
+        try {
+            strata::scene::loadScene(dir / "scene.toml");
+        } catch (const strata::Error& e) {
+            return std::string(e.what());
+        }
+        return std::string("no error");
+    };
+    EXPECT_EQ(error("ramp.png"), "no error");
+    EXPECT_EQ(error("RAMP.PNG"), "no error"); // extensions in any case
+    const std::string tif = error("ramp-really-png.tif");
+    EXPECT_NE(tif.find("ramp-really-png.tif': cannot be read as a .tif image"), std::string::npos) << tif;
+    const std::string xyz = error("ramp.xyz");
+    EXPECT_NE(xyz.find("ramp.xyz': has the extension '.xyz', not an image format Strata reads (.png, .jpg"),
+              std::string::npos)
+        << xyz;
+    const std::string folder = error("folder.png");
+    EXPECT_NE(folder.find("folder.png': is not a file"), std::string::npos) << folder;
+    for (const std::string& message : {tif, xyz, folder}) {
+        EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+        EXPECT_NE(message.find("scene.toml:5: terrain.nodes.a.file = '"), std::string::npos) << message;
+    }
+}
+
 TEST(SceneTerrain, TunnelsReachTheSurfaceInTheDefaultScene)
 {
     // Air connected to the sky that lies at least 3 m inside the land's rock

@@ -111,7 +111,7 @@ void ChunkScheduler::runTask(Job& job)
     std::lock_guard<std::mutex> lock(mMutex);
     if (result.mesh) finished.push_back(std::move(result));
     else mTracker.abandoned(job.key);
-    if (error && !failure) failure = error;
+    if (error && !failure) failure = std::move(error);
     --inFlight;
     // Refill the pool now rather than at the next poll(): between two polls
     // (a frame) the workers would otherwise run dry once the tasks in

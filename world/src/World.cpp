@@ -70,9 +70,12 @@ struct World::Impl
     void pump()
     {
         if (scheduler.failure) {
-            std::exception_ptr e = scheduler.failure;
+            // Moved, not copied: libstdc++ counts an exception's references
+            // with atomics that ThreadSanitizer does not see (it reports the
+            // worker's and the caller's counts as a race).
+            std::exception_ptr e = std::move(scheduler.failure);
             scheduler.failure = nullptr;
-            std::rethrow_exception(e);
+            std::rethrow_exception(std::move(e));
         }
         if (partitionResult) {
             tracker.rebuild(partitionResult->second);
@@ -107,7 +110,7 @@ struct World::Impl
             lock.lock();
             computed = version;
             if (error) {
-                if (!scheduler.failure) scheduler.failure = error;
+                if (!scheduler.failure) scheduler.failure = std::move(error);
             } else {
                 partitionResult.emplace(version, std::move(target));
             }

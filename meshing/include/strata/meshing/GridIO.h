@@ -6,6 +6,7 @@
 
 #include <filesystem>
 #include <string>
+#include <vector>
 
 namespace strata::meshing {
 
@@ -15,17 +16,31 @@ namespace strata::meshing {
 /// Throws strata::Error naming the path.
 void writeGrid(const openvdb::FloatGrid& grid, const std::filesystem::path& path);
 
-/// The grids of a .vdb file and the file's format version, read in full.
+/// A grid of a .vdb file that readVdbFile() skipped.
+struct UnreadGrid
+{
+    std::string name;
+    std::string type; ///< OpenVDB's grid type, e.g. "Tree_bool_5_4_3"
+};
+
+/// The grids of a .vdb file and the file's format version.
 struct VdbFile
 {
     openvdb::GridPtrVecPtr grids; ///< never null; may be empty
+    std::vector<UnreadGrid> unread; ///< grids skipped, in file order (see readVdbFile())
     std::string version;          ///< "FILE/LIBRARY", e.g. "224/10.0"
 };
 
-/// Reads every grid of a .vdb file (`strata info` prints them). The file is
+/// Reads every grid of a .vdb file (`strata info` prints them) whose bytes
+/// can be checked before OpenVDB reads them: float, double, integer and
+/// vector grids in full. Bool, mask and point grids (and grids whose
+/// transform OpenVDB does not know) are skipped, unread, through the file's
+/// grid offsets and listed in `unread`: their nodes hold bools that OpenVDB
+/// reads without checking, and no Strata command uses them. The file is
 /// read sequentially, and a file that ends before its last grid does (a
 /// truncated or corrupt one) is refused. Throws strata::Error (BadInput)
-/// naming the path: missing, a folder, not an OpenVDB file, truncated.
+/// naming the path: missing, a folder, not an OpenVDB file, truncated, a
+/// grid to skip in a file without grid offsets.
 VdbFile readVdbFile(const std::filesystem::path& path);
 
 /// Reads the first float grid of a .vdb file (through readVdbFile()) and checks it is a usable level

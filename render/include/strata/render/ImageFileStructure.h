@@ -11,16 +11,29 @@
 /// A file whose chunks or attributes do not fit in it is refused here.
 
 #include <filesystem>
+#include <string>
+#include <vector>
 
 namespace strata::render {
 
-/// For a file that starts with the PNG signature: every chunk's length fits
-/// in the file and an IEND chunk ends it. For one that starts with the
-/// OpenEXR magic number: every header attribute's size fits in the file.
-/// Other files pass unchecked (their reader decides). Throws strata::Error
-/// (BadInput) with the reason only ("is a truncated PNG: chunk 'IDAT' at
-/// byte 33 needs 72 bytes, the file has 17 left"); the caller names the key
-/// and the path. Reads only chunk and attribute headers.
-void checkImageFileStructure(const std::filesystem::path& path);
+/// The image formats Strata reads, by file extension (lower case, no dot):
+/// png, jpg, jpeg, tif, tiff, exr, hdr, tga, bmp, pgm, ppm, pnm.
+const std::vector<std::string>& imageExtensions();
+
+/// Checks `path` before an image library reads it and returns the name of
+/// the one OpenImageIO reader to open it with: the reader of its extension
+/// (`OIIO::ImageInput::create(name)`, then `open()`), never another one
+/// guessed from the bytes: a file that its extension's reader refuses is
+/// refused, rather than handed to every other reader in turn (each a
+/// parser of its own to trust). An extension not in imageExtensions() is
+/// refused. For a file that starts with the PNG signature: every chunk's
+/// length fits in the file and an IEND chunk ends it. For one that starts
+/// with the OpenEXR magic number: every header attribute's size fits in the
+/// file. Other files pass unchecked (their reader decides). Throws
+/// strata::Error (BadInput) with the reason only ("is a truncated PNG:
+/// chunk 'IDAT' at byte 33 needs 72 bytes, the file has 17 left"); the
+/// caller names the key and the path. Reads only chunk and attribute
+/// headers.
+std::string checkImageFileStructure(const std::filesystem::path& path);
 
 } // namespace strata::render
