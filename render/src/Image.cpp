@@ -163,6 +163,11 @@ Image readImage(const fs::path& path)
                     "x" + std::to_string(spec.height) + "x" + std::to_string(spec.depth) + " with " +
                     std::to_string(channels) + " channels");
     }
+    try {
+        checkImageSizeAgainstFile(path, spec.width, spec.height, channels);
+    } catch (const Error& e) {
+        throw Error("cannot read image '" + path.string() + "': " + e.what());
+    }
     const std::string colorSpace = spec.get_string_attribute("oiio:ColorSpace");
     const bool linear = isLinearFormat(input->format_name()) || colorSpace == "Linear" ||
                         colorSpace == "lin_srgb" || colorSpace == "scene_linear";

@@ -130,4 +130,18 @@ std::string checkImageFileStructure(const std::filesystem::path& path)
     return extension;
 }
 
+void checkImageSizeAgainstFile(const std::filesystem::path& path, int width, int height, int channels)
+{
+    std::error_code ec;
+    const std::uint64_t size = std::filesystem::file_size(path, ec);
+    if (ec) return; // the reader reports it
+    const double claimed = double(std::max(width, 0)) * double(std::max(height, 0)) * double(std::max(channels, 1));
+    const double most = double(MAX_IMAGE_EXPANSION) * double(size) + 65536.0;
+    if (claimed > most) {
+        throw Error("claims " + std::to_string(width) + "x" + std::to_string(height) + " pixels of " +
+                    std::to_string(channels) + " channel(s) in a file of " + std::to_string(size) +
+                    " bytes: more than any image compression holds (a corrupt or hostile header)");
+    }
+}
+
 } // namespace strata::render

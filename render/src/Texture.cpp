@@ -250,6 +250,11 @@ Image loadMapImage(const std::filesystem::path& path, MapKind kind, int minChann
     if (channels < minChannels) {
         throw fail("has " + std::to_string(channels) + " channel(s), the map needs " + std::to_string(minChannels));
     }
+    try {
+        checkImageSizeAgainstFile(path, spec.width, spec.height, channels);
+    } catch (const Error& e) {
+        throw fail(e.what());
+    }
     const std::string format = input->format_name();
     const std::string colorSpace = spec.get_string_attribute("oiio:ColorSpace");
     const bool fileLinear = format == "openexr" || format == "hdr" || colorSpace == "Linear" ||

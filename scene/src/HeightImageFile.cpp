@@ -52,6 +52,7 @@ terrain::HeightImage readHeightImageFile(const std::filesystem::path& path)
                     (spec.depth != 1 ? "x" + std::to_string(spec.depth) : std::string()) +
                     " pixels: heightmaps need 2x2 to 16384x16384");
     }
+    render::checkImageSizeAgainstFile(path, spec.width, spec.height, spec.nchannels);
     terrain::HeightImage image;
     image.width = spec.width;
     image.height = spec.height;

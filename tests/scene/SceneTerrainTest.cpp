@@ -13,6 +13,7 @@
 #include <cstdlib>
 #include <deque>
 #include <fstream>
+#include <iterator>
 #include <set>
 #include <sys/wait.h>
 #include <vector>
@@ -240,6 +241,43 @@ TEST(SceneTerrain, ImageHeightfieldOpensAFileByItsExtensionOnly)
     for (const std::string& message : {tif, xyz, folder}) {
         EXPECT_EQ(message.find('\n'), std::string::npos) << message;
         EXPECT_NE(message.find("scene.toml:5: terrain.nodes.a.file = '"), std::string::npos) << message;
+    }
+}
+
+// A PNG whose header (with a valid CRC) claims 16000 x 16000 pixels in a few
+// hundred bytes is refused before 1 GiB of floats is allocated for it.
+TEST(SceneTerrain, ImageHeightfieldRefusesAHeaderLargerThanItsFileCanHold)
+{
+    const auto dir = strata::test::freshTestDir();
+    writeRamp(dir / "ramp.png", 16, 8, false);
+    std::string bytes;
+    {
+        std::ifstream in(dir / "ramp.png", std::ios::binary);
+        bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    }
+    ASSERT_EQ(bytes.substr(12, 4), "IHDR");
+    for (int field : {16, 20}) { // width, height: 16000, big-endian
+        bytes[field] = 0, bytes[field + 1] = 0, bytes[field + 2] = char(16000 >> 8), bytes[field + 3] = char(16000 & 255);
+    }
+    std::uint32_t crc = 0xffffffffu; // CRC-32 over the chunk type and data, as PNG defines it
+    for (std::size_t i = 12; i < 12 + 4 + 13; ++i) {
+        crc ^= std::uint8_t(bytes[i]);
+        for (int b = 0; b < 8; ++b) crc = (crc >> 1) ^ (0xedb88320u & (0u - (crc & 1u)));
+    }
+    crc ^= 0xffffffffu;
+    for (int b = 0; b < 4; ++b) bytes[29 + b] = char(crc >> (24 - 8 * b));
+    std::ofstream(dir / "huge.png", std::ios::binary) << bytes;
+    std::ofstream(dir / "scene.toml") << oneNode("image_heightfield", "file = \"huge.png\"\n");
+    try {
+        strata::scene::loadScene(dir / "scene.toml");
+        ADD_FAILURE() << "no error";
+    } catch (const strata::Error& e) {
+        const std::string what = e.what();
+        EXPECT_NE(what.find("huge.png': claims 16000x16000 pixels of 1 channel(s) in a file of " +
+                            std::to_string(bytes.size()) + " bytes"),
+                  std::string::npos)
+            << what;
+        EXPECT_EQ(e.kind(), strata::ErrorKind::BadInput);
     }
 }
 

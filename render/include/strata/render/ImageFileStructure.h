@@ -10,6 +10,7 @@
 ///   corrupt 4 KiB file asked for gigabytes).
 /// A file whose chunks or attributes do not fit in it is refused here.
 
+#include <cstdint>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -35,5 +36,16 @@ const std::vector<std::string>& imageExtensions();
 /// caller names the key and the path. Reads only chunk and attribute
 /// headers.
 std::string checkImageFileStructure(const std::filesystem::path& path);
+
+/// The most uncompressed bytes per file byte a real image reaches (zlib's
+/// limit is about 1032; run-length and PIZ less), with room to spare.
+constexpr std::uint64_t MAX_IMAGE_EXPANSION = 4096;
+
+/// Refuses an image whose header claims more pixels than its file can hold
+/// under any compression (`width` x `height` x `channels` bytes, at least one
+/// byte per channel, over MAX_IMAGE_EXPANSION times the file's size plus
+/// 64 KiB), before anything of that size is allocated. Throws strata::Error
+/// (BadInput) with the reason only, as checkImageFileStructure() does.
+void checkImageSizeAgainstFile(const std::filesystem::path& path, int width, int height, int channels);
 
 } // namespace strata::render
