@@ -91,29 +91,49 @@ void SampleArray::fill(int bi, int bj, int bk, std::size_t b)
     if (!cached) {
         // The block's procedural samples in one block evaluation: the same
         // bits as baseSample() point by point.
-        mX.clear();
-        mY.clear();
-        mZ.clear();
+        double axis[3][BLOCK];
+        for (int a = 0; a < 3; ++a) {
+            for (int t = lo[a]; t < hi[a]; ++t) axis[a][t - lo[a]] = double(mOrigin[a] + t * mStep) * mVoxelSize;
+        }
+        const std::size_t count = std::size_t(hi[0] - lo[0]) * std::size_t(hi[1] - lo[1]) * std::size_t(hi[2] - lo[2]);
+        mX.resize(count);
+        mY.resize(count);
+        mZ.resize(count);
+        std::size_t n = 0;
         for (int k = lo[2]; k < hi[2]; ++k)
             for (int j = lo[1]; j < hi[1]; ++j)
-                for (int i = lo[0]; i < hi[0]; ++i) {
-                    mX.push_back(double(mOrigin[0] + i * mStep) * mVoxelSize);
-                    mY.push_back(double(mOrigin[1] + j * mStep) * mVoxelSize);
-                    mZ.push_back(double(mOrigin[2] + k * mStep) * mVoxelSize);
+                for (int i = lo[0]; i < hi[0]; ++i, ++n) {
+                    mX[n] = axis[0][i - lo[0]];
+                    mY[n] = axis[1][j - lo[1]];
+                    mZ[n] = axis[2][k - lo[2]];
                 }
-        mD.resize(mX.size());
+        mD.resize(count);
         const glm::dvec3 c0{double(v0[0]), double(v0[1]), double(v0[2])};
         const glm::dvec3 c1{double(v1[0]), double(v1[1]), double(v1[2])};
-        mField->densities({mX.data(), mY.data(), mZ.data(), mX.size(), {c0 * mVoxelSize, c1 * mVoxelSize}}, mD.data());
+        mField->densities({mX.data(), mY.data(), mZ.data(), count, {c0 * mVoxelSize, c1 * mVoxelSize}}, mD.data());
     }
     std::size_t n = 0;
     for (int k = lo[2]; k < hi[2]; ++k) {
         for (int j = lo[1]; j < hi[1]; ++j) {
+            const std::size_t row = index(lo[0], j, k);
+            if (!edited) {
+                // No edit here: a straight copy of the row (the common case).
+                float* values = mValues.data() + row;
+                const int width = hi[0] - lo[0];
+                if (cached) {
+                    std::copy_n(mCache->values.data() + row, width, values);
+                } else {
+                    for (int i = 0; i < width; ++i) values[i] = float(mD[n + std::size_t(i)]);
+                    if (mCache) std::copy_n(values, width, mCache->values.data() + row);
+                }
+                n += std::size_t(width);
+                continue;
+            }
             for (int i = lo[0]; i < hi[0]; ++i, ++n) {
-                const std::size_t at = index(i, j, k);
+                const std::size_t at = row + std::size_t(i - lo[0]);
                 const std::int64_t x = mOrigin[0] + i * mStep, y = mOrigin[1] + j * mStep, z = mOrigin[2] + k * mStep;
                 float value;
-                if (edited && mEdits->lookup(Coord(int(x), int(y), int(z)), value)) {
+                if (mEdits->lookup(Coord(int(x), int(y), int(z)), value)) {
                     mValues[at] = value;
                     if (!mCache || cached) continue;
                 }
@@ -123,7 +143,7 @@ void SampleArray::fill(int bi, int bj, int bk, std::size_t b)
                 }
                 value = float(mD[n]);
                 if (mCache) mCache->values[at] = value;
-                if (!(edited && mEdits->lookup(Coord(int(x), int(y), int(z)), mValues[at]))) mValues[at] = value;
+                if (!mEdits->lookup(Coord(int(x), int(y), int(z)), mValues[at])) mValues[at] = value;
             }
         }
     }
