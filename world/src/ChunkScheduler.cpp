@@ -44,9 +44,7 @@ ChunkScheduler::ChunkScheduler(std::shared_ptr<const terrain::DensityField> fiel
 
 void ChunkScheduler::schedule()
 {
-    const std::size_t cap = mParams.maxInFlight;
-    if (inFlight >= cap) return;
-    std::vector<std::pair<std::pair<double, ChunkKey>, ChunkState*>> candidates;
+    std::vector<std::pair<double, ChunkKey>> candidates;
     for (auto& [key, state] : mTracker.chunks) {
         if (state.inFlight || !state.dirty()) continue;
         double order = state.distance;
@@ -57,16 +55,28 @@ void ChunkScheduler::schedule()
                                                                 std::uint64_t(std::uint32_t(key.z))));
             order = double(h >> 11);
         }
-        candidates.push_back({{order, key}, &state});
+        candidates.push_back({order, key});
     }
-    const std::size_t count = std::min(candidates.size(), cap - inFlight);
-    std::partial_sort(candidates.begin(), candidates.begin() + std::ptrdiff_t(count), candidates.end(),
-                      [](const auto& a, const auto& b) { return a.first < b.first; });
-    for (std::size_t i = 0; i < count; ++i) {
-        ChunkState& state = *candidates[i].second;
+    std::sort(candidates.begin(), candidates.end());
+    mQueue.clear();
+    for (const auto& candidate : candidates) mQueue.push_back(candidate.second);
+    mQueueNext = 0;
+    launchQueued();
+}
+
+void ChunkScheduler::launchQueued()
+{
+    while (inFlight < mParams.maxInFlight && mQueueNext < mQueue.size()) {
+        const ChunkKey key = mQueue[mQueueNext++];
+        // The tracker may have changed since schedule() (a chunk evicted,
+        // accepted, or launched): only a chunk still waiting goes.
+        const auto found = mTracker.chunks.find(key);
+        if (found == mTracker.chunks.end()) continue;
+        ChunkState& state = found->second;
+        if (state.inFlight || !state.dirty()) continue;
         state.inFlight = true;
         ++inFlight;
-        launch(candidates[i].first.second, state.signature, state.generation, state.cache);
+        launch(key, state.signature, state.generation, state.cache);
     }
 }
 
@@ -116,7 +126,7 @@ void ChunkScheduler::runTask(Job& job)
     // Refill the pool now rather than at the next poll(): between two polls
     // (a frame) the workers would otherwise run dry once the tasks in
     // flight are done, which capped streaming at maxInFlight chunks a frame.
-    if (!stopping && !failure) schedule();
+    if (!stopping && !failure) launchQueued();
     mFinishedSignal.notify_all();
 }
 

@@ -39,10 +39,16 @@ public:
                    const EditLayer& edits, ReplacementTracker& tracker, std::mutex& mutex,
                    std::condition_variable& finishedSignal);
 
-    /// With the mutex held: launches the dirty chunks not in flight, in
-    /// order, up to maxInFlight tasks. The World calls it at each poll(),
-    /// and each task as it ends.
+    /// With the mutex held: orders the dirty chunks not in flight and
+    /// launches them, up to maxInFlight tasks. The World calls it at each
+    /// poll(); the rest wait in the queue for launchQueued().
     void schedule();
+
+    /// With the mutex held: launches the next chunks of the queue that
+    /// schedule() ordered (those still dirty and not in flight), up to
+    /// maxInFlight tasks. Each task calls it as it ends: one step down the
+    /// queue instead of a pass over every resident chunk.
+    void launchQueued();
 
     /// Guarded by the mutex.
     std::vector<Finished> finished; ///< meshes waiting for ReplacementTracker::accept()
@@ -69,6 +75,8 @@ private:
 
     std::shared_ptr<const terrain::DensityField> mField;
     SchedulerParams mParams;
+    std::vector<ChunkKey> mQueue; ///< dirty chunks in launch order, from the last schedule()
+    std::size_t mQueueNext = 0;   ///< the first entry of mQueue not taken yet
     const EditLayer& mEdits;
     ReplacementTracker& mTracker;
     std::mutex& mMutex;
