@@ -87,6 +87,7 @@ void SampleArray::fill(int bi, int bj, int bk, std::size_t b)
         return;
     }
     const bool cached = mCache && mCache->blockDone[b];
+    if (!edited && !cached && fillByOctants(lo, hi)) return;
     if (mCache && mCache->values.empty()) mCache->values.assign(mValues.size(), 0.0f);
     if (!cached) {
         // The block's procedural samples in one block evaluation: the same
@@ -148,6 +149,72 @@ void SampleArray::fill(int bi, int bj, int bk, std::size_t b)
         }
     }
     if (mCache) mCache->blockDone[b] = 1;
+}
+
+bool SampleArray::fillByOctants(const int lo[3], const int hi[3])
+{
+    constexpr int HALF = BLOCK / 2;
+    struct Octant
+    {
+        int lo[3], hi[3];
+        bool far = false;
+        float farValue = 0.0f;
+    };
+    Octant octants[8];
+    bool anyFar = false, anyNear = false;
+    for (int o = 0; o < 8; ++o) {
+        Octant& q = octants[o];
+        std::int64_t v0[3], v1[3];
+        bool empty = false;
+        for (int a = 0; a < 3; ++a) {
+            q.lo[a] = lo[a] + ((o >> a) & 1) * HALF;
+            q.hi[a] = std::min(q.lo[a] + HALF, hi[a]);
+            empty = empty || q.lo[a] >= q.hi[a];
+            v0[a] = mOrigin[a] + q.lo[a] * mStep;
+            v1[a] = mOrigin[a] + (q.hi[a] - 1) * mStep;
+        }
+        if (empty) {
+            q.hi[0] = q.lo[0]; // no points
+            continue;
+        }
+        q.far = provablyFar(v0, v1);
+        q.farValue = mFarValue;
+        anyFar = anyFar || q.far;
+        anyNear = anyNear || !q.far;
+    }
+    if (!anyFar) return false; // the whole block, evaluated (and cached) by fill()
+
+    // The near octants' points in one block evaluation (the block's box
+    // holds them all), then every octant written.
+    mX.clear();
+    mY.clear();
+    mZ.clear();
+    for (const Octant& q : octants) {
+        if (q.far) continue;
+        for (int k = q.lo[2]; k < q.hi[2]; ++k)
+            for (int j = q.lo[1]; j < q.hi[1]; ++j)
+                for (int i = q.lo[0]; i < q.hi[0]; ++i) {
+                    mX.push_back(double(mOrigin[0] + i * mStep) * mVoxelSize);
+                    mY.push_back(double(mOrigin[1] + j * mStep) * mVoxelSize);
+                    mZ.push_back(double(mOrigin[2] + k * mStep) * mVoxelSize);
+                }
+    }
+    mD.resize(mX.size());
+    if (anyNear) {
+        glm::dvec3 c0, c1;
+        for (int a = 0; a < 3; ++a) {
+            c0[a] = double(mOrigin[a] + lo[a] * mStep) * mVoxelSize;
+            c1[a] = double(mOrigin[a] + (hi[a] - 1) * mStep) * mVoxelSize;
+        }
+        mField->densities({mX.data(), mY.data(), mZ.data(), mX.size(), {c0, c1}}, mD.data());
+    }
+    std::size_t n = 0;
+    for (const Octant& q : octants) {
+        for (int k = q.lo[2]; k < q.hi[2]; ++k)
+            for (int j = q.lo[1]; j < q.hi[1]; ++j)
+                for (int i = q.lo[0]; i < q.hi[0]; ++i) mValues[index(i, j, k)] = q.far ? q.farValue : float(mD[n++]);
+    }
+    return true;
 }
 
 } // namespace strata::world::detail

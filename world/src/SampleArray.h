@@ -65,6 +65,11 @@ private:
     /// block was tried too: on the World benchmark's field it cost more
     /// than it pruned.)
     bool provablyFar(const std::int64_t v0[3], const std::int64_t v1[3]);
+    /// For a block neither far as a whole nor edited: fills its provably far
+    /// 4³ octants with values of their sign and evaluates the others.
+    /// Returns false, filling nothing, when no octant is far. A block
+    /// filled this way is not cached: its far values are not samples.
+    bool fillByOctants(const int lo[3], const int hi[3]);
 
     const terrain::DensityField* mField = nullptr;
     const EditSnapshot* mEdits = nullptr;
