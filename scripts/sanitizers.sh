@@ -59,15 +59,17 @@ if [ ! -f "$tsan/CMakeCache.txt" ]; then
 fi
 nice -n 10 cmake --build "$tsan" --target world_tests tsan_canary -j "$jobs"
 echo "   built in $(($(now) - start)) s"
-echo "== ThreadSanitizer canary: a deliberate race must be reported"
-canary=$tsan/tsan_canary.log
-if TSAN_OPTIONS="suppressions=$root/tests/world/tsan.supp halt_on_error=1" "$tsan/tests/world/tsan_canary" >"$canary" 2>&1 ||
-   ! grep -q "raceOnShared" "$canary"; then
-  echo "the canary's race was not reported (is TSan active? does tests/world/tsan.supp hide Strata frames?):"
-  cat "$canary"
-  exit 1
-fi
-echo "   reported, as it must be"
+echo "== ThreadSanitizer canary: deliberate races must be reported"
+for kind in thread tbb; do
+  canary=$tsan/tsan_canary_$kind.log
+  if TSAN_OPTIONS="suppressions=$root/tests/world/tsan.supp halt_on_error=1" "$tsan/tests/world/tsan_canary" $kind >"$canary" 2>&1 ||
+     ! grep -q "strata::world::canary" "$canary"; then
+    echo "the canary's race ($kind) was not reported (is TSan active? does tests/world/tsan.supp hide Strata frames?):"
+    cat "$canary"
+    exit 1
+  fi
+  echo "   $kind: reported, as it must be"
+done
 start=$(now)
 echo "== ThreadSanitizer: world tests"
 TSAN_OPTIONS="suppressions=$root/tests/world/tsan.supp halt_on_error=1 ${TSAN_OPTIONS:-}" "$tsan/tests/world/world_tests"
