@@ -381,9 +381,49 @@ TriangleMesh readGltf(const std::filesystem::path& path)
                      });
 }
 
+namespace {
+
+std::uint32_t readU32(std::string_view bytes, std::size_t at)
+{
+    std::uint32_t value;
+    std::memcpy(&value, bytes.data() + at, 4); // little-endian, as glTF and this machine
+    return value;
+}
+
+/// The GLB container (a 12-byte header, then chunks of a length, a type and
+/// the bytes) checked before tinygltf parses it: tinygltf copies a BIN chunk
+/// by its stated length without comparing it with the bytes left (a heap
+/// overflow found by fuzz_glb).
+void checkGlbContainer(std::string_view bytes, const std::string& name)
+{
+    auto fail = [&](const std::string& why) { detail::failRead(name, 0, "not a valid GLB file: " + why); };
+    if (bytes.size() < 20) fail("it has " + std::to_string(bytes.size()) + " bytes, less than a header and one chunk");
+    if (bytes.substr(0, 4) != "glTF") fail("it does not start with 'glTF'");
+    if (readU32(bytes, 4) != 2) fail("version " + std::to_string(readU32(bytes, 4)) + ", not 2");
+    if (readU32(bytes, 8) != bytes.size()) {
+        fail("its header says " + std::to_string(readU32(bytes, 8)) + " bytes, the file has " +
+             std::to_string(bytes.size()));
+    }
+    std::size_t at = 12;
+    for (int chunk = 0; at < bytes.size(); ++chunk) {
+        if (bytes.size() - at < 8) fail("chunk " + std::to_string(chunk) + " at byte " + std::to_string(at) + " has no room for its header");
+        const std::uint64_t length = readU32(bytes, at);
+        const std::uint32_t type = readU32(bytes, at + 4);
+        if (chunk == 0 && type != 0x4E4F534Au) fail("its first chunk is not JSON");
+        if (length > bytes.size() - at - 8) {
+            fail("chunk " + std::to_string(chunk) + " at byte " + std::to_string(at) + " claims " +
+                 std::to_string(length) + " bytes, the file has " + std::to_string(bytes.size() - at - 8) + " left");
+        }
+        at += 8 + length;
+    }
+}
+
+} // namespace
+
 TriangleMesh parseGlb(std::string_view bytes, const std::string& name)
 {
     if (bytes.size() > std::numeric_limits<unsigned int>::max()) detail::failRead(name, 0, "file too large for glTF");
+    checkGlbContainer(bytes, name);
     return loadModel(name, /*allowExternalFiles*/ false,
                      [&](tinygltf::TinyGLTF& loader, tinygltf::Model& model, std::string& error, std::string& warning) {
                          return loader.LoadBinaryFromMemory(&model, &error, &warning,

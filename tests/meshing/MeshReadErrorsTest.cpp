@@ -231,6 +231,26 @@ TEST(MeshReadErrors, GlbAccessorOverrunningItsBufferViewIsRejected)
     EXPECT_FALSE(readError("m.glb", triangleGlb(3, 4000)).empty());
 }
 
+// The GLB container is checked before tinygltf reads it: tinygltf copies a
+// BIN chunk by its stated length (fuzz_glb: a heap overflow when the chunk
+// claims more bytes than the file has; fuzz/corpus/glb/bin-chunk-overruns-file.glb).
+TEST(MeshReadErrors, GlbChunksThatDoNotFitTheFileAreRejected)
+{
+    const std::string glb = triangleGlb(3, 36);
+    std::string overrun = glb.substr(0, glb.size() - 8); // the BIN chunk now claims 8 bytes more than are left
+    const std::uint32_t size = std::uint32_t(overrun.size());
+    std::memcpy(overrun.data() + 8, &size, 4);
+    const std::string binAt = std::to_string(12 + 8 + (glb.size() - 12 - 8 - 8 - 48));
+    EXPECT_TRUE(contains(readError("m.glb", overrun), "m.glb: not a valid GLB file: chunk 1 at byte " + binAt +
+                                                          " claims 48 bytes, the file has 40 left"))
+        << readError("m.glb", overrun);
+    EXPECT_TRUE(contains(readError("m.glb", glb.substr(0, glb.size() - 4)), "its header says"));
+    std::string version = glb;
+    version[4] = 1;
+    EXPECT_TRUE(contains(readError("m.glb", version), "version 1, not 2"));
+    EXPECT_TRUE(contains(readError("m.glb", "glTF"), "less than a header and one chunk"));
+}
+
 TEST(MeshReadErrors, GlbWithNanPositionOrBadIndexIsRejected)
 {
     std::string glb = triangleGlb(3, 36);
