@@ -6,6 +6,9 @@
 # the tests (FuzzCorpus.*) replay it. Sanitizer reports go to
 # build-sanitize/fuzz_<name>.sanitizer.* (the image readers capture stderr
 # while OpenImageIO runs, so a report printed there would be lost).
+# FUZZ_SEED fixes libFuzzer's seed (scripts/sanitizers.sh, for CI, uses 1:
+# the same inputs on every run of the same code, so a CI run replays what
+# was checked before it landed); unset, each run explores anew.
 #   scripts/fuzz.sh [SECONDS] [NAME ...]     NAME: glb ply obj stl off scene vdb heightmap
 set -eu
 seconds=${1:-60}
@@ -39,7 +42,7 @@ for name in $names; do
         LSAN_OPTIONS="suppressions=$root/fuzz/lsan.supp:${LSAN_OPTIONS:-}" \
         UBSAN_OPTIONS="log_path=$build/fuzz_$name.sanitizer:print_stacktrace=1:${UBSAN_OPTIONS:-}" \
         "$build/fuzz/fuzz_$name" "$work" -max_total_time="$seconds" -max_len=$max_len -rss_limit_mb=2048 \
-          -malloc_limit_mb=1024 -timeout=10 -artifact_prefix="$crashes/" -print_final_stats=1 2>"$log"); then
+          -malloc_limit_mb=1024 -timeout=10 -seed="${FUZZ_SEED:-0}" -artifact_prefix="$crashes/" -print_final_stats=1 2>"$log"); then
     echo "fuzz_$name FOUND A PROBLEM: see $log, $build/fuzz_$name.sanitizer.* and $crashes/"
     cat "$build/fuzz_$name.sanitizer".* 2>/dev/null | head -40 || true
     status=1

@@ -7,7 +7,8 @@
 #     mesh and .vdb readers and their fuzz corpora, the scene parser, the
 #     heightmap and material map loaders).
 #  2. Each fuzzer for FUZZ_SECONDS (default 60; 0 skips them) on its seed
-#     corpus (scripts/fuzz.sh).
+#     corpus (scripts/fuzz.sh), with libFuzzer's seed FUZZ_SEED (default 1:
+#     reproducible; FUZZ_SEED=0 explores anew).
 #  3. ThreadSanitizer (gcc) in build-tsan/: the world tests, with
 #     tests/world/tsan.supp (TBB's and OpenVDB's own frames only, no Strata
 #     frame), after a canary (tests/world/TsanCanary.cpp) whose deliberate
@@ -48,7 +49,7 @@ echo "   ran in $(($(now) - start)) s"
 if [ "$fuzz_seconds" -gt 0 ]; then
   start=$(now)
   echo "== fuzzers, ${fuzz_seconds} s each"
-  STRATA_FUZZ_BUILD="$san" JOBS="$jobs" sh "$root/scripts/fuzz.sh" "$fuzz_seconds"
+  FUZZ_SEED=${FUZZ_SEED:-1} STRATA_FUZZ_BUILD="$san" JOBS="$jobs" sh "$root/scripts/fuzz.sh" "$fuzz_seconds"
   echo "   fuzzed in $(($(now) - start)) s"
 fi
 

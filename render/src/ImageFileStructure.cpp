@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <cstring>
 #include <fstream>
+#include <map>
 #include <string>
 
 namespace strata::render {
@@ -43,9 +44,71 @@ void checkPng(std::ifstream& in, std::uint64_t size)
     }
 }
 
+std::uint32_t littleEndian32(const std::string& bytes, std::size_t at)
+{
+    return std::uint32_t(std::uint8_t(bytes[at])) | std::uint32_t(std::uint8_t(bytes[at + 1])) << 8 |
+           std::uint32_t(std::uint8_t(bytes[at + 2])) << 16 | std::uint32_t(std::uint8_t(bytes[at + 3])) << 24;
+}
+
+/// An OpenEXR attribute's value against its type, as OpenEXR 3 reads it:
+/// fixed-size types read their own size whatever the attribute's size
+/// says, and a channel list, a preview image and a string vector follow
+/// their own contents, so a size that disagrees with the value sends
+/// OpenEXR's reader somewhere else in the file than the size does (where
+/// a fuzzed "size" made it allocate gigabytes). Returns the reason, or
+/// nothing for a value that reads as its size says.
+std::string exrValueProblem(const std::string& type, const std::string& value)
+{
+    static const std::map<std::string, std::size_t> FIXED = {
+        {"box2i", 16},      {"box2f", 16},    {"v2i", 8},      {"v2f", 8},        {"v2d", 16},
+        {"v3i", 12},        {"v3f", 12},      {"v3d", 24},     {"m33f", 36},      {"m33d", 72},
+        {"m44f", 64},       {"m44d", 128},    {"int", 4},      {"float", 4},      {"double", 8},
+        {"compression", 1}, {"lineOrder", 1}, {"envmap", 1},   {"deepImageState", 1}, {"rational", 8},
+        {"timecode", 8},    {"keycode", 28},  {"tiledesc", 9}, {"chromaticities", 32}};
+    const std::size_t size = value.size();
+    if (const auto fixed = FIXED.find(type); fixed != FIXED.end()) {
+        if (size != fixed->second) return "has " + std::to_string(size) + " bytes, not " + std::to_string(fixed->second);
+        return {};
+    }
+    if (type == "chlist") {
+        // Channels: a NUL-terminated name and 16 bytes each; an empty name ends the list.
+        for (std::size_t at = 0;;) {
+            const std::size_t nul = value.find('\0', at);
+            if (nul == std::string::npos) return "runs past its " + std::to_string(size) + " bytes";
+            if (nul == at) {
+                if (nul + 1 != size) return "ends at byte " + std::to_string(nul + 1) + " of its " + std::to_string(size);
+                return {};
+            }
+            at = nul + 1 + 16;
+            if (at > size) return "runs past its " + std::to_string(size) + " bytes";
+        }
+    }
+    if (type == "preview") {
+        if (size < 8) return "has " + std::to_string(size) + " bytes, less than a preview's size";
+        const std::uint64_t pixels = std::uint64_t(littleEndian32(value, 0)) * littleEndian32(value, 4);
+        if (pixels * 4 + 8 != size) {
+            return "holds " + std::to_string(littleEndian32(value, 0)) + "x" + std::to_string(littleEndian32(value, 4)) +
+                   " preview pixels in " + std::to_string(size) + " bytes";
+        }
+        return {};
+    }
+    if (type == "stringvector") {
+        for (std::size_t at = 0; at < size;) {
+            if (size - at < 4) return "runs past its " + std::to_string(size) + " bytes";
+            const std::uint32_t length = littleEndian32(value, at);
+            if (length > size - at - 4) return "runs past its " + std::to_string(size) + " bytes";
+            at += 4 + length;
+        }
+        return {};
+    }
+    if (type == "floatvector" && size % 4 != 0) return "has " + std::to_string(size) + " bytes, not whole floats";
+    return {}; // string, and types OpenEXR keeps as opaque bytes: read by the size
+}
+
 /// OpenEXR: after the magic number and version, one header (several for a
 /// multi-part file, ended by an empty one) of attributes: name, type name
 /// (NUL-terminated), a 32-bit size and the value; an empty name ends it.
+/// Each value must read as its size says (exrValueProblem()).
 void checkExr(std::ifstream& in, std::uint64_t size)
 {
     std::uint64_t offset = 4;
@@ -76,7 +139,7 @@ void checkExr(std::ifstream& in, std::uint64_t size)
         for (;; ++attributes) {
             const std::string name = readName("an attribute name");
             if (name.empty()) break;
-            readName("an attribute type");
+            const std::string type = readName("an attribute type");
             std::int32_t length = 0;
             if (size - offset < 4 || !in.read(reinterpret_cast<char*>(&length), 4)) {
                 throw Error("is a truncated OpenEXR file: attribute '" + printable(name) + "' has no size");
@@ -87,8 +150,13 @@ void checkExr(std::ifstream& in, std::uint64_t size)
                             std::to_string(offset - 4) + " claims " + std::to_string(length) + " bytes, the file has " +
                             std::to_string(size - offset) + " left");
             }
+            std::string value(std::size_t(length), '\0');
+            if (!in.read(value.data(), length)) throw Error("cannot be read at byte " + std::to_string(offset));
+            if (const std::string problem = exrValueProblem(type, value); !problem.empty()) {
+                throw Error("is a corrupt OpenEXR file: attribute '" + printable(name) + "' (" + printable(type) +
+                            ") at byte " + std::to_string(offset - 4) + " " + problem);
+            }
             offset += std::uint64_t(length);
-            in.seekg(std::streamoff(offset));
         }
         if (!multipart || attributes == 0) return; // single part, or the empty header ending a multi-part file
     }
