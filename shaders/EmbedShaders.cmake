@@ -8,8 +8,9 @@
 #   + "#line 20001 2" + TriplanarMaterial.h         (fragment stage only)
 #   + "#line 30001 3" + TerrainFrame.glsl           (the per-frame uniform block)
 #   + "#line N0001 N" + terrain.vert | terrain.frag
-# (Shadow.h joins the terrain fragment stage after TriplanarMaterial.h;
-# SHADOW_DEPTH_FRAG, PROBE_VERT and PROBE_FRAG are assembled the same way.)
+# (Shadow.h and Atmosphere.h join the terrain fragment stage after
+# TriplanarMaterial.h; SHADOW_DEPTH_FRAG, FULLSCREEN_VERT, SKY_FRAG and
+# PROBE_FRAG are assembled the same way.)
 # The renderer inserts "#define STRATA_FEATURES <bits>u" after the #version
 # line of the fragment stage (one program per feature set).
 # so the GLSL compiler's "file:line" in an error points into the right file.
@@ -23,7 +24,7 @@ endif()
 
 # File numbers used in #line directives; keep in step with SOURCE_NAMES below.
 set(_names ShadingPrelude.glsl TriplanarShading.h TriplanarMaterial.h TerrainFrame.glsl terrain.vert terrain.frag
-  Shadow.h shadow_depth.frag probe.vert probe.frag)
+  Shadow.h shadow_depth.frag fullscreen.vert probe.frag Atmosphere.h sky.frag)
 set(_delimiter "strata_glsl")
 
 set(_line_base 10000)
@@ -51,9 +52,10 @@ endforeach()
 
 set(_head "#version 450 core\n${_src_ShadingPrelude_glsl}")
 set(_vert "${_head}${_src_TerrainFrame_glsl}${_src_terrain_vert}")
-set(_frag "${_head}${_src_TriplanarShading_h}${_src_TriplanarMaterial_h}${_src_Shadow_h}${_src_TerrainFrame_glsl}${_src_terrain_frag}")
+set(_frag "${_head}${_src_TriplanarShading_h}${_src_TriplanarMaterial_h}${_src_Shadow_h}${_src_Atmosphere_h}${_src_TerrainFrame_glsl}${_src_terrain_frag}")
 set(_shadow_frag "${_head}${_src_shadow_depth_frag}")
-set(_probe_vert "${_head}${_src_probe_vert}")
+set(_fullscreen_vert "${_head}${_src_fullscreen_vert}")
+set(_sky_frag "${_head}${_src_TriplanarShading_h}${_src_Atmosphere_h}${_src_sky_frag}")
 set(_probe_frag "${_head}${_src_TriplanarShading_h}${_src_TriplanarMaterial_h}${_src_probe_frag}")
 set(_quoted_names "")
 foreach(_name IN LISTS _names)
@@ -76,8 +78,10 @@ string(APPEND _out "/// Complete fragment shader of the terrain program.\n")
 string(APPEND _out "inline constexpr const char TERRAIN_FRAG[] = R\"${_delimiter}(${_frag})${_delimiter}\";\n\n")
 string(APPEND _out "/// Fragment shader of the shadow-map depth pass (with TERRAIN_VERT).\n")
 string(APPEND _out "inline constexpr const char SHADOW_DEPTH_FRAG[] = R\"${_delimiter}(${_shadow_frag})${_delimiter}\";\n\n")
-string(APPEND _out "/// Shading probe (tests): full-viewport vertex shader.\n")
-string(APPEND _out "inline constexpr const char PROBE_VERT[] = R\"${_delimiter}(${_probe_vert})${_delimiter}\";\n\n")
+string(APPEND _out "/// One triangle covering the viewport (the sky pass, the shading probe).\n")
+string(APPEND _out "inline constexpr const char FULLSCREEN_VERT[] = R\"${_delimiter}(${_fullscreen_vert})${_delimiter}\";\n\n")
+string(APPEND _out "/// The sky pass (with FULLSCREEN_VERT), when the atmosphere is on.\n")
+string(APPEND _out "inline constexpr const char SKY_FRAG[] = R\"${_delimiter}(${_sky_frag})${_delimiter}\";\n\n")
 string(APPEND _out "/// Shading probe (tests): the material at sample points into float targets.\n")
 string(APPEND _out "inline constexpr const char PROBE_FRAG[] = R\"${_delimiter}(${_probe_frag})${_delimiter}\";\n\n")
 string(APPEND _out "} // namespace strata::shaders\n")

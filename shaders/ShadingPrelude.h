@@ -56,6 +56,7 @@ inline vec4 saturate(vec4 x) { return glm::clamp(x, vec4(0.0f), vec4(1.0f)); }
 #include "TriplanarShading.h"
 #include "TriplanarMaterial.h"
 #include "Shadow.h"
+#include "Atmosphere.h"
 
 } // namespace strata::shading
 

@@ -1,8 +1,8 @@
 // Terrain fragment shader: the triplanar material of TriplanarMaterial.h for
 // the feature set STRATA_FEATURES (defined by the renderer), lit by the
-// minimalist Cook–Torrance BRDF, hemisphere ambient, exposure and ACES, or
-// one of the debug views (uFrame.debugView). Output is linear; the sRGB
-// framebuffer encodes it.
+// minimalist Cook–Torrance BRDF, hemisphere ambient, seen through the
+// atmosphere (Atmosphere.h), exposure and ACES, or one of the debug views
+// (uFrame.debugView). Output is linear; the sRGB framebuffer encodes it.
 
 in vec3 vTexturePosition; // texture space
 in vec3 vNormal;
@@ -32,6 +32,13 @@ layout(std140, binding = 3) uniform ShadowBlock
     ShadowParams uShadow;
 };
 layout(binding = 9) uniform sampler2D uShadowMap;
+
+// The sky and aerial perspective (Atmosphere.h; mirrored by
+// shading::AtmosphereParams, checked in render/src/AtmosphereSetup.h).
+layout(std140, binding = 4) uniform AtmosphereBlock
+{
+    AtmosphereParams uAtmosphere;
+};
 
 float shadowMapDepth(int x, int y)
 {
@@ -82,5 +89,6 @@ void main()
     // The interpolated normal (not the mapped one) biases the shadow lookup.
     float sun = sunVisibility(uShadow, vPosition, vNormal);
     LightingParams lit = shadowedLighting(uLighting, sun);
-    fragColor = vec4(toneMap(lightSurface(o, s.viewDir, lit, uMaterial.fresnelStrength), lit.exposure), 1.0f);
+    vec3 radiance = lightSurface(o, s.viewDir, lit, uMaterial.fresnelStrength);
+    fragColor = vec4(finishFragment(radiance, lit.exposure, uAtmosphere, vec3(uFrame.cameraPosition), vPosition), 1.0f);
 }

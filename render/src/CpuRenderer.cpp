@@ -1,5 +1,6 @@
 #include <strata/render/CpuRenderer.h>
 
+#include "AtmosphereSetup.h"
 #include "MaterialMaps.h"
 #include "ShadingBridge.h"
 #include "ShadowSetup.h"
@@ -141,17 +142,22 @@ struct Frame
     glm::vec3 cameraPosition; // relative to the mesh origin
     shading::MaterialParams material;
     shading::LightingParams lighting;
+    shading::AtmosphereParams atmosphere;
     CpuMaps maps;
 };
 
 using ShadeFunction = glm::vec3 (*)(const Frame&, const CpuMaps&, const shading::SurfaceInput&,
-                                    const shading::LightingParams&);
+                                    const shading::LightingParams&, const glm::vec3& position);
 
+/// terrain.frag's shaded path: the material, lit, through the atmosphere,
+/// tone mapped. `position` is the fragment's, relative to the mesh origin.
 template <unsigned FEATURES>
 glm::vec3 shadeWith(const Frame& frame, const CpuMaps& maps, const shading::SurfaceInput& s,
-                    const shading::LightingParams& lighting)
+                    const shading::LightingParams& lighting, const glm::vec3& position)
 {
-    return shading::shadeFragment<FEATURES, CpuMaps>(maps, s, frame.material, lighting);
+    const shading::SurfaceOutput o = shading::evaluateSurface<FEATURES, CpuMaps>(maps, s, frame.material);
+    const glm::vec3 radiance = shading::lightSurface(o, s.viewDir, lighting, frame.material.fresnelStrength);
+    return shading::finishFragment(radiance, lighting.exposure, frame.atmosphere, frame.cameraPosition, position);
 }
 
 /// The CPU side of SHADOW_FETCH: a square depth map, stored rows top to
@@ -438,6 +444,7 @@ Image renderSnapshotCpu(const MeshView& mesh, const SnapshotOptions& options, Cp
 
     const glm::mat4 viewProjection =
         projectionMatrix(options.camera, double(width) / double(height)) * viewMatrix(options.camera, mesh.origin);
+    frame.atmosphere = detail::makeAtmosphereParams(options.lighting, options.camera, mesh.origin, width, height);
 
     // Vertices to clip space.
     std::vector<glm::vec4> clip(mesh.vertexCount);
@@ -455,6 +462,21 @@ Image renderSnapshotCpu(const MeshView& mesh, const SnapshotOptions& options, Cp
     image.pixels.resize(std::size_t(width) * std::size_t(height) * 4);
     const glm::vec3 sky = options.lighting.skyColor;
     const std::uint8_t skyBytes[4] = {encode(sky.r), encode(sky.g), encode(sky.b), 255};
+    // The background: the flat sky colour, or with the atmosphere on the sky
+    // pass of sky.frag at the pixel's centre (gl_FragCoord, y up).
+    auto writeSky = [&](int px, int py, std::uint8_t* out) {
+        if (frame.atmosphere.enabled == 0) {
+            std::copy_n(skyBytes, 4, out);
+            return;
+        }
+        const glm::vec2 fragCoord(float(px) + 0.5f, float(height - 1 - py) + 0.5f);
+        const glm::vec2 ndc = fragCoord / frame.atmosphere.viewportSize * 2.0f - glm::vec2(1.0f);
+        const glm::vec3 c = shading::skyPixel(frame.atmosphere, frame.atmosphere.exposure, ndc);
+        out[0] = encode(c.r);
+        out[1] = encode(c.g);
+        out[2] = encode(c.b);
+        out[3] = 255;
+    };
 
     std::vector<CpuRenderStats> tileStats(std::size_t(bins.tilesX) * std::size_t(bins.tilesY));
     tbb::parallel_for(0, bins.tilesX * bins.tilesY, [&](int tileIndex) {
@@ -474,7 +496,7 @@ Image renderSnapshotCpu(const MeshView& mesh, const SnapshotOptions& options, Cp
                 const int k = (py - y0) * TILE + (px - x0);
                 std::uint8_t* out = image.at(px, py);
                 if (id[k] == NONE) {
-                    std::copy_n(skyBytes, 4, out);
+                    writeSky(px, py, out);
                     continue;
                 }
                 const Triangle& t = triangles[id[k]];
@@ -489,7 +511,7 @@ Image renderSnapshotCpu(const MeshView& mesh, const SnapshotOptions& options, Cp
                 const Interpolated nx = interpolate(t, nxCentre, cy);
                 const Interpolated ny = interpolate(t, cx, nyCentre);
                 if (!self.valid) {
-                    std::copy_n(skyBytes, 4, out);
+                    writeSky(px, py, out);
                     continue;
                 }
                 shading::SurfaceInput s;
@@ -507,7 +529,7 @@ Image renderSnapshotCpu(const MeshView& mesh, const SnapshotOptions& options, Cp
                 } else {
                     // The interpolated (not the normal-mapped) normal biases the lookup.
                     const float visibility = shading::sunVisibility(shadowMap, shadow, self.position, self.normal);
-                    c = shade(frame, maps, s, shading::shadowedLighting(frame.lighting, visibility));
+                    c = shade(frame, maps, s, shading::shadowedLighting(frame.lighting, visibility), self.position);
                 }
                 // A naive triplanar shader fetches all three projections of every map group it reads.
                 ++counted.shadedPixels;

@@ -3,6 +3,7 @@
 #include <strata/Error.h>
 #include <strata/render/GlContext.h>
 
+#include "AtmosphereSetup.h"
 #include "GlProgram.h"
 #include "MaterialMaps.h"
 #include "ShadingBridge.h"
@@ -196,6 +197,12 @@ struct GlRenderer::Impl
     GlObject frameBuffer;
     GlObject materialBuffer;
     GlObject lightingBuffer;
+    GlObject atmosphereBuffer;
+
+    // The sky pass (atmosphere on): its program and an empty vertex array
+    // (the full-viewport triangle comes from gl_VertexID).
+    GlObject skyProgram;
+    GlObject skyVertexArray;
 
     // Mesh.
     GlObject vertexArray;
@@ -331,6 +338,28 @@ struct GlRenderer::Impl
         shadowCurrent = true;
     }
 
+    /// The sky pass (sky.frag) over the whole viewport: no depth test or
+    /// write, so the terrain then draws over it. Needs the lighting and
+    /// atmosphere blocks bound; restores the depth and cull state draw() set.
+    void drawSky()
+    {
+        if (!skyProgram) {
+            const GlObject vertex = detail::compileShader(GL_VERTEX_SHADER, shaders::FULLSCREEN_VERT, "sky vertex");
+            const GlObject fragment = detail::compileShader(GL_FRAGMENT_SHADER, shaders::SKY_FRAG, "sky fragment");
+            skyProgram = detail::linkProgram(vertex, fragment, "sky");
+        }
+        glDisable(GL_DEPTH_TEST);
+        glDepthMask(GL_FALSE);
+        glDisable(GL_CULL_FACE);
+        glUseProgram(skyProgram.id());
+        glBindVertexArray(skyVertexArray.id());
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+        glEnable(GL_DEPTH_TEST);
+        glDepthMask(GL_TRUE);
+        glEnable(GL_CULL_FACE);
+        detail::checkGl("drawing the sky");
+    }
+
     void ensureMaterial()
     {
         if (!haveMaterial) {
@@ -354,7 +383,11 @@ GlRenderer::GlRenderer(GlContext& context) : mImpl(std::make_unique<Impl>(contex
     glNamedBufferStorage(r.frameBuffer.id(), sizeof(detail::FrameBlock), nullptr, GL_DYNAMIC_STORAGE_BIT);
     glNamedBufferStorage(r.materialBuffer.id(), sizeof(detail::MaterialBlock), nullptr, GL_DYNAMIC_STORAGE_BIT);
     glNamedBufferStorage(r.lightingBuffer.id(), sizeof(detail::LightingBlock), nullptr, GL_DYNAMIC_STORAGE_BIT);
+    r.atmosphereBuffer = detail::createBuffer();
+    glNamedBufferStorage(r.atmosphereBuffer.id(), sizeof(shading::AtmosphereParams), nullptr,
+                         GL_DYNAMIC_STORAGE_BIT);
     r.vertexArray = detail::createVertexArray();
+    r.skyVertexArray = detail::createVertexArray();
     r.stats.possible = int(allFeatureSets().size());
     detail::checkGl("creating the renderer");
 }
@@ -532,6 +565,9 @@ void GlRenderer::draw(const Camera& camera, const Lighting& lighting, unsigned f
     glNamedBufferSubData(r.frameBuffer.id(), 0, sizeof(frame), &frame);
     const detail::LightingBlock lightingBlock = detail::toBlock(detail::toShading(lighting));
     glNamedBufferSubData(r.lightingBuffer.id(), 0, sizeof(lightingBlock), &lightingBlock);
+    const shading::AtmosphereParams atmosphere = detail::makeAtmosphereParams(lighting, camera, r.origin, width, height);
+    glNamedBufferSubData(r.atmosphereBuffer.id(), 0, sizeof(atmosphere), &atmosphere);
+    glBindBufferBase(GL_UNIFORM_BUFFER, detail::ATMOSPHERE_BLOCK_BINDING, r.atmosphereBuffer.id());
     glBindBufferBase(GL_UNIFORM_BUFFER, detail::FRAME_BLOCK_BINDING, r.frameBuffer.id());
     glBindBufferBase(GL_UNIFORM_BUFFER, detail::MATERIAL_BLOCK_BINDING, r.materialBuffer.id());
     glBindBufferBase(GL_UNIFORM_BUFFER, detail::LIGHTING_BLOCK_BINDING, r.lightingBuffer.id());
@@ -562,6 +598,9 @@ void GlRenderer::draw(const Camera& camera, const Lighting& lighting, unsigned f
         glClearColor(sky.r, sky.g, sky.b, 1.0f);
         glClearDepth(1.0);
         glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+        if (atmosphere.enabled != 0) {
+            r.drawSky();
+        }
     }
     if (r.indexCount > 0) {
         glUseProgram(program);

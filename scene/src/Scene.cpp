@@ -185,6 +185,24 @@ Scene parseScene(std::string_view text, const std::string& source)
     }
     light.finish();
 
+    // [atmosphere]: the sky and aerial perspective, on unless disabled.
+    TableReader sky = root.table("atmosphere");
+    render::Atmosphere& atmosphere = scene.lighting.atmosphere;
+    atmosphere.enabled = sky.boolean("enabled", true);
+    for (const auto& [key, color] : {std::pair{"zenith_color", &atmosphere.zenithColor},
+                                     std::pair{"horizon_color", &atmosphere.horizonColor}}) {
+        if (const std::optional<glm::dvec3> value = sky.vec3(key, 1e3)) {
+            if (glm::any(glm::lessThan(*value, glm::dvec3(0.0)))) sky.fail(nullptr, key, sky.shown(key) + "must not be negative");
+            *color = glm::vec3(*value);
+        }
+    }
+    atmosphere.fogDensity = float(sky.number("fog_density", atmosphere.fogDensity, 0.0, 1.0));
+    atmosphere.fogFalloff = float(sky.number("fog_falloff", atmosphere.fogFalloff, 0.0, 1.0));
+    atmosphere.fogBaseHeight = sky.number("fog_base_height", atmosphere.fogBaseHeight, -1e9, 1e9);
+    atmosphere.sunGlow = float(sky.number("sun_glow", atmosphere.sunGlow, 0.0, 100.0));
+    atmosphere.sunDiscRadius = float(sky.number("sun_disc_radius", atmosphere.sunDiscRadius, 0.0, 20.0));
+    sky.finish();
+
     TableReader snapshot = root.table("snapshot");
     scene.snapshot.width = int(snapshot.integer("width", scene.snapshot.width, 1, 16384));
     scene.snapshot.height = int(snapshot.integer("height", scene.snapshot.height, 1, 16384));

@@ -121,6 +121,47 @@ INSTANTIATE_TEST_SUITE_P(Extremes, FarOrigin,
                              return std::get<0>(info.param) + "_1e" + std::to_string(int(std::lround(std::log10(d))));
                          });
 
+// The sky and the height fog far out: the fog's base height is world
+// metres (double), made relative to the mesh origin before it reaches the
+// shader, so a world 1e7 m away fogs exactly as one at the origin. Dense,
+// low fog (density 0.08/m at the base, falloff 0.5/m) so that it visibly
+// changes the image; a sky pass too (the camera sees the horizon).
+TEST_P(FarOrigin, AtmosphereMatchesTheRenderNearTheOrigin)
+{
+    const auto [backend, distance] = GetParam();
+    const TestMesh mesh = groundAndSphere();
+    const glm::dvec3 nearOrigin(3.3, 1.7, -2.1);
+    const glm::dvec3 farOrigin = nearOrigin + glm::dvec3(distance, -distance, distance);
+    auto foggy = [&](const glm::dvec3& origin) {
+        SnapshotOptions options = optionsAt(mesh, origin);
+        options.lighting.atmosphere.enabled = true;
+        options.lighting.atmosphere.fogDensity = 0.08f;
+        options.lighting.atmosphere.fogFalloff = 0.5f;
+        options.lighting.atmosphere.fogBaseHeight = origin.y + 0.5;
+        options.lighting.sunDirection = glm::vec3(-0.3f, 0.25f, -0.9f); // the glow in view
+        return options;
+    };
+    MeshView nearView = mesh.view();
+    nearView.origin = nearOrigin;
+    MeshView farView = mesh.view();
+    farView.origin = farOrigin;
+    const Image nearImage = render(backend, nearView, foggy(nearOrigin));
+    const Image farImage = render(backend, farView, foggy(farOrigin));
+    const double db = psnr(nearImage, farImage);
+    std::ostringstream what;
+    what << backend << ": fog and sky at " << distance << " m vs near the origin";
+    report(what.str(), db);
+    EXPECT_GE(db, 40.0) << what.str();
+    EXPECT_GE(fractionWithin(nearImage, farImage, 2), 0.99) << what.str();
+
+    // The fog is there: without the atmosphere most pixels change.
+    const Image clear = render(backend, nearView, optionsAt(mesh, nearOrigin));
+    const double changed = 1.0 - fractionWithin(nearImage, clear, 8);
+    std::cout << "[ extremes ] " << backend << ": the atmosphere changes " << changed * 100.0 << "% of the pixels"
+              << std::endl;
+    EXPECT_GT(changed, 0.5);
+}
+
 // Detail maps repeat detailScale times per base repeat. With a detail scale
 // that is not a whole number, an origin that is a whole number of base
 // periods need not be a whole number of detail periods, so the detail

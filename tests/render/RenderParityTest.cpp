@@ -22,6 +22,7 @@
 #include <memory>
 #include <string>
 #include <tuple>
+#include <vector>
 
 namespace {
 
@@ -106,6 +107,43 @@ TEST(RenderParity, CastShadowsMatch)
     }
     std::cout << "  " << darker << " pixels in cast shadow" << std::endl;
     EXPECT_GT(darker, 1500); // measured: 2369 of 230400 (the shadow falls mostly behind the box)
+}
+
+/// A 600 m ground slab with a box on it, seen from 6 m up towards a low sun:
+/// the sky pass (gradient, glow, the sun's disc) and thick height fog over
+/// the distance, both renderers through the same Atmosphere.h.
+TEST(RenderParity, AtmosphereMatches)
+{
+    TestMesh mesh = strata::test::makeBox(glm::vec3(-300.0f, -1.0f, -300.0f), glm::vec3(300.0f, 0.0f, 300.0f));
+    const TestMesh box = strata::test::makeBox(glm::vec3(-4.0f, 0.0f, -30.0f), glm::vec3(4.0f, 8.0f, -22.0f));
+    const auto base = std::uint32_t(mesh.positions.size());
+    mesh.positions.insert(mesh.positions.end(), box.positions.begin(), box.positions.end());
+    mesh.normals.insert(mesh.normals.end(), box.normals.begin(), box.normals.end());
+    for (std::uint32_t i : box.indices) mesh.indices.push_back(base + i);
+    SnapshotOptions options = strata::test::goldenOptions(mesh, "full", 640, 360);
+    options.camera.position = glm::dvec3(0.0, 6.0, 40.0);
+    options.camera.target = glm::dvec3(0.0, 8.0, -100.0);
+    options.camera.nearPlane = 0.5;
+    options.camera.farPlane = 2000.0;
+    options.lighting.sunDirection = glm::vec3(0.15f, 0.12f, -1.0f);
+    options.lighting.extraLights.clear();
+    options.shadows.resolution = 1024;
+    Atmosphere& atmosphere = options.lighting.atmosphere;
+    atmosphere.enabled = true;
+    atmosphere.fogDensity = 0.008f;
+    atmosphere.fogFalloff = 0.05f;
+    atmosphere.sunDiscRadius = 2.0f;
+    const Image gl = renderSnapshot(context(), mesh.view(), options);
+    const Image cpu = renderSnapshotCpu(mesh.view(), options);
+    expectParity(gl, cpu, "atmosphere");
+    // The sky is not flat (it brightens towards the sun and the horizon) and
+    // the fog is there (the far ground is lighter than the near ground).
+    EXPECT_NE(std::vector<std::uint8_t>(cpu.at(0, 0), cpu.at(0, 0) + 3),
+              std::vector<std::uint8_t>(cpu.at(320, 0), cpu.at(320, 0) + 3));
+    const int farGround = int(cpu.at(20, 200)[0]) + cpu.at(20, 200)[1] + cpu.at(20, 200)[2];
+    const int nearGround = int(cpu.at(20, 355)[0]) + cpu.at(20, 355)[1] + cpu.at(20, 355)[2];
+    std::cout << "  ground brightness (sum of sRGB bytes): far " << farGround << ", near " << nearGround << std::endl;
+    EXPECT_GT(farGround, nearGround + 30);
 }
 
 } // namespace

@@ -129,7 +129,7 @@ ProbeOutput probeOnGl(const Material& material, const Lighting& lighting,
     const std::uint32_t features = materialFeatures(material);
     std::string fragment = strata::shaders::PROBE_FRAG;
     fragment.insert(fragment.find('\n') + 1, "#define STRATA_FEATURES " + std::to_string(features) + "u\n");
-    const d::GlObject vs = d::compileShader(GL_VERTEX_SHADER, strata::shaders::PROBE_VERT, "probe vertex");
+    const d::GlObject vs = d::compileShader(GL_VERTEX_SHADER, strata::shaders::FULLSCREEN_VERT, "probe vertex");
     const d::GlObject fs = d::compileShader(GL_FRAGMENT_SHADER, fragment, "probe fragment");
     const d::GlObject program = d::linkProgram(vs, fs, "probe");
 

@@ -286,3 +286,43 @@ TEST(Scene, LightErrorsNameTheKey)
               "test.toml:2: light.extra = 3 must be an array of at most 3 tables ([[light.extra]])");
     EXPECT_EQ(parseError("[[light.extra]]\n[[light.extra]]\n[[light.extra]]\n[[light.extra]]\n").rfind("test.toml:", 0), 0u);
 }
+
+TEST(Scene, AtmosphereIsOnByDefaultAndEveryKeyIsRead)
+{
+    EXPECT_TRUE(parseScene("", "empty.toml").lighting.atmosphere.enabled);
+    EXPECT_TRUE(parseScene(strata::scene::defaultSceneText(), "<default scene>").lighting.atmosphere.enabled);
+    const Scene scene = parseScene(R"(
+[atmosphere]
+enabled = true
+zenith_color = [0.1, 0.2, 0.3]
+horizon_color = [0.6, 0.7, 0.8]
+fog_density = 0.002
+fog_falloff = 0.01
+fog_base_height = -120.5
+sun_glow = 2.0
+sun_disc_radius = 0
+)",
+                                   "atmosphere.toml");
+    const strata::render::Atmosphere& a = scene.lighting.atmosphere;
+    EXPECT_TRUE(a.enabled);
+    EXPECT_EQ(a.zenithColor, glm::vec3(0.1f, 0.2f, 0.3f));
+    EXPECT_EQ(a.horizonColor, glm::vec3(0.6f, 0.7f, 0.8f));
+    EXPECT_FLOAT_EQ(a.fogDensity, 0.002f);
+    EXPECT_FLOAT_EQ(a.fogFalloff, 0.01f);
+    EXPECT_EQ(a.fogBaseHeight, -120.5);
+    EXPECT_FLOAT_EQ(a.sunGlow, 2.0f);
+    EXPECT_EQ(a.sunDiscRadius, 0.0f);
+    EXPECT_FALSE(parseScene("[atmosphere]\nenabled = false\n", "off.toml").lighting.atmosphere.enabled);
+}
+
+TEST(Scene, AtmosphereErrorsNameTheKey)
+{
+    EXPECT_EQ(parseError("[atmosphere]\nfog_density = 2\n"),
+              "test.toml:2: atmosphere.fog_density = 2 is out of range [0, 1]");
+    EXPECT_EQ(parseError("[atmosphere]\nhorizon_color = [1, -1, 1]\n"),
+              "test.toml:2: atmosphere.horizon_color = [ 1, -1, 1 ] must not be negative");
+    EXPECT_EQ(parseError("[atmosphere]\nsun_disc_radius = 30\n"),
+              "test.toml:2: atmosphere.sun_disc_radius = 30 is out of range [0, 20]");
+    EXPECT_EQ(parseError("[atmosphere]\nenabled = 1\n"), "test.toml:2: atmosphere.enabled = 1 must be true or false");
+    EXPECT_EQ(parseError("[atmosphere]\nfog = 0.1\n"), "test.toml:2: unknown key 'atmosphere.fog'");
+}

@@ -4,6 +4,7 @@
 /// The math is in shaders/TriplanarShading.h and TriplanarMaterial.h,
 /// shared by the GL and the CPU renderer.
 
+#include <strata/render/Atmosphere.h>
 #include <strata/render/Texture.h>
 
 #include <glm/vec3.hpp>
@@ -121,6 +122,8 @@ struct Lighting
     glm::vec3 groundAmbient{0.16f, 0.14f, 0.12f};    ///< linear, from below
     glm::vec3 skyColor{0.55f, 0.7f, 0.9f};           ///< background, linear
     float exposure = 1.0f;                           ///< multiplies radiance before the ACES tone map
+    Atmosphere atmosphere;                           ///< sky and fog; off by default
 };
+
 
 } // namespace strata::render
