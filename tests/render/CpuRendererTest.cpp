@@ -176,6 +176,7 @@ TEST(CpuRenderer, TopLeftRuleOnPixelCentres)
     SnapshotOptions options;
     options.width = 64;
     options.height = 64;
+    options.samples = 1; // the rule at pixel centres (multisampling: CpuMsaaTest.cpp)
     options.camera.position = glm::dvec3(0.0, 0.0, 4.0);
     options.camera.target = glm::dvec3(0.0);
     options.camera.fovYDegrees = 2.0 * glm::degrees(std::atan(0.5));

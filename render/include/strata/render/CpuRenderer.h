@@ -9,6 +9,9 @@
 #include <strata/render/SnapshotOptions.h>
 
 #include <cstdint>
+#include <vector>
+
+#include <glm/vec2.hpp>
 
 namespace strata::render {
 
@@ -34,7 +37,13 @@ struct CpuRenderStats
 ///    perspective-correct interpolation; a float depth buffer with GL_LESS;
 ///    GL's top-left fill rule on vertices snapped to 1/256 pixel;
 ///    back faces (clockwise on screen) culled;
-///  - one sample per pixel (options.samples and anisotropy are ignored);
+///  - options.samples coverage samples per pixel (1, 2, 4, 8 or 16; other
+///    counts take the next lower), at GL's standard positions
+///    (cpuSamplePositions()), each with its own depth; a pixel's fragment
+///    is shaded once per triangle covering any of its samples, at the pixel
+///    centre as GL does, stored as 8-bit sRGB at the samples it covers, and
+///    the pixel resolved to the rounded mean of those bytes (llvmpipe's
+///    resolve); anisotropy is ignored;
 ///  - fragments are shaded in 2×2 quads: UV derivatives are the differences
 ///    to the quad neighbour in x and in y of the same triangle's attributes
 ///    (helper pixels extrapolate, as on a GPU), so the mip level is GL's;
@@ -57,5 +66,10 @@ struct CpuRenderStats
 /// `stats`, when not null, receives the fetch counters (the same on any
 /// thread count).
 Image renderSnapshotCpu(const MeshView& mesh, const SnapshotOptions& options, CpuRenderStats* stats = nullptr);
+
+/// Where renderSnapshotCpu() puts the coverage samples of a pixel for
+/// `samples`: positions in [0, 1]² in GL window coordinates (origin at the
+/// pixel's bottom-left corner, y up), as glGetMultisamplefv reports GL's.
+std::vector<glm::vec2> cpuSamplePositions(int samples);
 
 } // namespace strata::render

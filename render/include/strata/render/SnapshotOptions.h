@@ -46,7 +46,7 @@ struct SnapshotOptions
 {
     int width = 1280; ///< pixels, 1..16384
     int height = 720; ///< pixels, 1..16384
-    int samples = 4;  ///< GL: MSAA samples (1 = off); the CPU renderer takes one sample per pixel
+    int samples = 4;  ///< MSAA samples per pixel (1 = off), on GL and on the CPU renderer
     /// GL: maximum anisotropic filtering (1 = plain trilinear, up to 16;
     /// clamped to what the driver offers). Trilinear is what the CPU
     /// reference sampler does; anisotropy sharpens grazing views but costs
