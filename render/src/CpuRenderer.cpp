@@ -73,6 +73,7 @@ struct CpuMaps
     std::array<const Texture*, 9> maps{};
     std::uint32_t features = 0;
     TextureFilter filter = TextureFilter::Trilinear;
+    LodLog2 lodLog2 = LodLog2::Exact;
     mutable std::uint64_t fetches = 0; ///< SAMPLE_MAP calls
     mutable std::uint32_t groups = 0;  ///< bit per map group sampled at the current fragment
 
@@ -82,7 +83,7 @@ struct CpuMaps
         static constexpr std::uint32_t GROUP[9] = {0, 1, 2, 0, 1, 2, 3, 4, 5};
         ++fetches;
         groups |= 1u << GROUP[std::size_t(map)];
-        return sampleFiltered(*maps[std::size_t(map)], filter, uv, dUVdx, dUVdy);
+        return sampleFiltered(*maps[std::size_t(map)], filter, uv, dUVdx, dUVdy, lodLog2);
     }
 };
 
@@ -489,6 +490,7 @@ Image renderSnapshotCpu(const MeshView& mesh, const SnapshotOptions& options, Cp
     for (std::size_t i = 0; i < 9; ++i) frame.maps.maps[i] = textures[i].get();
     frame.maps.features = effectiveFeatures(material, options.featureMask);
     frame.maps.filter = options.filtering;
+    frame.maps.lodLog2 = options.cpuLodLog2;
     const ShadeFunction shade = shadeFunctionFor(frame.maps.features);
     const int debugView = int(options.debugView);
 

@@ -360,26 +360,31 @@ glm::vec4 sampleBilinear(const Texture& texture, int levelIndex, glm::vec2 uv)
     return (t00 * (1.0f - a) + t10 * a) * (1.0f - b) + (t01 * (1.0f - a) + t11 * a) * b;
 }
 
-float textureLod(const Texture& texture, glm::vec2 dUVdx, glm::vec2 dUVdy)
+float textureLod(const Texture& texture, glm::vec2 dUVdx, glm::vec2 dUVdy, LodLog2 log2)
 {
     const float w = float(texture.width());
     const float h = float(texture.height());
     const float x2 = dUVdx.x * w * dUVdx.x * w + dUVdx.y * h * dUVdx.y * h;
     const float y2 = dUVdy.x * w * dUVdy.x * w + dUVdy.y * h * dUVdy.y * h;
     const float rho2 = std::max(x2, y2);
-    if (!(rho2 > 0.0f)) {
+    if (!(rho2 > 0.0f)) { // zero or NaN: the finest level
         return -1000.0f;
     }
-    // log2 as Mesa's llvmpipe computes it (lp_build_fast_log2): the exponent
-    // plus the mantissa's fraction, exact at powers of two and linear between.
+    if (std::isinf(rho2)) { // the coarsest
+        return 1000.0f;
+    }
+    if (log2 == LodLog2::Exact) {
+        return 0.5f * std::log2(rho2);
+    }
+    // llvmpipe: the exponent plus the mantissa's fraction.
     int exponent = 0;
     const float mantissa = std::frexp(rho2, &exponent); // rho2 = mantissa · 2^exponent, mantissa in [0.5, 1)
     return 0.5f * (float(exponent - 1) + (2.0f * mantissa - 1.0f));
 }
 
-glm::vec4 sampleTrilinear(const Texture& texture, glm::vec2 uv, glm::vec2 dUVdx, glm::vec2 dUVdy)
+glm::vec4 sampleTrilinear(const Texture& texture, glm::vec2 uv, glm::vec2 dUVdx, glm::vec2 dUVdy, LodLog2 log2)
 {
-    const float lambda = textureLod(texture, dUVdx, dUVdy);
+    const float lambda = textureLod(texture, dUVdx, dUVdy, log2);
     const int last = int(texture.levels.size()) - 1;
     if (!(lambda > 0.0f) || last == 0) {
         return sampleBilinear(texture, 0, uv);
@@ -397,9 +402,10 @@ glm::vec4 sampleTrilinear(const Texture& texture, glm::vec2 uv, glm::vec2 dUVdx,
     return a * (1.0f - t) + b * t;
 }
 
-glm::vec4 sampleBilinearNearestMip(const Texture& texture, glm::vec2 uv, glm::vec2 dUVdx, glm::vec2 dUVdy)
+glm::vec4 sampleBilinearNearestMip(const Texture& texture, glm::vec2 uv, glm::vec2 dUVdx, glm::vec2 dUVdy,
+                                   LodLog2 log2)
 {
-    const float lambda = textureLod(texture, dUVdx, dUVdy);
+    const float lambda = textureLod(texture, dUVdx, dUVdy, log2);
     const int last = int(texture.levels.size()) - 1;
     if (!(lambda > 0.5f) || last == 0) {
         return sampleBilinear(texture, 0, uv);
@@ -410,10 +416,11 @@ glm::vec4 sampleBilinearNearestMip(const Texture& texture, glm::vec2 uv, glm::ve
     return sampleBilinear(texture, int(std::ceil(lambda + 0.5f)) - 1, uv);
 }
 
-glm::vec4 sampleFiltered(const Texture& texture, TextureFilter filter, glm::vec2 uv, glm::vec2 dUVdx, glm::vec2 dUVdy)
+glm::vec4 sampleFiltered(const Texture& texture, TextureFilter filter, glm::vec2 uv, glm::vec2 dUVdx, glm::vec2 dUVdy,
+                         LodLog2 log2)
 {
-    return filter == TextureFilter::Bilinear ? sampleBilinearNearestMip(texture, uv, dUVdx, dUVdy)
-                                             : sampleTrilinear(texture, uv, dUVdx, dUVdy);
+    return filter == TextureFilter::Bilinear ? sampleBilinearNearestMip(texture, uv, dUVdx, dUVdy, log2)
+                                             : sampleTrilinear(texture, uv, dUVdx, dUVdy, log2);
 }
 
 } // namespace strata::render

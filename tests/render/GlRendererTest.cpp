@@ -688,6 +688,7 @@ TEST(GlRendererDebugViews, MatchTheCpuRenderersDebugViews)
     options.width = 96;
     options.height = 96;
     options.samples = 1;
+    options.cpuLodLog2 = LodLog2::Llvmpipe; // held to llvmpipe's level of detail
     options.camera = orbitCamera(glm::dvec3(-2.0), glm::dvec3(2.0), 30.0, 30.0);
     options.material = fullMaterial();
     GlRenderer renderer(*context);

@@ -69,7 +69,8 @@ inline Material circuitryMaterial(const std::string& variant)
 
 /// The golden scenes' options: `mesh` seen from azimuth 35°, elevation 30°
 /// through a 40° lens filling width × height, one sample per pixel, the sun
-/// and one extra light, the circuitry material of `variant`.
+/// and one extra light, the circuitry material of `variant`; the CPU
+/// renderer takes llvmpipe's log2 for its level of detail.
 inline SnapshotOptions goldenOptions(const TestMesh& mesh, const std::string& variant, int width = 256,
                                      int height = 256)
 {
@@ -77,6 +78,7 @@ inline SnapshotOptions goldenOptions(const TestMesh& mesh, const std::string& va
     options.width = width;
     options.height = height;
     options.samples = 1;
+    options.cpuLodLog2 = LodLog2::Llvmpipe; // held to llvmpipe, the GL of the parity tests
     glm::vec3 lo(1e30f), hi(-1e30f);
     for (const glm::vec3& p : mesh.positions) {
         lo = glm::min(lo, p);

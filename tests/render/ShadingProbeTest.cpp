@@ -42,18 +42,22 @@ namespace shading = strata::shading;
 
 // Mesa's llvmpipe filters RGBA8 (non-sRGB) textures on a fixed-point "AoS"
 // path by default, with 8-bit bilinear and mip weights: blend weights then
-// differ from the float CPU sampler by up to 0.02 (measured here), beyond
-// the probe's 1e-3. GALLIVM_PERF=no_aos_sampling selects llvmpipe's float
-// path, whose results match the CPU sampler to 1e-6. The variable is read
-// once, when the driver loads, so it is set before main() for this whole
-// test binary (unless the environment already sets GALLIVM_PERF). Other
-// drivers ignore it. The strata executable does not set it (the AoS path
-// is about 13% faster at 1280×720 with 4× MSAA, and the full images stay
-// within the parity thresholds either way: see RenderParityTest.cpp).
-const bool llvmpipeFloatSampling = [] {
-    ::setenv("GALLIVM_PERF", "no_aos_sampling", 0);
-    return true;
-}();
+// differ from the float CPU sampler by up to 0.025 and shaded colours by up
+// to 13/255 at a few points (measured here), where height blending turns
+// small mask differences into larger weight differences. With
+// GALLIVM_PERF=no_aos_sampling llvmpipe filters in float and matches the
+// CPU sampler to 1e-6. The probe runs both ways without setting anything
+// itself: by default (llvmpipe as the product uses it) with bounds that
+// admit 8-bit filter weights, and as the ctest entry
+// ShadingProbe.FloatFilteringMatchesTo1e-3 (tests/render/CMakeLists.txt)
+// with the variable set, where it holds the strict bounds. Other drivers
+// ignore the variable; both ways the CPU takes llvmpipe's log2 for the
+// level of detail (LodLog2::Llvmpipe).
+bool llvmpipeFloatFiltering()
+{
+    const char* perf = std::getenv("GALLIVM_PERF");
+    return perf != nullptr && std::string(perf).find("no_aos_sampling") != std::string::npos;
+}
 
 constexpr int COLUMNS = 64; // PROBE_COLUMNS in probe.frag
 constexpr int SAMPLES = 4096;
@@ -65,7 +69,7 @@ struct CpuMaps
 
     glm::vec4 sample(int map, glm::vec2 uv, glm::vec2 dUVdx, glm::vec2 dUVdy) const
     {
-        return sampleTrilinear(*maps[std::size_t(map)], uv, dUVdx, dUVdy);
+        return sampleTrilinear(*maps[std::size_t(map)], uv, dUVdx, dUVdy, LodLog2::Llvmpipe);
     }
 };
 
@@ -246,8 +250,15 @@ TEST_P(ShadingProbe, GlAndCpuAgreeAtEverySamplePoint)
     const shading::MaterialParams mp = strata::render::detail::toShading(material);
     const shading::LightingParams lp = strata::render::detail::toShading(lighting);
 
+    // Float filtering: the math alone differs (1e-3, 2/255). llvmpipe's
+    // default 8-bit filter weights: the bounds of the measured worst case
+    // with a margin, and 97% of the colours within 2/255.
+    const bool strict = llvmpipeFloatFiltering();
+    const float weightBound = strict ? 1e-3f : 0.04f;
+    const float normalBound = strict ? 1e-3f : 0.02f;
+    const float colorBound = strict ? 2.0f / 255.0f : 20.0f / 255.0f;
     float worstWeight = 0.0f, worstNormal = 0.0f, worstColor = 0.0f, worstAlbedo = 0.0f;
-    int badWeights = 0, badNormals = 0, badColors = 0;
+    int badWeights = 0, badNormals = 0, badColors = 0, colorsWithin2 = 0;
     for (std::size_t i = 0; i < points.size(); ++i) {
         const shading::SurfaceInput& s = points[i];
         const shading::SurfaceOutput o = shading::evaluateSurface<feature::ALL, CpuMaps>(cpuMaps, s, mp);
@@ -261,17 +272,21 @@ TEST_P(ShadingProbe, GlAndCpuAgreeAtEverySamplePoint)
         worstColor = std::max(worstColor, dc);
         worstAlbedo = std::max(worstAlbedo, maxComponent(o.albedo - glm::vec3(gl.albedo[i])));
         ASSERT_TRUE(std::isfinite(gl.colors[i].x) && std::isfinite(gl.normals[i].x)) << i;
-        if (dw > 1e-3f && badWeights++ < 3) {
+        colorsWithin2 += dc <= 2.0f / 255.0f;
+        if (dw > weightBound && badWeights++ < 3) {
             ADD_FAILURE() << "sample " << i << ": weights differ by " << dw;
         }
-        if (dn > 1e-3f && badNormals++ < 3) {
+        if (dn > normalBound && badNormals++ < 3) {
             ADD_FAILURE() << "sample " << i << ": normals differ by " << dn;
         }
-        if (dc > 2.0f / 255.0f && badColors++ < 3) {
+        if (dc > colorBound && badColors++ < 3) {
             ADD_FAILURE() << "sample " << i << ": colours differ by " << dc * 255.0f << "/255";
         }
     }
-    (void)llvmpipeFloatSampling;
+    const double within2 = double(colorsWithin2) / double(points.size());
+    std::cout << "[ probe    ] " << (strict ? "strict" : "AoS") << ": " << within2 * 100.0
+              << "% of the colours within 2/255" << std::endl;
+    EXPECT_GE(within2, strict ? 1.0 : 0.97);
     std::cout << "[ probe    ] GALLIVM_PERF=" << (std::getenv("GALLIVM_PERF") ? std::getenv("GALLIVM_PERF") : "") << " "
               << variant << " (" << featureNames(materialFeatures(material)) << "), " << points.size()
               << " points: max |Δweight| " << worstWeight << ", max |Δnormal| " << worstNormal << ", max |Δcolour| "
@@ -283,25 +298,34 @@ TEST_P(ShadingProbe, GlAndCpuAgreeAtEverySamplePoint)
 
 INSTANTIATE_TEST_SUITE_P(FeatureSets, ShadingProbe, ::testing::Values("albedo", "normal-rnm", "full", "mods"));
 
-/// The CPU sampler's level of detail follows llvmpipe's log2 approximation:
-/// exact at powers of two, linear in between.
-TEST(TextureLod, Log2IsLinearBetweenPowersOfTwoAsOnLlvmpipe)
+/// The CPU sampler's level of detail: exact by default, as the GL
+/// specification defines it, or llvmpipe's log2 approximation on request
+/// (exact at powers of two, linear in between).
+TEST(TextureLod, Log2IsExactOrLinearBetweenPowersOfTwoAsOnLlvmpipe)
 {
     const TexturePtr t = makeTexture(strata::test::circuitry().albedo, MapKind::Albedo); // 128²
     const float texel = 1.0f / 128.0f;
-    EXPECT_EQ(textureLod(*t, {2.0f * texel, 0.0f}, {0.0f, 0.0f}), 1.0f);
-    EXPECT_EQ(textureLod(*t, {4.0f * texel, 0.0f}, {0.0f, 0.0f}), 2.0f);
-    // ρ² = 3: ½·(1 + 0.5) = 0.75 (the true ½·log2(3) is 0.7925).
-    EXPECT_NEAR(textureLod(*t, {std::sqrt(3.0f) * texel, 0.0f}, {0.0f, 0.0f}), 0.75f, 1e-5f);
-    // ρ² = 6: ½·(2 + 0.5) = 1.25.
-    EXPECT_NEAR(textureLod(*t, {0.0f, 0.0f}, {0.0f, std::sqrt(6.0f) * texel}), 1.25f, 1e-5f);
-    // Monotonic.
-    float previous = -1000.0f;
-    for (int i = 1; i < 200; ++i) {
-        const float lod = textureLod(*t, {float(i) * 0.05f * texel, 0.0f}, {0.0f, 0.0f});
-        EXPECT_GE(lod, previous);
-        previous = lod;
+    for (const LodLog2 mode : {LodLog2::Exact, LodLog2::Llvmpipe}) {
+        EXPECT_EQ(textureLod(*t, {2.0f * texel, 0.0f}, {0.0f, 0.0f}, mode), 1.0f);
+        EXPECT_EQ(textureLod(*t, {4.0f * texel, 0.0f}, {0.0f, 0.0f}, mode), 2.0f);
+        // Monotonic.
+        float previous = -1000.0f;
+        for (int i = 1; i < 200; ++i) {
+            const float lod = textureLod(*t, {float(i) * 0.05f * texel, 0.0f}, {0.0f, 0.0f}, mode);
+            EXPECT_GE(lod, previous);
+            previous = lod;
+        }
     }
+    // ρ² = 3: llvmpipe ½·(1 + 0.5) = 0.75; the true ½·log2(3) = 0.7925, the default.
+    EXPECT_NEAR(textureLod(*t, {std::sqrt(3.0f) * texel, 0.0f}, {0.0f, 0.0f}, LodLog2::Llvmpipe), 0.75f, 1e-5f);
+    EXPECT_NEAR(textureLod(*t, {std::sqrt(3.0f) * texel, 0.0f}, {0.0f, 0.0f}), 0.5f * std::log2(3.0f), 1e-6f);
+    // ρ² = 6: ½·(2 + 0.5) = 1.25 against ½·log2(6) = 1.2925.
+    EXPECT_NEAR(textureLod(*t, {0.0f, 0.0f}, {0.0f, std::sqrt(6.0f) * texel}, LodLog2::Llvmpipe), 1.25f, 1e-5f);
+    EXPECT_NEAR(textureLod(*t, {0.0f, 0.0f}, {0.0f, std::sqrt(6.0f) * texel}), 0.5f * std::log2(6.0f), 1e-6f);
+    // No derivatives: the finest level (magnification); infinite ones: the coarsest; never NaN.
+    EXPECT_EQ(textureLod(*t, {0.0f, 0.0f}, {0.0f, 0.0f}), -1000.0f);
+    EXPECT_EQ(textureLod(*t, {INFINITY, 0.0f}, {0.0f, 0.0f}), 1000.0f);
+    EXPECT_EQ(textureLod(*t, {NAN, 0.0f}, {0.0f, 0.0f}), -1000.0f);
 }
 
 } // namespace

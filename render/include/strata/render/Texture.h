@@ -130,18 +130,28 @@ float srgbByteToLinear(std::uint8_t value);
 /// (i + ½)/w; values decoded (sRGB → linear) before filtering.
 glm::vec4 sampleBilinear(const Texture& texture, int level, glm::vec2 uv);
 
+/// How the CPU sampler takes the log2 of the level of detail.
+enum class LodLog2
+{
+    /// log2 as the GL specification defines λ (default): the reference.
+    Exact,
+    /// Mesa llvmpipe's approximation (lp_build_fast_log2): log2(m·2^e) ≈
+    /// e + m − 1 for m in [1, 2), exact at powers of two, linear between, at
+    /// most 0.086 below the true value. The GL spec allows it; matching the
+    /// CI's driver makes the trilinear blend the same on both renderers
+    /// (tests/render/ShadingProbeTest.cpp).
+    Llvmpipe,
+};
+
 /// GL's level of detail λ = log2(ρ), ρ = max(|∂uv/∂x|, |∂uv/∂y|) in texels
-/// of level 0 (no clamping), with log2 approximated as Mesa's llvmpipe does
-/// (λ = ½·log2(ρ²), log2(m·2^e) ≈ e + m − 1 for m in [1, 2): exact at powers
-/// of two, linear between, at most 0.086 below the true value). The GL spec
-/// allows such approximations; matching the one of the CI's GL driver makes
-/// the trilinear blend the same on both renderers (tests/render/
-/// ShadingProbeTest.cpp: 0.054 → 6e-7 in blend weights).
-float textureLod(const Texture& texture, glm::vec2 dUVdx, glm::vec2 dUVdy);
+/// of level 0 (no clamping), computed as ½·log2(ρ²) with `log2`; −1000 for
+/// zero or non-finite derivatives.
+float textureLod(const Texture& texture, glm::vec2 dUVdx, glm::vec2 dUVdy, LodLog2 log2 = LodLog2::Exact);
 
 /// GL_LINEAR_MIPMAP_LINEAR (minification) / GL_LINEAR (magnification,
 /// λ <= 0) sampling with λ from textureLod(), clamped to the last level.
-glm::vec4 sampleTrilinear(const Texture& texture, glm::vec2 uv, glm::vec2 dUVdx, glm::vec2 dUVdy);
+glm::vec4 sampleTrilinear(const Texture& texture, glm::vec2 uv, glm::vec2 dUVdx, glm::vec2 dUVdy,
+                          LodLog2 log2 = LodLog2::Exact);
 
 /// How the renderers filter minified maps (SnapshotOptions::filtering).
 enum class TextureFilter
@@ -153,9 +163,11 @@ enum class TextureFilter
 /// GL_LINEAR_MIPMAP_NEAREST (minification) / GL_LINEAR (magnification,
 /// λ <= 0): bilinear in level d = ⌈λ + ½⌉ − 1 (GL's nearest-level rule),
 /// clamped to the last level, with λ from textureLod().
-glm::vec4 sampleBilinearNearestMip(const Texture& texture, glm::vec2 uv, glm::vec2 dUVdx, glm::vec2 dUVdy);
+glm::vec4 sampleBilinearNearestMip(const Texture& texture, glm::vec2 uv, glm::vec2 dUVdx, glm::vec2 dUVdy,
+                                   LodLog2 log2 = LodLog2::Exact);
 
 /// sampleTrilinear() or sampleBilinearNearestMip() by `filter`.
-glm::vec4 sampleFiltered(const Texture& texture, TextureFilter filter, glm::vec2 uv, glm::vec2 dUVdx, glm::vec2 dUVdy);
+glm::vec4 sampleFiltered(const Texture& texture, TextureFilter filter, glm::vec2 uv, glm::vec2 dUVdx, glm::vec2 dUVdy,
+                         LodLog2 log2 = LodLog2::Exact);
 
 } // namespace strata::render
