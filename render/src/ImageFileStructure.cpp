@@ -105,10 +105,51 @@ std::string exrValueProblem(const std::string& type, const std::string& value)
     return {}; // string, and types OpenEXR keeps as opaque bytes: read by the size
 }
 
+/// The bytes of one pixel of an OpenEXR channel list (exrValueProblem()
+/// checked its structure): UINT and FLOAT channels 4, HALF 2.
+std::uint64_t exrPixelBytes(const std::string& chlist)
+{
+    std::uint64_t bytes = 0;
+    for (std::size_t at = 0; at < chlist.size() && chlist[at] != '\0';) {
+        const std::size_t nul = chlist.find('\0', at);
+        bytes += littleEndian32(chlist, nul + 1) == 1 ? 2 : 4;
+        at = nul + 1 + 16;
+    }
+    return bytes;
+}
+
+/// The decoding buffers an OpenEXR part's header makes OpenEXR allocate when
+/// the file is opened, before any pixel is read (its line buffers: up to
+/// 256 lines of the data window's width for DWAB; or one tile), and the
+/// pixels it claims: each must fit what MAX_IMAGE_EXPANSION bytes per file
+/// byte allow (a fuzzed 957-byte header claiming a 50-million-pixel-wide
+/// window made OpenEXR allocate gigabytes in its compressor).
+void checkExrPart(std::int64_t width, std::int64_t height, std::uint64_t pixelBytes, std::uint64_t tileWidth,
+                  std::uint64_t tileHeight, std::uint64_t size)
+{
+    if (width <= 0 || height <= 0) {
+        throw Error("is a corrupt OpenEXR file: its data window is " + std::to_string(width) + "x" +
+                    std::to_string(height) + " pixels");
+    }
+    const double most = double(MAX_IMAGE_EXPANSION) * double(size) + 65536.0;
+    const double bytes = double(std::max<std::uint64_t>(pixelBytes, 1));
+    const double pixels = double(width) * double(height) * bytes;
+    const double lines = double(width) * double(std::min<std::int64_t>(height, 256)) * bytes;
+    const double tile = double(tileWidth) * double(tileHeight) * bytes;
+    if (pixels > most || lines > most || tile > most) {
+        throw Error("claims " + std::to_string(width) + "x" + std::to_string(height) + " pixels of " +
+                    std::to_string(pixelBytes) + " bytes" +
+                    (tileWidth ? " in " + std::to_string(tileWidth) + "x" + std::to_string(tileHeight) + " tiles" : "") +
+                    " in a file of " + std::to_string(size) +
+                    " bytes: more than any image compression holds (a corrupt or hostile header)");
+    }
+}
+
 /// OpenEXR: after the magic number and version, one header (several for a
 /// multi-part file, ended by an empty one) of attributes: name, type name
 /// (NUL-terminated), a 32-bit size and the value; an empty name ends it.
-/// Each value must read as its size says (exrValueProblem()).
+/// Each value must read as its size says (exrValueProblem()), and the data
+/// window, channels and tiles must fit the file (checkExrPart()).
 void checkExr(std::ifstream& in, std::uint64_t size)
 {
     std::uint64_t offset = 4;
@@ -136,9 +177,15 @@ void checkExr(std::ifstream& in, std::uint64_t size)
     };
     for (int part = 0;; ++part) {
         int attributes = 0;
+        bool haveWindow = false;
+        std::int64_t width = 0, height = 0;
+        std::uint64_t pixelBytes = 0, tileWidth = 0, tileHeight = 0;
         for (;; ++attributes) {
             const std::string name = readName("an attribute name");
-            if (name.empty()) break;
+            if (name.empty()) {
+                if (haveWindow) checkExrPart(width, height, pixelBytes, tileWidth, tileHeight, size);
+                break;
+            }
             const std::string type = readName("an attribute type");
             std::int32_t length = 0;
             if (size - offset < 4 || !in.read(reinterpret_cast<char*>(&length), 4)) {
@@ -157,6 +204,17 @@ void checkExr(std::ifstream& in, std::uint64_t size)
                             ") at byte " + std::to_string(offset - 4) + " " + problem);
             }
             offset += std::uint64_t(length);
+            if (name == "dataWindow" && type == "box2i") {
+                auto at = [&](std::size_t i) { return std::int64_t(std::int32_t(littleEndian32(value, i))); };
+                width = at(8) - at(0) + 1;
+                height = at(12) - at(4) + 1;
+                haveWindow = true;
+            } else if (name == "channels" && type == "chlist") {
+                pixelBytes = exrPixelBytes(value);
+            } else if (name == "tiles" && type == "tiledesc") {
+                tileWidth = littleEndian32(value, 0);
+                tileHeight = littleEndian32(value, 4);
+            }
         }
         if (!multipart || attributes == 0) return; // single part, or the empty header ending a multi-part file
     }

@@ -101,5 +101,11 @@ TEST(FuzzCorpus, TheHeightmapFindingsAreRefusedWithTheirReason)
     EXPECT_EQ(error("oom-exr-chlist-size.exr"),
               "is a corrupt OpenEXR file: attribute ':28:28channels' (chlist) at byte 128 runs past its 19 bytes");
     EXPECT_NE(error("crash-oom-exr-attribute.exr").find("is a corrupt OpenEXR file"), std::string::npos);
+    // A data window 50 million pixels wide in a 957-byte file: OpenEXR
+    // allocated its compressor's line buffers for it when the file was
+    // opened (libFuzzer: malloc of more than 1 GiB in newCompressor).
+    EXPECT_EQ(error("oom-exr-data-window-width.exr"),
+              "claims 50331652x1 pixels of 2 bytes in a file of 957 bytes: more than any image compression holds "
+              "(a corrupt or hostile header)");
     EXPECT_EQ(error("ramp-half.exr"), "no error");
 }
