@@ -60,6 +60,7 @@ struct MaterialParams
     float detailAlbedo;         ///< 0..1
     float detailSmoothness;     ///< 0..1
     float detailNormalStrength; ///< 0..1 (× detail mask)
+    float biplanar;             ///< 1: two projections (the smallest normal axis' is cut), 0: three
     vec3 emissionColor;         ///< HDR, linear, multiplies the emission map
     float fresnelStrength;      ///< 0..1
 };
@@ -126,7 +127,8 @@ STRATA_FEATURE_FUNCTION SurfaceOutput evaluateSurface(STRATA_MAPS_PARAM SurfaceI
     TriplanarUV ddx = triplanarUVDerivative(s.dpdx, n);
     TriplanarUV ddy = triplanarUVDerivative(s.dpdy, n);
     // Projections with weight 0 here keep weight 0 with any heights: skip them.
-    vec3 need = triplanarWeights(n, m.blendOffset, m.blendExponent);
+    float offset = biplanarOffset(n, m.blendOffset, m.biplanar);
+    vec3 need = triplanarWeights(n, offset, m.blendExponent);
     bool useTop = false;
     STRATA_IF_FEATURE(FEATURE_TOP_MAPS)
     {
@@ -178,7 +180,7 @@ STRATA_FEATURE_FUNCTION SurfaceOutput evaluateSurface(STRATA_MAPS_PARAM SurfaceI
     vec3 w = need;
     STRATA_IF_FEATURE(FEATURE_HEIGHT_BLEND)
     {
-        w = triplanarWeightsHeight(n, m.blendOffset, m.blendExponent, vec3(maskX.z, maskY.z, maskZ.z),
+        w = triplanarWeightsHeight(n, offset, m.blendExponent, vec3(maskX.z, maskY.z, maskZ.z),
                                    m.heightStrength);
     }
 

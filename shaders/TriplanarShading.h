@@ -106,6 +106,17 @@ STRATA_INLINE vec3 triplanarWeights(vec3 n, float offset, float exponent)
     return vec3(1.0f, 0.0f, 0.0f);
 }
 
+/// The blend offset for biplanar mapping (Quilez's two projections instead
+/// of three): with `biplanar` set, at least the smallest component of |n|,
+/// so that its projection's weight is zero and never sampled; the weights
+/// stay continuous where the smallest axis changes (the two smallest are
+/// equal there, and both cut). Unchanged otherwise.
+STRATA_INLINE float biplanarOffset(vec3 n, float offset, float biplanar)
+{
+    vec3 a = abs(n);
+    return biplanar > 0.5f ? max(offset, min(a.x, min(a.y, a.z))) : offset;
+}
+
 /// Weighted sum of the three projections' samples.
 STRATA_INLINE vec3 triplanarBlend(vec3 sampleX, vec3 sampleY, vec3 sampleZ, vec3 weights)
 {

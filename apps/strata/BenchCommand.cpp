@@ -121,6 +121,7 @@ std::vector<Config> benchConfigs(bool haveGl)
         {"simplify", {"0.5"}},
         {"filtering", {"bilinear"}},
         {"normal_blend", {"udn", "rnm"}},
+        {"projections", {"2"}},
         {"shadow_resolution", {"1024", "4096"}},
         {"backend", haveGl ? std::vector<std::string>{"cpu", "gl"} : std::vector<std::string>{"cpu"}},
     };

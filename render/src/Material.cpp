@@ -86,6 +86,9 @@ void checkMaterial(const Material& m)
     range("detailSmoothness", m.detailSmoothness, 0.0f, 1.0f);
     range("detailNormalStrength", m.detailNormalStrength, 0.0f, 1.0f);
     range("fresnelStrength", m.fresnelStrength, 0.0f, 1.0f);
+    if (m.projections != 2 && m.projections != 3) {
+        throw Error("material: projections = " + std::to_string(m.projections) + " must be 2 (biplanar) or 3 (triplanar)");
+    }
     for (int c = 0; c < 3; ++c) {
         range("albedoTint", m.albedoTint[c], 0.0f, 16.0f);
         range("emissionColor", m.emissionColor[c], 0.0f, 1e4f);

@@ -28,6 +28,7 @@ inline shading::MaterialParams toShading(const Material& m)
     p.detailAlbedo = m.detailAlbedo;
     p.detailSmoothness = m.detailSmoothness;
     p.detailNormalStrength = m.detailNormalStrength;
+    p.biplanar = m.projections == 2 ? 1.0f : 0.0f;
     p.emissionColor = m.emissionColor;
     p.fresnelStrength = m.fresnelStrength;
     return p;

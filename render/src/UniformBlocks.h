@@ -64,7 +64,8 @@ struct MaterialBlock
     float detailAlbedo;         // 44
     float detailSmoothness;     // 48
     float detailNormalStrength; // 52
-    float padding0[2];          // 56: the vec3 below aligns to 16
+    float biplanar;             // 56
+    float padding0;             // 60: the vec3 below aligns to 16
     glm::vec3 emissionColor;    // 64
     float fresnelStrength;      // 76
 };
@@ -80,6 +81,7 @@ static_assert(offsetof(MaterialBlock, detailScale) == 40);
 static_assert(offsetof(MaterialBlock, detailAlbedo) == 44);
 static_assert(offsetof(MaterialBlock, detailSmoothness) == 48);
 static_assert(offsetof(MaterialBlock, detailNormalStrength) == 52);
+static_assert(offsetof(MaterialBlock, biplanar) == 56);
 static_assert(offsetof(MaterialBlock, emissionColor) == 64);
 static_assert(offsetof(MaterialBlock, fresnelStrength) == 76);
 static_assert(sizeof(MaterialBlock) == 80); // a struct's size rounds up to 16
@@ -130,6 +132,7 @@ inline MaterialBlock toBlock(const shading::MaterialParams& p)
     b.detailAlbedo = p.detailAlbedo;
     b.detailSmoothness = p.detailSmoothness;
     b.detailNormalStrength = p.detailNormalStrength;
+    b.biplanar = p.biplanar;
     b.emissionColor = p.emissionColor;
     b.fresnelStrength = p.fresnelStrength;
     return b;

@@ -60,6 +60,7 @@ void writeReport(const GenerateResult& result, const Scene& scene, int threads, 
                          {"simplify", q.simplifyRatio},
                          {"filtering", filteringName(q.filtering)},
                          {"normal_blend", normalBlendName(q.normalBlend)},
+                         {"projections", q.projections},
                          {"shadow_resolution", q.shadowResolution},
                          {"backend", q.backend}};
     // Model only what the scene requires: work done against work possible.

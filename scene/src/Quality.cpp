@@ -42,6 +42,7 @@ const std::vector<Knob>& knobs()
         {"simplify", KnobKind::Real, 1e-3, 1.0, {}},
         {"filtering", KnobKind::Choice, 0, 0, {"bilinear", "trilinear"}},
         {"normal_blend", KnobKind::Choice, 0, 0, {"whiteout", "udn", "rnm"}},
+        {"projections", KnobKind::Integer, 2, 3, {}},
         {"shadow_resolution", KnobKind::Integer, 16, 16384, {}},
         {"backend", KnobKind::Choice, 0, 0, {"auto", "gl", "cpu"}},
     };
@@ -83,6 +84,7 @@ const std::map<std::string, QualityOverrides>& presetTable()
           {"simplify", "0.5"},
           {"filtering", "bilinear"},
           {"normal_blend", "udn"},
+          {"projections", "2"},
           {"shadow_resolution", "1024"}}},
         {"balanced", {}},
         {"accurate",
@@ -94,6 +96,7 @@ const std::map<std::string, QualityOverrides>& presetTable()
           {"projection", "2"},
           {"filtering", "trilinear"},
           {"normal_blend", "rnm"},
+          {"projections", "3"},
           {"shadow_resolution", "4096"}}},
     };
     return table;
@@ -133,6 +136,7 @@ void apply(const QualityOverrides& overrides, double sceneVoxel, QualitySettings
             s.normalBlend = value == "udn"   ? render::NormalBlend::Udn
                             : value == "rnm" ? render::NormalBlend::Rnm
                                              : render::NormalBlend::Whiteout;
+        else if (key == "projections") s.projections = int(number(overrides, key));
         else if (key == "shadow_resolution") s.shadowResolution = int(number(overrides, key));
         else if (key == "backend") s.backend = value;
     }
@@ -261,6 +265,7 @@ QualitySettings resolveQuality(const Scene& scene, const std::optional<std::stri
     s.adaptivity = scene.adaptivity;
     s.shadowResolution = scene.snapshot.shadows.resolution;
     s.normalBlend = scene.material.parameters.normalBlend;
+    s.projections = scene.material.parameters.projections;
     if (presetFlag) checkPreset(*presetFlag, "--preset");
     s.preset = presetFlag.value_or(scene.quality.preset.value_or("balanced"));
     apply(presetKnobs(s.preset), scene.voxelSize, s);
@@ -279,6 +284,7 @@ Scene applyQuality(const Scene& scene, const QualitySettings& settings)
     out.snapshot.shadows.resolution = settings.shadowResolution;
     out.snapshot.filtering = settings.filtering;
     out.material.parameters.normalBlend = settings.normalBlend;
+    out.material.parameters.projections = settings.projections;
     return out;
 }
 
@@ -300,7 +306,8 @@ std::string describeQuality(const QualitySettings& s)
     out << ", " << s.normals << " normals";
     if (s.projectionSteps > 0) out << ", " << s.projectionSteps << " projection steps";
     if (s.simplifyRatio < 1.0) out << ", simplify " << s.simplifyRatio;
-    out << ", " << filteringName(s.filtering) << ", " << normalBlendName(s.normalBlend) << ", shadows "
+    out << ", " << filteringName(s.filtering) << ", " << normalBlendName(s.normalBlend)
+        << (s.projections == 2 ? ", biplanar" : "") << ", shadows "
         << s.shadowResolution << ", backend " << s.backend;
     return out.str();
 }

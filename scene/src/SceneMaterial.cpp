@@ -143,6 +143,7 @@ void readMaterialTable(TableReader& m, MaterialSettings& s, const std::filesyste
     p.mapScale = float(m.number("map_scale", p.mapScale, 1e-6, 1e6));
     p.blendOffset = float(m.number("blend_offset", p.blendOffset, 0.0, 0.5));
     p.blendExponent = float(m.number("blend_exponent", p.blendExponent, 1.0, 8.0));
+    p.projections = int(m.integer("projections", p.projections, 2, 3));
     p.heightStrength = float(m.number("height_strength", p.heightStrength, 0.0, 0.99));
     s.textureSize = int(m.integer("texture_size", s.textureSize, 16, 4096));
     if ((s.textureSize & (s.textureSize - 1)) != 0) {

@@ -201,6 +201,7 @@ TEST(GlProgram, UniformBlocksMatchTheStd140MirrorsInCpp)
 
     STRATA_EXPECT_OFFSET("uMaterial.albedoTint", MaterialBlock, albedoTint);
     STRATA_EXPECT_OFFSET("uMaterial.blendOffset", MaterialBlock, blendOffset);
+    STRATA_EXPECT_OFFSET("uMaterial.biplanar", MaterialBlock, biplanar);
     STRATA_EXPECT_OFFSET("uMaterial.blendExponent", MaterialBlock, blendExponent);
     STRATA_EXPECT_OFFSET("uMaterial.heightStrength", MaterialBlock, heightStrength);
     STRATA_EXPECT_OFFSET("uMaterial.metallic", MaterialBlock, metallic);

@@ -8,7 +8,7 @@
 //  2. frame time per feature set (albedo only -> everything) at WIDTHxHEIGHT
 //     (default 1920x1080): GL with the persistent GlRenderer (draw + glFinish,
 //     1 sample and 4x MSAA, the program compiled beforehand) versus the CPU
-//     reference renderer (renderSnapshotCpu, one sample per pixel);
+//     reference renderer (renderSnapshotCpu, 1 and 4 samples per pixel);
 //  3. texture fetches per pixel per feature set, counted analytically: each
 //     projection with a non-zero blend weight samples every enabled map once
 //     (textureGrad, trilinear: 8 texels each), so fetches per shaded pixel =
@@ -207,12 +207,15 @@ int main(int argc, char** argv)
     std::printf("\n%dx%d, %zu triangles, median of %d runs (ms); GL = persistent renderer, draw + glFinish;\n"
                 "fetches = texture fetches per shaded pixel (k = mean projections with weight > 0)\n",
                 width, height, mesh.indexCount / 3, runs);
-    std::printf("%-40s %-36s %8s %9s %10s %5s %8s\n", "feature set", "bits", "CPU", "GL 1x", "GL 4xMSAA", "k",
-                "fetches");
+    std::printf("%-40s %-36s %8s %10s %9s %10s %5s %8s\n", "feature set", "bits", "CPU 1x", "CPU 4xMSAA", "GL 1x",
+                "GL 4xMSAA", "k", "fetches");
     for (const Case& c : cases) {
         options.material = c.material;
         const std::uint32_t f = materialFeatures(c.material);
-        const double cpu = median([&] { renderSnapshotCpu(mesh, options); });
+        options.samples = 1;
+        const double cpu1 = median([&] { renderSnapshotCpu(mesh, options); });
+        options.samples = 4;
+        const double cpu4 = median([&] { renderSnapshotCpu(mesh, options); });
         double gl1 = -1.0, gl4 = -1.0, k = 0.0;
         if (renderer) {
             renderer->setMaterial(c.material);
@@ -248,8 +251,8 @@ int main(int argc, char** argv)
         const int maps = 1 + ((f & feature::MASK_MAP) != 0) + ((f & feature::NORMAL_MAP) != 0) +
                          ((f & feature::DETAIL) != 0) + ((f & feature::DETAIL_NORMAL) != 0) +
                          ((f & feature::EMISSION) != 0);
-        std::printf("%-40s %-36s %8.0f %9.0f %10.0f %5.2f %8.2f\n", c.name, featureNames(f).c_str(), cpu, gl1, gl4, k,
-                    k * maps);
+        std::printf("%-40s %-36s %8.0f %10.0f %9.0f %10.0f %5.2f %8.2f\n", c.name, featureNames(f).c_str(), cpu1, cpu4,
+                    gl1, gl4, k, k * maps);
     }
     if (renderer) {
         const ProgramStats stats = renderer->stats();

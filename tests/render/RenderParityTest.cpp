@@ -57,6 +57,18 @@ void expectParity(const Image& gl, const Image& cpu, const std::string& name)
     }
 }
 
+/// A ground slab with a box on or over it, one mesh.
+TestMesh slabWithBox(glm::vec3 slabLo, glm::vec3 slabHi, glm::vec3 boxLo, glm::vec3 boxHi)
+{
+    TestMesh mesh = strata::test::makeBox(slabLo, slabHi);
+    const TestMesh box = strata::test::makeBox(boxLo, boxHi);
+    const auto base = std::uint32_t(mesh.positions.size());
+    mesh.positions.insert(mesh.positions.end(), box.positions.begin(), box.positions.end());
+    mesh.normals.insert(mesh.normals.end(), box.normals.begin(), box.normals.end());
+    for (std::uint32_t i : box.indices) mesh.indices.push_back(base + i);
+    return mesh;
+}
+
 class GoldenParity : public ::testing::TestWithParam<std::tuple<std::string, std::string>>
 {
 };
@@ -82,12 +94,8 @@ INSTANTIATE_TEST_SUITE_P(CircuitryFeatureSets, GoldenParity,
 /// the ground and self-shadowing; both renderers draw their own shadow maps.
 TEST(RenderParity, CastShadowsMatch)
 {
-    TestMesh mesh = strata::test::makeBox(glm::vec3(-6.0f, -1.0f, -6.0f), glm::vec3(6.0f, 0.0f, 6.0f));
-    const TestMesh box = strata::test::makeBox(glm::vec3(-1.5f, 1.5f, -1.5f), glm::vec3(1.5f, 4.5f, 1.5f));
-    const auto base = std::uint32_t(mesh.positions.size());
-    mesh.positions.insert(mesh.positions.end(), box.positions.begin(), box.positions.end());
-    mesh.normals.insert(mesh.normals.end(), box.normals.begin(), box.normals.end());
-    for (std::uint32_t i : box.indices) mesh.indices.push_back(base + i);
+    const TestMesh mesh = slabWithBox(glm::vec3(-6.0f, -1.0f, -6.0f), glm::vec3(6.0f, 0.0f, 6.0f),
+                                      glm::vec3(-1.5f, 1.5f, -1.5f), glm::vec3(1.5f, 4.5f, 1.5f));
     SnapshotOptions options = strata::test::goldenOptions(mesh, "full", 640, 360);
     options.lighting.sunDirection = glm::vec3(0.5f, 0.6f, 0.3f);
     options.shadows.resolution = 1024;
@@ -114,12 +122,8 @@ TEST(RenderParity, CastShadowsMatch)
 /// the distance, both renderers through the same Atmosphere.h.
 TEST(RenderParity, AtmosphereMatches)
 {
-    TestMesh mesh = strata::test::makeBox(glm::vec3(-300.0f, -1.0f, -300.0f), glm::vec3(300.0f, 0.0f, 300.0f));
-    const TestMesh box = strata::test::makeBox(glm::vec3(-4.0f, 0.0f, -30.0f), glm::vec3(4.0f, 8.0f, -22.0f));
-    const auto base = std::uint32_t(mesh.positions.size());
-    mesh.positions.insert(mesh.positions.end(), box.positions.begin(), box.positions.end());
-    mesh.normals.insert(mesh.normals.end(), box.normals.begin(), box.normals.end());
-    for (std::uint32_t i : box.indices) mesh.indices.push_back(base + i);
+    const TestMesh mesh = slabWithBox(glm::vec3(-300.0f, -1.0f, -300.0f), glm::vec3(300.0f, 0.0f, 300.0f),
+                                      glm::vec3(-4.0f, 0.0f, -30.0f), glm::vec3(4.0f, 8.0f, -22.0f));
     SnapshotOptions options = strata::test::goldenOptions(mesh, "full", 640, 360);
     options.camera.position = glm::dvec3(0.0, 6.0, 40.0);
     options.camera.target = glm::dvec3(0.0, 8.0, -100.0);
@@ -144,6 +148,28 @@ TEST(RenderParity, AtmosphereMatches)
     const int nearGround = int(cpu.at(20, 355)[0]) + cpu.at(20, 355)[1] + cpu.at(20, 355)[2];
     std::cout << "  ground brightness (sum of sRGB bytes): far " << farGround << ", near " << nearGround << std::endl;
     EXPECT_GT(farGround, nearGround + 30);
+}
+
+/// Biplanar mapping (Material::projections = 2) on both renderers: the
+/// same image, fewer fetches than triplanar, close to the triplanar image.
+TEST(RenderParity, BiplanarMatchesAndFetchesLess)
+{
+    const TestMesh mesh = strata::test::makeUvSphere(glm::vec3(0.0f), 2.0f, 64, 32);
+    SnapshotOptions options = strata::test::goldenOptions(mesh, "full", 640, 360);
+    CpuRenderStats triplanarStats, biplanarStats;
+    const Image triplanar = renderSnapshotCpu(mesh.view(), options, &triplanarStats);
+    options.material.projections = 2;
+    const Image gl = renderSnapshot(context(), mesh.view(), options);
+    const Image cpu = renderSnapshotCpu(mesh.view(), options, &biplanarStats);
+    expectParity(gl, cpu, "sphere-full-biplanar");
+    const double perPixelTri = double(triplanarStats.textureFetches) / double(triplanarStats.shadedPixels);
+    const double perPixelBi = double(biplanarStats.textureFetches) / double(biplanarStats.shadedPixels);
+    const double againstTriplanar = psnr(cpu, triplanar);
+    std::cout << "  fetches per shaded pixel: triplanar " << perPixelTri << ", biplanar " << perPixelBi
+              << "; biplanar vs triplanar PSNR " << againstTriplanar << " dB" << std::endl;
+    EXPECT_LT(perPixelBi, perPixelTri);
+    EXPECT_GT(againstTriplanar, 25.0); // a harder blend near the diagonals, the same picture
+    EXPECT_LT(againstTriplanar, 100.0); // and not the triplanar image itself
 }
 
 } // namespace

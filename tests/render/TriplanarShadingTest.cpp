@@ -192,4 +192,36 @@ TEST(TriplanarShading, BlendLightingAndToneMap)
     EXPECT_EQ(mapped.z, 1.0f);
 }
 
+// Biplanar mapping: the smallest normal component's projection always has
+// weight zero, the weights still sum to one, and they are continuous where
+// the smallest axis changes (both smallest cut there); triplanar unchanged.
+TEST(Biplanar, CutsTheSmallestAxisAndStaysContinuous)
+{
+    NormalSource normals;
+    for (int i = 0; i < 10000; ++i) {
+        const vec3 n = normals.next();
+        const vec3 a = glm::abs(n);
+        const int minor = a.x <= a.y && a.x <= a.z ? 0 : (a.y <= a.z ? 1 : 2);
+        for (const float offset : {0.0f, 0.25f, 0.5f}) {
+            EXPECT_EQ(biplanarOffset(n, offset, 0.0f), offset);
+            const vec3 w = triplanarWeights(n, biplanarOffset(n, offset, 1.0f), 4.0f);
+            EXPECT_EQ(w[minor], 0.0f) << n.x << " " << n.y << " " << n.z;
+            EXPECT_NEAR(w.x + w.y + w.z, 1.0f, 1e-5f);
+            EXPECT_GE(biplanarOffset(n, offset, 1.0f), offset);
+        }
+    }
+    // Across the switch of the smallest axis (x and z equal, y dominant).
+    for (const float e : {1e-3f, 1e-5f}) {
+        const vec3 left = glm::normalize(vec3(0.3f - e, 0.9f, 0.3f + e));
+        const vec3 right = glm::normalize(vec3(0.3f + e, 0.9f, 0.3f - e));
+        const vec3 wl = triplanarWeights(left, biplanarOffset(left, 0.1f, 1.0f), 4.0f);
+        const vec3 wr = triplanarWeights(right, biplanarOffset(right, 0.1f, 1.0f), 4.0f);
+        EXPECT_LT(glm::length(wl - wr), 100.0f * e);
+    }
+    // The body diagonal: everything cut, the dominant-axis fallback, no NaN.
+    const vec3 d = glm::normalize(vec3(1.0f));
+    const vec3 w = triplanarWeights(d, biplanarOffset(d, 0.0f, 1.0f), 4.0f);
+    EXPECT_EQ(w.x + w.y + w.z, 1.0f);
+}
+
 } // namespace

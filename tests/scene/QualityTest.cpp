@@ -46,6 +46,7 @@ std::map<std::string, std::string> fields(const QualitySettings& q)
             {"simplify", std::to_string(q.simplifyRatio)},
             {"filtering", filteringName(q.filtering)},
             {"normal_blend", normalBlendName(q.normalBlend)},
+            {"projections", std::to_string(q.projections)},
             {"shadow_resolution", std::to_string(q.shadowResolution)},
             {"backend", q.backend}};
 }
@@ -139,6 +140,9 @@ TEST(Quality, PresetsDifferAsDocumented)
     EXPECT_DOUBLE_EQ(accurate.voxelSize, 0.5 * scene.voxelSize);
     EXPECT_EQ(fast.mesher, "surface-nets");
     EXPECT_EQ(fast.filtering, strata::render::TextureFilter::Bilinear);
+    EXPECT_EQ(fast.projections, 2); // biplanar
+    EXPECT_EQ(accurate.projections, 3);
+    EXPECT_EQ(applyQuality(scene, fast).material.parameters.projections, 2);
     EXPECT_LT(fast.simplifyRatio, 1.0);
     EXPECT_LT(fast.shadowResolution, balanced.shadowResolution);
     EXPECT_GT(accurate.shadowResolution, balanced.shadowResolution);
@@ -160,6 +164,7 @@ TEST(Quality, EachOverrideChangesExactlyItsKnob)
         {"projection", {"3", "projection"}},     {"simplify", {"0.25", "simplify"}},
         {"filtering", {"bilinear", "filtering"}}, {"normal_blend", {"rnm", "normal_blend"}},
         {"shadow_resolution", {"512", "shadow_resolution"}}, {"backend", {"cpu", "backend"}},
+        {"projections", {"2", "projections"}},
     };
     ASSERT_EQ(cases.size(), qualityKeys().size()); // every knob is covered
     for (const auto& [key, valueAndField] : cases) {

@@ -326,3 +326,10 @@ TEST(Scene, AtmosphereErrorsNameTheKey)
     EXPECT_EQ(parseError("[atmosphere]\nenabled = 1\n"), "test.toml:2: atmosphere.enabled = 1 must be true or false");
     EXPECT_EQ(parseError("[atmosphere]\nfog = 0.1\n"), "test.toml:2: unknown key 'atmosphere.fog'");
 }
+
+TEST(SceneMaterial, ProjectionsKeyChoosesBiplanar)
+{
+    EXPECT_EQ(parseScene("", "empty.toml").material.parameters.projections, 3);
+    EXPECT_EQ(parseScene("[material]\nprojections = 2\n", "bi.toml").material.parameters.projections, 2);
+    EXPECT_EQ(parseError("[material]\nprojections = 1\n"), "test.toml:2: material.projections = 1 is out of range [2, 3]");
+}

@@ -56,6 +56,10 @@ struct Material
     float mapScale = 0.125f;        ///< texture repeats per metre, > 0
     float blendOffset = 0.25f;      ///< 0..0.5: subtracted from |n|
     float blendExponent = 4.0f;     ///< 1..64: sharpness of the blend
+    /// 3: triplanar; 2: biplanar (Quilez): the projection of the smallest
+    /// normal component is never sampled (the blend offset is raised to it
+    /// per fragment), fewer fetches for a harder blend near the diagonals.
+    int projections = 3;
     float heightStrength = 0.5f;    ///< 0..0.99: height blending (MOHS layout, mask map present)
     glm::vec3 albedoTint{1.0f};     ///< linear, multiplies albedo
     float metallic = 0.0f;          ///< 0..1; multiplies mask R (the value itself without a mask map; 1 with one)

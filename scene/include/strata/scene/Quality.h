@@ -45,6 +45,7 @@ struct QualitySettings
     double simplifyRatio = 1.0;     ///< target triangle fraction, (0, 1]; 1 = off
     render::TextureFilter filtering = render::TextureFilter::Trilinear;
     render::NormalBlend normalBlend = render::NormalBlend::Whiteout;
+    int projections = 3;            ///< 3 triplanar, 2 biplanar (Material::projections)
     int shadowResolution = 2048;    ///< shadow-map texels per side
     std::string backend = "auto";   ///< auto | gl | cpu
 };
@@ -54,7 +55,7 @@ const std::vector<std::string>& presetNames();
 
 /// The knob keys, in documentation order: voxel_size, voxel_scale,
 /// half_width, mesher, adaptivity, normals, projection, simplify,
-/// filtering, normal_blend, shadow_resolution, backend.
+/// filtering, normal_blend, projections, shadow_resolution, backend.
 const std::vector<std::string>& qualityKeys();
 
 /// The choices of a string knob (empty for numeric knobs). Throws
