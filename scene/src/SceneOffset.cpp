@@ -45,6 +45,8 @@ Scene offsetScene(Scene scene, const glm::dvec3& offset)
     scene.region.max += offset;
     if (scene.camera.position) *scene.camera.position += offset;
     if (scene.camera.target) *scene.camera.target += offset;
+    // The fog's base height is world metres: it moves with the terrain.
+    scene.lighting.atmosphere.fogBaseHeight += offset.y;
     return scene;
 }
 
