@@ -29,7 +29,7 @@ struct CpuRenderStats
 };
 
 /// Renders `mesh` on the CPU: RGBA8, sRGB-encoded, rows top to bottom, the
-/// background lighting.skyColor, alpha 255 — the same image as
+/// background lighting.skyColor (the sky of lighting.atmosphere when it is on), alpha 255 — the same image as
 /// renderSnapshot() up to rasterization and filtering precision.
 ///
 /// Details:

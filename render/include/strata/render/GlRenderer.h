@@ -32,7 +32,7 @@ struct DrawOptions
     /// polygon offset towards the camera), in `wireColor` (linear RGBA).
     bool wireframe = false;
     glm::vec4 wireColor{0.02f, 0.02f, 0.02f, 1.0f};
-    /// Clears colour (to Lighting::skyColor) and depth first; false draws
+    /// Clears colour (to Lighting::skyColor, then the atmosphere's sky pass when it is on) and depth first; false draws
     /// over what the framebuffer holds.
     bool clear = true;
     /// Sun shadows (shaders/Shadow.h): a depth pass from the sun into a

@@ -124,7 +124,7 @@ struct Lighting
     std::vector<DirectionalLightSource> extraLights; ///< up to 3 more directional lights
     glm::vec3 skyAmbient{0.38f, 0.45f, 0.6f};        ///< linear, from above
     glm::vec3 groundAmbient{0.16f, 0.14f, 0.12f};    ///< linear, from below
-    glm::vec3 skyColor{0.55f, 0.7f, 0.9f};           ///< background, linear
+    glm::vec3 skyColor{0.55f, 0.7f, 0.9f};           ///< background, linear (display value), when the atmosphere is off
     float exposure = 1.0f;                           ///< multiplies radiance before the ACES tone map
     Atmosphere atmosphere;                           ///< sky and fog; off by default
 };
