@@ -4,6 +4,8 @@
 
 #include <strata/Error.h>
 
+#include "RangeCheck.h"
+
 #include <glm/geometric.hpp>
 #include <glm/mat3x3.hpp>
 #include <glm/matrix.hpp>
@@ -16,11 +18,7 @@ namespace strata::render {
 void checkAtmosphere(const Atmosphere& a)
 {
     auto range = [](const char* key, double value, double lo, double hi) {
-        if (!(std::isfinite(value) && value >= lo && value <= hi)) {
-            std::ostringstream s;
-            s << "atmosphere: " << key << " = " << value << " outside [" << lo << ", " << hi << "]";
-            throw Error(s.str());
-        }
+        detail::checkRange("atmosphere", key, value, lo, hi);
     };
     for (int c = 0; c < 3; ++c) {
         range("zenithColor", a.zenithColor[c], 0.0, 1e3);

@@ -2,6 +2,8 @@
 
 #include <strata/Error.h>
 
+#include "RangeCheck.h"
+
 #include <cmath>
 #include <sstream>
 
@@ -66,12 +68,8 @@ std::vector<std::uint32_t> allFeatureSets()
 
 void checkMaterial(const Material& m)
 {
-    auto range = [](const char* key, float value, float lo, float hi) {
-        if (!(std::isfinite(value) && value >= lo && value <= hi)) {
-            std::ostringstream s;
-            s << "material: " << key << " = " << value << " outside [" << lo << ", " << hi << "]";
-            throw Error(s.str());
-        }
+    auto range = [](const char* key, double value, double lo, double hi) {
+        detail::checkRange("material", key, value, lo, hi);
     };
     if (!(std::isfinite(m.mapScale) && m.mapScale > 0.0f)) throw Error("material: mapScale must be > 0");
     range("blendOffset", m.blendOffset, 0.0f, 0.5f);
