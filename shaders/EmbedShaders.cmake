@@ -24,7 +24,7 @@ endif()
 
 # File numbers used in #line directives; keep in step with SOURCE_NAMES below.
 set(_names ShadingPrelude.glsl TriplanarShading.h TriplanarMaterial.h TerrainFrame.glsl terrain.vert terrain.frag
-  Shadow.h shadow_depth.frag fullscreen.vert probe.frag Atmosphere.h sky.frag)
+  Shadow.h shadow_depth.frag fullscreen.vert probe.frag Atmosphere.h sky.frag TerrainLayers.h)
 set(_delimiter "strata_glsl")
 
 set(_line_base 10000)
@@ -52,7 +52,7 @@ endforeach()
 
 set(_head "#version 450 core\n${_src_ShadingPrelude_glsl}")
 set(_vert "${_head}${_src_TerrainFrame_glsl}${_src_terrain_vert}")
-set(_frag "${_head}${_src_TriplanarShading_h}${_src_TriplanarMaterial_h}${_src_Shadow_h}${_src_Atmosphere_h}${_src_TerrainFrame_glsl}${_src_terrain_frag}")
+set(_frag "${_head}${_src_TriplanarShading_h}${_src_TriplanarMaterial_h}${_src_Shadow_h}${_src_Atmosphere_h}${_src_TerrainLayers_h}${_src_TerrainFrame_glsl}${_src_terrain_frag}")
 set(_shadow_frag "${_head}${_src_shadow_depth_frag}")
 set(_fullscreen_vert "${_head}${_src_fullscreen_vert}")
 set(_sky_frag "${_head}${_src_TriplanarShading_h}${_src_Atmosphere_h}${_src_sky_frag}")

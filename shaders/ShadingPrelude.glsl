@@ -12,6 +12,20 @@
 #define STRATA_FEATURE_ARGS
 #define STRATA_MAPS_PARAM
 #define STRATA_MAPS_ARG
+#ifdef STRATA_LAYERED
+// Layered programs (TerrainLayers.h): STRATA_FEATURES is the union of the
+// layers' sets; the layer being evaluated and its own set are globals that
+// sampleMap() and the feature tests read.
+int gLayer = 0;
+uint gLayerFeatures = 0u;
+#define STRATA_IF_FEATURE(f) if ((STRATA_FEATURES & (f)) != 0u && (gLayerFeatures & (f)) != 0u)
+#define STRATA_FEATURE_BITS (STRATA_FEATURES & gLayerFeatures)
+#define STRATA_SELECT_LAYER(i, f) gLayer = (i); gLayerFeatures = (f)
+#else
 #define STRATA_IF_FEATURE(f) if ((STRATA_FEATURES & (f)) != 0u)
 #define STRATA_FEATURE_BITS STRATA_FEATURES
+#define STRATA_SELECT_LAYER(i, f)
+#endif
+#define STRATA_LAYERS_PARAM
+#define LAYER_SET uLayerSet
 #define SAMPLE_MAP(map, uv, dUVdx, dUVdy) sampleMap(map, uv, dUVdx, dUVdy)

@@ -11,6 +11,7 @@
 
 #include <glm/common.hpp>
 #include <glm/exponential.hpp>
+#include <glm/trigonometric.hpp>
 #include <glm/geometric.hpp>
 #include <glm/mat4x4.hpp>
 #include <glm/vec2.hpp>
@@ -33,6 +34,11 @@
 #define STRATA_IF_FEATURE(f) if (((STRATA_FEATURES) & (f)) != 0u && (maps.features & (f)) != 0u)
 #define STRATA_FEATURE_BITS (STRATA_FEATURES & maps.features)
 #define SAMPLE_MAP(map, uv, dUVdx, dUVdy) maps.sample(map, uv, dUVdx, dUVdy)
+// Terrain layers (TerrainLayers.h): the sampler switches to layer i and its
+// feature set; the layer set is a parameter (a uniform block in GLSL).
+#define STRATA_SELECT_LAYER(i, f) maps.select((i), (f))
+#define STRATA_LAYERS_PARAM const LayerSetParams &layerSet,
+#define LAYER_SET layerSet
 
 namespace strata::shading {
 
@@ -57,6 +63,7 @@ inline vec4 saturate(vec4 x) { return glm::clamp(x, vec4(0.0f), vec4(1.0f)); }
 #include "TriplanarMaterial.h"
 #include "Shadow.h"
 #include "Atmosphere.h"
+#include "TerrainLayers.h"
 
 } // namespace strata::shading
 
@@ -69,3 +76,6 @@ inline vec4 saturate(vec4 x) { return glm::clamp(x, vec4(0.0f), vec4(1.0f)); }
 #undef STRATA_IF_FEATURE
 #undef STRATA_FEATURE_BITS
 #undef SAMPLE_MAP
+#undef STRATA_SELECT_LAYER
+#undef STRATA_LAYERS_PARAM
+#undef LAYER_SET

@@ -26,6 +26,7 @@ const uint FEATURE_DETAIL_NORMAL = 64u; ///< detail normal map, combined with RN
 const uint FEATURE_EMISSION = 128u;    ///< emission map × HDR colour
 const uint FEATURE_NORMAL_UDN = 256u;  ///< UDN instead of whiteout
 const uint FEATURE_NORMAL_RNM = 512u;  ///< RNM instead of whiteout
+const uint FEATURE_LAYERS = 1024u;     ///< several layers (TerrainLayers.h); the other bits are their union
 
 // Map slots.
 const int MAP_ALBEDO = 0;

@@ -7,6 +7,7 @@
 in vec3 vTexturePosition; // texture space
 in vec3 vNormal;
 in vec3 vPosition;        // metres, relative to the mesh origin
+in vec2 vSurface;         // cavity, cover (layer rules)
 
 // std140 blocks, mirrored by render/src/UniformBlocks.h (FrameBlock, binding
 // 0, is in TerrainFrame.glsl).
@@ -19,9 +20,15 @@ layout(std140, binding = 2) uniform LightingBlock
     LightingParams uLighting;
 };
 
-// The nine map slots (MAP_* in TriplanarMaterial.h) on texture units 0..8;
-// sRGB textures sample linear.
-layout(binding = 0) uniform sampler2D uMaps[STRATA_MAP_COUNT];
+// The nine map slots (MAP_* in TriplanarMaterial.h) on texture units 0..8,
+// each a texture array with one layer per material layer (TerrainLayers.h;
+// one layer without layers); sRGB textures sample linear.
+layout(binding = 0) uniform sampler2DArray uMaps[STRATA_MAP_COUNT];
+#ifdef STRATA_LAYERED
+#define MAP_LAYER float(gLayer)
+#else
+#define MAP_LAYER 0.0f
+#endif
 
 // Sun shadows (Shadow.h): the parameters (binding 3, mirrored by
 // shading::ShadowParams, checked in render/src/ShadowSetup.h) and the depth
@@ -52,15 +59,15 @@ layout(location = 0) out vec4 fragColor;
 vec4 sampleMap(int map, vec2 uv, vec2 dUVdx, vec2 dUVdy)
 {
     switch (map) {
-    case 0: return textureGrad(uMaps[0], uv, dUVdx, dUVdy);
-    case 1: return textureGrad(uMaps[1], uv, dUVdx, dUVdy);
-    case 2: return textureGrad(uMaps[2], uv, dUVdx, dUVdy);
-    case 3: return textureGrad(uMaps[3], uv, dUVdx, dUVdy);
-    case 4: return textureGrad(uMaps[4], uv, dUVdx, dUVdy);
-    case 5: return textureGrad(uMaps[5], uv, dUVdx, dUVdy);
-    case 6: return textureGrad(uMaps[6], uv, dUVdx, dUVdy);
-    case 7: return textureGrad(uMaps[7], uv, dUVdx, dUVdy);
-    default: return textureGrad(uMaps[8], uv, dUVdx, dUVdy);
+    case 0: return textureGrad(uMaps[0], vec3(uv, MAP_LAYER), dUVdx, dUVdy);
+    case 1: return textureGrad(uMaps[1], vec3(uv, MAP_LAYER), dUVdx, dUVdy);
+    case 2: return textureGrad(uMaps[2], vec3(uv, MAP_LAYER), dUVdx, dUVdy);
+    case 3: return textureGrad(uMaps[3], vec3(uv, MAP_LAYER), dUVdx, dUVdy);
+    case 4: return textureGrad(uMaps[4], vec3(uv, MAP_LAYER), dUVdx, dUVdy);
+    case 5: return textureGrad(uMaps[5], vec3(uv, MAP_LAYER), dUVdx, dUVdy);
+    case 6: return textureGrad(uMaps[6], vec3(uv, MAP_LAYER), dUVdx, dUVdy);
+    case 7: return textureGrad(uMaps[7], vec3(uv, MAP_LAYER), dUVdx, dUVdy);
+    default: return textureGrad(uMaps[8], vec3(uv, MAP_LAYER), dUVdx, dUVdy);
     }
 }
 
@@ -81,7 +88,16 @@ void main()
     // shadeFragment() and shadeDebugFragment() of TriplanarMaterial.h with
     // the material evaluated once, so the program holds one copy of it
     // (this halves llvmpipe's compile time per variant).
+#ifdef STRATA_LAYERED
+    // Each layer maps the position with its own scale (TerrainLayers.h).
+    SurfaceInput world = s;
+    world.p = vPosition;
+    world.dpdx = dFdx(vPosition);
+    world.dpdy = dFdy(vPosition);
+    SurfaceOutput o = evaluateLayers(world, vSurface);
+#else
     SurfaceOutput o = evaluateSurface(s, uMaterial);
+#endif
     if (uFrame.debugView != DEBUG_VIEW_SHADED) {
         fragColor = vec4(debugViewColor(o, uFrame.debugView), 1.0f);
         return;
@@ -89,6 +105,11 @@ void main()
     // The interpolated normal (not the mapped one) biases the shadow lookup.
     float sun = sunVisibility(uShadow, vPosition, vNormal);
     LightingParams lit = shadowedLighting(uLighting, sun);
-    vec3 radiance = lightSurface(o, s.viewDir, lit, uMaterial.fresnelStrength);
+#ifdef STRATA_LAYERED
+    float fresnelStrength = uLayerSet.materials[0].fresnelStrength;
+#else
+    float fresnelStrength = uMaterial.fresnelStrength;
+#endif
+    vec3 radiance = lightSurface(o, s.viewDir, lit, fresnelStrength);
     fragColor = vec4(finishFragment(radiance, lit.exposure, uAtmosphere, vec3(uFrame.cameraPosition), vPosition), 1.0f);
 }

@@ -5,15 +5,18 @@
 
 layout(location = 0) in vec3 aPosition; // metres, relative to the mesh origin
 layout(location = 1) in vec3 aNormal;   // unit, world space
+layout(location = 2) in vec2 aSurface;  // cavity, cover (MeshView::surface; (0, 0) when the mesh has none)
 
 out vec3 vTexturePosition; // texture space: (world position) · mapScale, mod 1
 out vec3 vNormal;
 out vec3 vPosition;        // metres, relative to the mesh origin
+out vec2 vSurface;
 
 void main()
 {
     vTexturePosition = aPosition * uFrame.mapScale + vec3(uFrame.textureOffset);
     vNormal = aNormal;
     vPosition = aPosition;
+    vSurface = aSurface;
     gl_Position = uFrame.viewProjection * vec4(aPosition, 1.0f);
 }

@@ -1,6 +1,7 @@
 #include <strata/render/CpuRenderer.h>
 
 #include "AtmosphereSetup.h"
+#include "LayerSetup.h"
 #include "MaterialMaps.h"
 #include "ShadingBridge.h"
 #include "ShadowSetup.h"
@@ -66,12 +67,14 @@ SamplePattern samplePattern(int samples)
     return pattern;
 }
 
-/// The CPU side of SAMPLE_MAP: filtered sampling of the nine slots. Each
-/// tile shades with its own copy, which counts its fetches (CpuRenderStats).
+/// The CPU side of SAMPLE_MAP: filtered sampling of the nine slots of the
+/// selected layer (STRATA_SELECT_LAYER). Each tile shades with its own
+/// copy, which counts its fetches (CpuRenderStats).
 struct CpuMaps
 {
-    std::array<const Texture*, 9> maps{};
-    std::uint32_t features = 0;
+    std::array<std::array<const Texture*, 9>, STRATA_MAX_LAYERS> layers{};
+    mutable int layer = 0;
+    mutable std::uint32_t features = 0;
     TextureFilter filter = TextureFilter::Trilinear;
     LodLog2 lodLog2 = LodLog2::Exact;
     mutable std::uint64_t fetches = 0; ///< SAMPLE_MAP calls
@@ -83,7 +86,13 @@ struct CpuMaps
         static constexpr std::uint32_t GROUP[9] = {0, 1, 2, 0, 1, 2, 3, 4, 5};
         ++fetches;
         groups |= 1u << GROUP[std::size_t(map)];
-        return sampleFiltered(*maps[std::size_t(map)], filter, uv, dUVdx, dUVdy, lodLog2);
+        return sampleFiltered(*layers[std::size_t(layer)][std::size_t(map)], filter, uv, dUVdx, dUVdy, lodLog2);
+    }
+
+    void select(int index, std::uint32_t layerFeatures) const
+    {
+        layer = index;
+        features = layerFeatures;
     }
 };
 
@@ -92,6 +101,7 @@ struct ClipVertex
     glm::vec4 clip;
     glm::vec3 position; // relative to the mesh origin
     glm::vec3 normal;
+    glm::vec2 surface; // cavity, cover
 };
 
 /// A screen-space triangle ready for rasterization (image space, y down).
@@ -103,6 +113,7 @@ struct Triangle
     float z[3]; // window depth 0.5·z_ndc + 0.5, as GL interpolates it
     glm::vec3 position[3];
     glm::vec3 normal[3];
+    glm::vec2 surface[3];
     float area2;                // twice the signed area in float pixels, > 0
     int minX, minY, maxX, maxY; // pixel bounds (inclusive), clamped to the image
 };
@@ -110,7 +121,7 @@ struct Triangle
 ClipVertex lerpVertex(const ClipVertex& a, const ClipVertex& b, float t)
 {
     return {a.clip + (b.clip - a.clip) * t, a.position + (b.position - a.position) * t,
-            a.normal + (b.normal - a.normal) * t};
+            a.normal + (b.normal - a.normal) * t, a.surface + (b.surface - a.surface) * t};
 }
 
 /// Sutherland–Hodgman against one homogeneous plane dot(plane, clip) >= 0.
@@ -149,6 +160,7 @@ struct Interpolated
 {
     glm::vec3 position;
     glm::vec3 normal;
+    glm::vec2 surface;
     bool valid;
 };
 
@@ -164,11 +176,12 @@ Interpolated interpolate(const Triangle& t, float px, float py)
     const float q2 = l2 * t.invW[2];
     const float sum = q0 + q1 + q2;
     if (!(sum > 1e-20f)) {
-        return {{}, {}, false};
+        return {{}, {}, {}, false};
     }
     const float inv = 1.0f / sum;
     return {(t.position[0] * q0 + t.position[1] * q1 + t.position[2] * q2) * inv,
-            (t.normal[0] * q0 + t.normal[1] * q1 + t.normal[2] * q2) * inv, true};
+            (t.normal[0] * q0 + t.normal[1] * q1 + t.normal[2] * q2) * inv,
+            (t.surface[0] * q0 + t.surface[1] * q1 + t.surface[2] * q2) * inv, true};
 }
 
 struct Frame
@@ -179,23 +192,46 @@ struct Frame
     glm::vec3 detailOffset;   // fract(floor(origin · mapScale) · detailScale), as GlRenderer.cpp
     glm::vec3 cameraPosition; // relative to the mesh origin
     shading::MaterialParams material;
+    shading::LayerSetParams layerSet; // layered materials (feature::LAYERS)
     shading::LightingParams lighting;
     shading::AtmosphereParams atmosphere;
     CpuMaps maps;
 };
 
-using ShadeFunction = glm::vec3 (*)(const Frame&, const CpuMaps&, const shading::SurfaceInput&,
-                                    const shading::LightingParams&, const glm::vec3& position);
+/// One fragment's inputs: `s` in texture space, `world` the same in metres
+/// relative to the mesh origin (the layers map it themselves).
+struct Fragment
+{
+    shading::SurfaceInput s;
+    shading::SurfaceInput world;
+    glm::vec2 surface;
+};
+
+using ShadeFunction = glm::vec3 (*)(const Frame&, const CpuMaps&, const Fragment&, const shading::LightingParams&);
+
+/// terrain.frag's material: the base alone, or every layer (TerrainLayers.h).
+template <unsigned FEATURES>
+shading::SurfaceOutput evaluateWith(const Frame& frame, const CpuMaps& maps, const Fragment& f)
+{
+    if constexpr ((FEATURES & feature::LAYERS) != 0u) {
+        if ((maps.features & feature::LAYERS) != 0u) {
+            return shading::evaluateLayers<FEATURES, CpuMaps>(maps, frame.layerSet, f.world, f.surface);
+        }
+    }
+    return shading::evaluateSurface<FEATURES, CpuMaps>(maps, f.s, frame.material);
+}
 
 /// terrain.frag's shaded path: the material, lit, through the atmosphere,
-/// tone mapped. `position` is the fragment's, relative to the mesh origin.
+/// tone mapped.
 template <unsigned FEATURES>
-glm::vec3 shadeWith(const Frame& frame, const CpuMaps& maps, const shading::SurfaceInput& s,
-                    const shading::LightingParams& lighting, const glm::vec3& position)
+glm::vec3 shadeWith(const Frame& frame, const CpuMaps& maps, const Fragment& f, const shading::LightingParams& lighting)
 {
-    const shading::SurfaceOutput o = shading::evaluateSurface<FEATURES, CpuMaps>(maps, s, frame.material);
-    const glm::vec3 radiance = shading::lightSurface(o, s.viewDir, lighting, frame.material.fresnelStrength);
-    return shading::finishFragment(radiance, lighting.exposure, frame.atmosphere, frame.cameraPosition, position);
+    const std::uint32_t selected = maps.features;
+    const shading::SurfaceOutput o = evaluateWith<FEATURES>(frame, maps, f);
+    maps.features = selected; // the layers select their own sets
+    const glm::vec3 radiance = shading::lightSurface(o, f.s.viewDir, lighting, frame.material.fresnelStrength);
+    return shading::finishFragment(radiance, lighting.exposure, frame.atmosphere, frame.cameraPosition,
+                                   f.world.p);
 }
 
 /// The CPU side of SHADOW_FETCH: a square depth map, stored rows top to
@@ -263,7 +299,8 @@ std::vector<Triangle> setupTriangles(const MeshView& mesh, const std::vector<glm
             bool inside = true;
             for (int k = 0; k < 3; ++k) {
                 const std::uint32_t index = mesh.indices[t * 3 + std::size_t(k)];
-                polygon[0][k] = {clip[index], mesh.positions[index], mesh.normals[index]};
+                polygon[0][k] = {clip[index], mesh.positions[index], mesh.normals[index],
+                                 mesh.surface ? mesh.surface[index] : glm::vec2(0.0f)};
                 for (const glm::vec4& plane : planes) {
                     inside = inside && glm::dot(plane, clip[index]) >= 0.0f;
                 }
@@ -312,6 +349,7 @@ std::vector<Triangle> setupTriangles(const MeshView& mesh, const std::vector<glm
                     tri.z[m] = z[o];
                     tri.position[m] = polygon[current][o].position;
                     tri.normal[m] = polygon[current][o].normal;
+                    tri.surface[m] = polygon[current][o].surface;
                 }
                 tri.area2 = float(area < 0 ? -area : area) / (SUBPIXEL * SUBPIXEL);
                 const std::int64_t half = 1 << (SUBPIXEL_BITS - 1);
@@ -474,7 +512,8 @@ Image renderSnapshotCpu(const MeshView& mesh, const SnapshotOptions& options, Cp
     const int width = options.width;
     const int height = options.height;
     const Material& material = options.material;
-    const std::array<TexturePtr, 9> textures = detail::resolveMaps(material);
+    checkMaterial(material);
+    const detail::LayerMaps textures = detail::resolveLayerMaps(material);
 
     Frame frame;
     frame.width = width;
@@ -487,8 +526,15 @@ Image renderSnapshotCpu(const MeshView& mesh, const SnapshotOptions& options, Cp
     frame.cameraPosition = glm::vec3(options.camera.position - mesh.origin);
     frame.material = detail::toShading(material);
     frame.lighting = detail::toShading(options.lighting);
-    for (std::size_t i = 0; i < 9; ++i) frame.maps.maps[i] = textures[i].get();
+    for (int layer = 0; layer < textures.layerCount; ++layer) {
+        for (std::size_t k = 0; k < 9; ++k) {
+            frame.maps.layers[std::size_t(layer)][k] = textures.slots[k][std::size_t(layer)].get();
+        }
+    }
     frame.maps.features = effectiveFeatures(material, options.featureMask);
+    if (frame.maps.features & feature::LAYERS) {
+        frame.layerSet = detail::makeLayerSet(material, mesh.origin, options.featureMask);
+    }
     frame.maps.filter = options.filtering;
     frame.maps.lodLog2 = options.cpuLodLog2;
     const ShadeFunction shade = shadeFunctionFor(frame.maps.features);
@@ -570,21 +616,30 @@ Image renderSnapshotCpu(const MeshView& mesh, const SnapshotOptions& options, Cp
             const float nyCentre = float(py == qy ? py + 1 : py - 1) + 0.5f;
             const Interpolated nx = interpolate(t, nxCentre, cy);
             const Interpolated ny = interpolate(t, cx, nyCentre);
-            shading::SurfaceInput s;
+            Fragment f;
+            shading::SurfaceInput& s = f.s;
+            const glm::vec3 dx = nx.valid ? nx.position - self.position : glm::vec3(0.0f);
+            const glm::vec3 dy = ny.valid ? ny.position - self.position : glm::vec3(0.0f);
+            f.world.p = self.position;
+            f.world.detailOffset = glm::vec3(0.0f);
+            f.world.dpdx = px == qx ? dx : -dx;
+            f.world.dpdy = py == qy ? dy : -dy;
+            f.world.n = shading::safeNormalize(self.normal, glm::vec3(0.0f, 1.0f, 0.0f));
+            f.world.viewDir = shading::safeNormalize(frame.cameraPosition - self.position, f.world.n);
+            s = f.world;
             s.p = self.position * frame.mapScale + frame.textureOffset;
             s.detailOffset = frame.detailOffset;
-            const glm::vec3 dx = nx.valid ? (nx.position - self.position) * frame.mapScale : glm::vec3(0.0f);
-            const glm::vec3 dy = ny.valid ? (ny.position - self.position) * frame.mapScale : glm::vec3(0.0f);
-            s.dpdx = px == qx ? dx : -dx;
-            s.dpdy = py == qy ? dy : -dy;
-            s.n = shading::safeNormalize(self.normal, glm::vec3(0.0f, 1.0f, 0.0f));
-            s.viewDir = shading::safeNormalize(frame.cameraPosition - self.position, s.n);
+            s.dpdx = f.world.dpdx * frame.mapScale;
+            s.dpdy = f.world.dpdy * frame.mapScale;
+            f.surface = self.surface;
             if (debugView != shading::DEBUG_VIEW_SHADED) {
-                c = shading::shadeDebugFragment<feature::ALL, CpuMaps>(maps, s, frame.material, debugView);
+                const std::uint32_t selected = maps.features;
+                c = shading::debugViewColor(evaluateWith<feature::ALL>(frame, maps, f), debugView);
+                maps.features = selected;
             } else {
                 // The interpolated (not the normal-mapped) normal biases the lookup.
                 const float visibility = shading::sunVisibility(shadowMap, shadow, self.position, self.normal);
-                c = shade(frame, maps, s, shading::shadowedLighting(frame.lighting, visibility), self.position);
+                c = shade(frame, maps, f, shading::shadowedLighting(frame.lighting, visibility));
             }
             // A naive triplanar shader fetches all three projections of every map group it reads.
             ++counted.shadedPixels;

@@ -32,6 +32,13 @@ GlObject createTexture2D()
     return {id, [](GLuint i) { glDeleteTextures(1, &i); }};
 }
 
+GlObject createTexture2DArray()
+{
+    GLuint id = 0;
+    glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &id);
+    return {id, [](GLuint i) { glDeleteTextures(1, &i); }};
+}
+
 GlObject createRenderbuffer()
 {
     GLuint id = 0;

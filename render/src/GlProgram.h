@@ -7,11 +7,10 @@
 #include <epoxy/gl.h>
 
 #include <string>
+#include <vector>
 #include <utility>
 
-namespace strata::render {
-struct Texture;
-}
+#include <strata/render/Texture.h>
 
 namespace strata::render::detail {
 
@@ -57,6 +56,7 @@ private:
 GlObject createBuffer();
 GlObject createVertexArray();
 GlObject createTexture2D();
+GlObject createTexture2DArray();
 GlObject createRenderbuffer();
 GlObject createFramebuffer();
 
@@ -64,6 +64,11 @@ GlObject createFramebuffer();
 /// CPU sampler filters): SRGB8_ALPHA8 or RGBA8 by kind, repeating,
 /// trilinear. Rows are already bottom to top. Defined in GlRenderer.cpp.
 GlObject uploadTexture(const Texture& texture);
+
+/// The same for the layers of one map slot as a 2D texture array (layer i
+/// from layers[i]); all of one size, level count and colour space
+/// (resolveLayerMaps() makes them so). Defined in GlRenderer.cpp.
+GlObject uploadTextureArray(const std::vector<TexturePtr>& layers);
 
 /// Throws strata::Error "OpenGL error while WHAT: GL_..." when GL has
 /// recorded an error (and drains the error queue).

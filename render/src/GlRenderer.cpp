@@ -5,6 +5,7 @@
 
 #include "AtmosphereSetup.h"
 #include "GlProgram.h"
+#include "LayerSetup.h"
 #include "MaterialMaps.h"
 #include "ShadingBridge.h"
 #include "ShadowSetup.h"
@@ -64,7 +65,9 @@ std::string fragmentSource(std::uint32_t features)
 {
     std::string source = shaders::TERRAIN_FRAG;
     const std::size_t lineEnd = source.find('\n');
-    source.insert(lineEnd + 1, "#define STRATA_FEATURES " + std::to_string(features) + "u\n");
+    std::string defines = "#define STRATA_FEATURES " + std::to_string(features) + "u\n";
+    if (features & feature::LAYERS) defines += "#define STRATA_LAYERED 1\n";
+    source.insert(lineEnd + 1, defines);
     return source;
 }
 
@@ -125,7 +128,8 @@ struct StateGuard
         }
         glBindTextureUnit(detail::SHADOW_MAP_UNIT, 0);
         for (GLuint binding : {detail::FRAME_BLOCK_BINDING, detail::MATERIAL_BLOCK_BINDING,
-                               detail::LIGHTING_BLOCK_BINDING, detail::SHADOW_BLOCK_BINDING}) {
+                               detail::LIGHTING_BLOCK_BINDING, detail::SHADOW_BLOCK_BINDING,
+                               detail::LAYER_BLOCK_BINDING}) {
             glBindBufferBase(GL_UNIFORM_BUFFER, binding, 0);
         }
         glDisable(GL_FRAMEBUFFER_SRGB);
@@ -154,9 +158,10 @@ void checkCamera(const Camera& c)
     }
 }
 
+/// One map slot's texture array on the GPU, keyed by its layers' textures.
 struct ResidentTexture
 {
-    TexturePtr source; // keeps the pointer valid as the key
+    std::vector<TexturePtr> sources; // keep the pointers valid as the key
     GlObject object;
 };
 
@@ -183,6 +188,32 @@ detail::GlObject detail::uploadTexture(const Texture& texture)
     return object;
 }
 
+detail::GlObject detail::uploadTextureArray(const std::vector<TexturePtr>& layers)
+{
+    const Texture& first = *layers.front();
+    GlObject object = detail::createTexture2DArray();
+    const GLuint id = object.id();
+    const auto levels = GLsizei(first.levels.size());
+    glTextureStorage3D(id, levels, first.srgb ? GL_SRGB8_ALPHA8 : GL_RGBA8, first.width(), first.height(),
+                       GLsizei(layers.size()));
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    for (std::size_t layer = 0; layer < layers.size(); ++layer) {
+        for (GLsizei level = 0; level < levels; ++level) {
+            const Texture::Level& l = layers[layer]->levels[std::size_t(level)];
+            glTextureSubImage3D(id, level, 0, 0, GLint(layer), l.width, l.height, 1, GL_RGBA, GL_UNSIGNED_BYTE,
+                                l.texels.data());
+        }
+    }
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    glTextureParameteri(id, GL_TEXTURE_MAX_LEVEL, levels - 1);
+    glTextureParameteri(id, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+    glTextureParameteri(id, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTextureParameteri(id, GL_TEXTURE_WRAP_S, GL_REPEAT);
+    glTextureParameteri(id, GL_TEXTURE_WRAP_T, GL_REPEAT);
+    detail::checkGl("uploading a texture array");
+    return object;
+}
+
 struct GlRenderer::Impl
 {
     explicit Impl(GlContext& c) : context(c) {}
@@ -198,6 +229,7 @@ struct GlRenderer::Impl
     GlObject materialBuffer;
     GlObject lightingBuffer;
     GlObject atmosphereBuffer;
+    GlObject layerBuffer; // LayerSetBlock (binding 5), layered materials
 
     // The sky pass (atmosphere on): its program and an empty vertex array
     // (the full-viewport triangle comes from gl_VertexID).
@@ -386,6 +418,8 @@ GlRenderer::GlRenderer(GlContext& context) : mImpl(std::make_unique<Impl>(contex
     r.atmosphereBuffer = detail::createBuffer();
     glNamedBufferStorage(r.atmosphereBuffer.id(), sizeof(shading::AtmosphereParams), nullptr,
                          GL_DYNAMIC_STORAGE_BIT);
+    r.layerBuffer = detail::createBuffer();
+    glNamedBufferStorage(r.layerBuffer.id(), sizeof(detail::LayerSetBlock), nullptr, GL_DYNAMIC_STORAGE_BIT);
     r.vertexArray = detail::createVertexArray();
     r.skyVertexArray = detail::createVertexArray();
     r.stats.possible = int(allFeatureSets().size());
@@ -434,8 +468,11 @@ void GlRenderer::setMesh(const MeshView& mesh)
     }
     r.vertexBuffer = detail::createBuffer();
     r.indexBuffer = detail::createBuffer();
+    // Positions, normals, then the optional surface attributes (cavity, cover).
     const std::size_t arrayBytes = mesh.vertexCount * sizeof(glm::vec3);
-    glNamedBufferStorage(r.vertexBuffer.id(), GLsizeiptr(2 * arrayBytes), nullptr, GL_DYNAMIC_STORAGE_BIT);
+    const std::size_t surfaceBytes = mesh.surface ? mesh.vertexCount * sizeof(glm::vec2) : 0;
+    glNamedBufferStorage(r.vertexBuffer.id(), GLsizeiptr(2 * arrayBytes + surfaceBytes), nullptr,
+                         GL_DYNAMIC_STORAGE_BIT);
     glNamedBufferSubData(r.vertexBuffer.id(), 0, GLsizeiptr(arrayBytes), mesh.positions);
     glNamedBufferSubData(r.vertexBuffer.id(), GLintptr(arrayBytes), GLsizeiptr(arrayBytes), mesh.normals);
     glNamedBufferStorage(r.indexBuffer.id(), GLsizeiptr(mesh.indexCount * sizeof(std::uint32_t)), mesh.indices, 0);
@@ -448,6 +485,13 @@ void GlRenderer::setMesh(const MeshView& mesh)
         glVertexArrayAttribFormat(vao, attribute, 3, GL_FLOAT, GL_FALSE, 0);
         glVertexArrayAttribBinding(vao, attribute, attribute);
     }
+    if (mesh.surface) { // else attribute 2 is disabled and reads GL's constant (0, 0, 0, 1)
+        glNamedBufferSubData(r.vertexBuffer.id(), GLintptr(2 * arrayBytes), GLsizeiptr(surfaceBytes), mesh.surface);
+        glVertexArrayVertexBuffer(vao, 2, r.vertexBuffer.id(), GLintptr(2 * arrayBytes), sizeof(glm::vec2));
+        glEnableVertexArrayAttrib(vao, 2);
+        glVertexArrayAttribFormat(vao, 2, 2, GL_FLOAT, GL_FALSE, 0);
+        glVertexArrayAttribBinding(vao, 2, 2);
+    }
     detail::checkGl("uploading the mesh");
     r.indexCount = GLsizei(mesh.indexCount);
 }
@@ -459,10 +503,11 @@ void GlRenderer::setMaterial(const Material& material, float anisotropy, Texture
     if (!(anisotropy >= 1.0f && anisotropy <= 16.0f)) {
         throw Error("render: anisotropy " + std::to_string(anisotropy) + " outside 1..16");
     }
-    const std::array<TexturePtr, STRATA_MAP_COUNT> maps = detail::resolveMaps(material);
+    const detail::LayerMaps maps = detail::resolveLayerMaps(material);
     r.context.makeCurrent();
     detail::clearGlErrors();
-    for (const TexturePtr& texture : maps) {
+    for (const std::vector<TexturePtr>& slot : maps.slots) {
+        const TexturePtr& texture = slot.front();
         if (texture->width() > r.maxTextureSize || texture->height() > r.maxTextureSize) {
             throw Error("render: texture " + std::to_string(texture->width()) + "x" +
                         std::to_string(texture->height()) + " exceeds this OpenGL's limit of " +
@@ -471,17 +516,17 @@ void GlRenderer::setMaterial(const Material& material, float anisotropy, Texture
     }
     const float applied = std::min(anisotropy, r.maxAnisotropy);
     std::vector<ResidentTexture> kept;
-    for (std::size_t slot = 0; slot < maps.size(); ++slot) {
-        const Texture* key = maps[slot].get();
-        auto sameSource = [key](const ResidentTexture& t) { return t.source.get() == key; };
-        auto found = std::find_if(kept.begin(), kept.end(), sameSource);
+    for (std::size_t slot = 0; slot < maps.slots.size(); ++slot) {
+        const std::vector<TexturePtr>& layers = maps.slots[slot];
+        auto sameSources = [&layers](const ResidentTexture& t) { return t.sources == layers; };
+        auto found = std::find_if(kept.begin(), kept.end(), sameSources);
         if (found == kept.end()) {
-            auto old = std::find_if(r.textures.begin(), r.textures.end(), sameSource);
+            auto old = std::find_if(r.textures.begin(), r.textures.end(), sameSources);
             if (old != r.textures.end()) {
                 kept.push_back(std::move(*old));
                 r.textures.erase(old);
             } else {
-                kept.push_back({maps[slot], detail::uploadTexture(*maps[slot])});
+                kept.push_back({layers, detail::uploadTextureArray(layers)});
             }
             found = kept.end() - 1;
             if (applied > 1.0f || r.maxAnisotropy > 1.0f) {
@@ -542,7 +587,8 @@ void GlRenderer::draw(const Camera& camera, const Lighting& lighting, unsigned f
     detail::clearGlErrors();
     StateGuard guard;
 
-    const GLuint program = r.program(effectiveFeatures(r.material, options.featureMask));
+    const std::uint32_t features = effectiveFeatures(r.material, options.featureMask);
+    const GLuint program = r.program(features);
 
     // Uniform blocks.
     const double aspect = double(width) / double(height);
@@ -571,6 +617,12 @@ void GlRenderer::draw(const Camera& camera, const Lighting& lighting, unsigned f
     glBindBufferBase(GL_UNIFORM_BUFFER, detail::FRAME_BLOCK_BINDING, r.frameBuffer.id());
     glBindBufferBase(GL_UNIFORM_BUFFER, detail::MATERIAL_BLOCK_BINDING, r.materialBuffer.id());
     glBindBufferBase(GL_UNIFORM_BUFFER, detail::LIGHTING_BLOCK_BINDING, r.lightingBuffer.id());
+    if (features & feature::LAYERS) {
+        const detail::LayerSetBlock layers =
+            detail::toBlock(detail::makeLayerSet(r.material, r.origin, options.featureMask));
+        glNamedBufferSubData(r.layerBuffer.id(), 0, sizeof(layers), &layers);
+        glBindBufferBase(GL_UNIFORM_BUFFER, detail::LAYER_BLOCK_BINDING, r.layerBuffer.id());
+    }
     detail::checkGl("setting the uniform blocks");
 
     // Sun shadows: the depth pass into the shadow map, then the main pass

@@ -11,10 +11,10 @@ namespace strata::render {
 
 std::string featureNames(std::uint32_t features)
 {
-    static const char* NAMES[] = {"mask",   "mods",          "height",   "normal", "top",
-                                  "detail", "detail-normal", "emission", "udn",    "rnm"};
+    static const char* NAMES[] = {"mask",   "mods",          "height",   "normal", "top",   "detail",
+                                  "detail-normal", "emission", "udn",    "rnm",    "layers"};
     std::string out;
-    for (int i = 0; i < 10; ++i) {
+    for (int i = 0; i < 11; ++i) {
         if (features & (1u << i)) {
             if (!out.empty()) out += '+';
             out += NAMES[i];
@@ -23,7 +23,10 @@ std::string featureNames(std::uint32_t features)
     return out.empty() ? "albedo" : out;
 }
 
-std::uint32_t materialFeatures(const Material& m)
+namespace {
+
+/// The feature set of one material, its layers aside.
+std::uint32_t ownFeatures(const Material& m)
 {
     std::uint32_t f = 0;
     if (m.mask || m.topMask) f |= feature::MASK_MAP;
@@ -42,19 +45,45 @@ std::uint32_t materialFeatures(const Material& m)
     return f;
 }
 
+} // namespace
+
+std::uint32_t materialFeatures(const Material& m)
+{
+    if (m.layers.empty()) {
+        return ownFeatures(m);
+    }
+    std::uint32_t f = ownFeatures(m) | feature::LAYERS;
+    for (const MaterialLayer& layer : m.layers) f |= ownFeatures(layer.material);
+    return normalizeFeatures(f);
+}
+
+std::uint32_t layerFeatures(const Material& material, int index, std::uint32_t mask)
+{
+    const Material& m = index == 0 ? material : material.layers.at(std::size_t(index - 1)).material;
+    return normalizeFeatures(ownFeatures(m) & mask & ~feature::LAYERS);
+}
+
 std::uint32_t normalizeFeatures(std::uint32_t f)
 {
     f &= feature::ALL;
     if (!(f & feature::MASK_MAP)) f &= ~(feature::MODS | feature::HEIGHT_BLEND);
-    if (f & feature::MODS) f &= ~feature::HEIGHT_BLEND;
     if (!(f & (feature::NORMAL_MAP | feature::DETAIL_NORMAL))) f &= ~(feature::NORMAL_UDN | feature::NORMAL_RNM);
-    if (f & feature::NORMAL_RNM) f &= ~feature::NORMAL_UDN;
+    // A layered program serves layers of either mask layout and any normal
+    // blend (each layer's own set decides at run time): no exclusions.
+    if (!(f & feature::LAYERS)) {
+        if (f & feature::MODS) f &= ~feature::HEIGHT_BLEND;
+        if (f & feature::NORMAL_RNM) f &= ~feature::NORMAL_UDN;
+    }
     return f;
 }
 
 std::uint32_t effectiveFeatures(const Material& material, std::uint32_t mask)
 {
-    return normalizeFeatures(materialFeatures(material) & mask);
+    const std::uint32_t all = materialFeatures(material);
+    if (!(all & mask & feature::LAYERS)) {
+        return layerFeatures(material, 0, mask); // the base alone
+    }
+    return normalizeFeatures(all & mask);
 }
 
 std::vector<std::uint32_t> allFeatureSets()
@@ -66,12 +95,26 @@ std::vector<std::uint32_t> allFeatureSets()
     return sets;
 }
 
-void checkMaterial(const Material& m)
+namespace {
+
+void checkBand(const std::string& what, const char* key, const LayerBand& band)
 {
-    auto range = [](const char* key, double value, double lo, double hi) {
-        detail::checkRange("material", key, value, lo, hi);
+    if (!band.enabled) return;
+    if (std::isnan(band.min) || std::isnan(band.max) || band.min > band.max) {
+        throw Error(what + ": " + key + " band [" + std::to_string(band.min) + ", " + std::to_string(band.max) +
+                    "] needs min <= max");
+    }
+    if (!(band.softness >= 0.0f && std::isfinite(band.softness))) {
+        throw Error(what + ": " + key + " softness " + std::to_string(band.softness) + " must be finite and >= 0");
+    }
+}
+
+void checkOne(const Material& m, const std::string& what)
+{
+    auto range = [&what](const char* key, double value, double lo, double hi) {
+        detail::checkRange(what.c_str(), key, value, lo, hi);
     };
-    if (!(std::isfinite(m.mapScale) && m.mapScale > 0.0f)) throw Error("material: mapScale must be > 0");
+    if (!(std::isfinite(m.mapScale) && m.mapScale > 0.0f)) throw Error(what + ": mapScale must be > 0");
     range("blendOffset", m.blendOffset, 0.0f, 0.5f);
     range("blendExponent", m.blendExponent, 1.0f, 64.0f);
     range("heightStrength", m.heightStrength, 0.0f, 0.99f);
@@ -85,7 +128,7 @@ void checkMaterial(const Material& m)
     range("detailNormalStrength", m.detailNormalStrength, 0.0f, 1.0f);
     range("fresnelStrength", m.fresnelStrength, 0.0f, 1.0f);
     if (m.projections != 2 && m.projections != 3) {
-        throw Error("material: projections = " + std::to_string(m.projections) + " must be 2 (biplanar) or 3 (triplanar)");
+        throw Error(what + ": projections = " + std::to_string(m.projections) + " must be 2 (biplanar) or 3 (triplanar)");
     }
     for (int c = 0; c < 3; ++c) {
         range("albedoTint", m.albedoTint[c], 0.0f, 16.0f);
@@ -94,7 +137,35 @@ void checkMaterial(const Material& m)
     const TexturePtr* maps[] = {&m.albedo,    &m.mask,   &m.normal,       &m.topAlbedo, &m.topMask,
                                 &m.topNormal, &m.detail, &m.detailNormal, &m.emission};
     for (const TexturePtr* map : maps) {
-        if (*map && (*map)->levels.empty()) throw Error("material: a texture has no levels");
+        if (*map && (*map)->levels.empty()) throw Error(what + ": a texture has no levels");
+    }
+}
+
+} // namespace
+
+void checkMaterial(const Material& m)
+{
+    checkOne(m, "material");
+    if (m.layers.empty()) return;
+    if (int(m.layers.size()) + 1 > MAX_MATERIAL_LAYERS) {
+        throw Error("material: " + std::to_string(m.layers.size()) + " layers over the base; at most " +
+                    std::to_string(MAX_MATERIAL_LAYERS - 1));
+    }
+    detail::checkRange("material", "layerBlendDepth", m.layerBlendDepth, 1e-3, 100.0);
+    for (std::size_t i = 0; i < m.layers.size(); ++i) {
+        const MaterialLayer& layer = m.layers[i];
+        const std::string what = "material layer '" + (layer.name.empty() ? std::to_string(i + 1) : layer.name) + "'";
+        checkOne(layer.material, what);
+        if (!layer.material.layers.empty()) throw Error(what + ": layers cannot have layers of their own");
+        const LayerRule& r = layer.rule;
+        checkBand(what, "altitude", r.altitude);
+        checkBand(what, "slope", r.slope);
+        checkBand(what, "cavity", r.cavity);
+        checkBand(what, "cover", r.cover);
+        detail::checkRange(what.c_str(), "opacity", r.opacity, 0.0, 1.0);
+        detail::checkRange(what.c_str(), "noiseFrequency", r.noiseFrequency, 0.0, 1e3);
+        detail::checkRange(what.c_str(), "noiseThreshold", r.noiseThreshold, 0.0, 1.0);
+        detail::checkRange(what.c_str(), "noiseSoftness", r.noiseSoftness, 0.0, 1.0);
     }
 }
 

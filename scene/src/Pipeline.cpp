@@ -11,6 +11,7 @@
 #include <strata/meshing/DualContouring.h>
 #include <strata/meshing/GridToMesh.h>
 #include <strata/meshing/Simplify.h>
+#include <strata/meshing/SurfaceAttributes.h>
 #include <strata/meshing/SurfaceNets.h>
 #include <strata/meshing/MeshMetrics.h>
 #include <strata/meshing/PlyIO.h>
@@ -122,6 +123,7 @@ render::MeshView meshView(const meshing::TriangleMesh& mesh)
     view.indices = mesh.indices.data();
     view.indexCount = mesh.indices.size();
     view.origin = mesh.origin;
+    if (!mesh.surface.empty() && mesh.surface.size() == mesh.positions.size()) view.surface = mesh.surface.data();
     return view;
 }
 
@@ -218,6 +220,12 @@ meshing::TriangleMesh meshTerrain(const Scene& scene, const QualitySettings& qua
         throw Error(ErrorKind::BadInput,
                     scene.source + ": the terrain has no surface inside the region (check region and terrain.height)",
                     {scene.source});
+    }
+    // Cavity and cover only when a layer rule reads them.
+    const bool needsSurface = std::any_of(scene.material.layers.begin(), scene.material.layers.end(),
+                                          [](const LayerSettings& l) { return l.rule.cavity.enabled || l.rule.cover.enabled; });
+    if (needsSurface && mesh.normals.size() == mesh.positions.size()) {
+        mesh.surface = meshing::computeSurfaceAttributes(*terrain.grid, mesh);
     }
     return mesh;
 }

@@ -3,6 +3,7 @@
 #include "SceneReaders.h"
 
 #include <strata/Error.h>
+#include <strata/render/PbrFolder.h>
 #include <strata/render/ProceduralTextures.h>
 
 #include <map>
@@ -150,6 +151,23 @@ void readMaterialTable(TableReader& m, MaterialSettings& s, const std::filesyste
         m.fail(nullptr, "texture_size", "= " + std::to_string(s.textureSize) + " must be a power of two");
     }
     s.textureSeed = std::uint32_t(m.integer("texture_seed", s.textureSeed, 0, 0xffffffffll));
+    if (m.has("pbr")) {
+        s.pbr = resolve(baseDir, m.string("pbr", ""));
+        s.pbrWhere = m.where("pbr");
+        std::error_code ec;
+        if (!std::filesystem::is_directory(s.pbr, ec)) {
+            m.fail(nullptr, "pbr", "= '" + s.pbr.string() + "': no such folder (a PBR texture set)");
+        }
+    }
+    s.pbrMaxSize = int(m.integer("pbr_max_size", s.pbrMaxSize, 0, render::MAX_MAP_SIZE));
+    if (s.pbrMaxSize != 0 && (s.pbrMaxSize & (s.pbrMaxSize - 1)) != 0) {
+        m.fail(nullptr, "pbr_max_size", "= " + std::to_string(s.pbrMaxSize) + " must be 0 (keep) or a power of two");
+    }
+    const std::string pbrConvention = m.string("pbr_convention", s.pbrDirectX ? "directx" : "opengl");
+    if (pbrConvention != "opengl" && pbrConvention != "directx") {
+        m.fail(nullptr, "pbr_convention", "= '" + pbrConvention + "' must be \"opengl\" or \"directx\"");
+    }
+    s.pbrDirectX = pbrConvention == "directx";
     s.side = setName(m, "side", s.side);
     s.top = setName(m, "top", s.top);
     s.detail = setName(m, "detail", s.detail);
@@ -239,6 +257,75 @@ render::TexturePtr loadSlot(const MapFileSettings& f, render::MapKind kind, cons
     return render::makeTexture(image, kind, mips);
 }
 
+/// A band from KEY_min / KEY_max / KEY_softness: on when either bound is given.
+render::LayerBand readBand(TableReader& t, const std::string& key, double limit, double softness)
+{
+    render::LayerBand band;
+    const bool hasMin = t.has(key + "_min");
+    const bool hasMax = t.has(key + "_max");
+    band.enabled = hasMin || hasMax;
+    if (hasMin) band.min = float(t.number(key + "_min", 0.0, -limit, limit));
+    if (hasMax) band.max = float(t.number(key + "_max", 0.0, -limit, limit));
+    band.softness = float(t.number(key + "_softness", softness, 0.0, limit));
+    if (hasMin && hasMax && band.min > band.max) {
+        t.fail(nullptr, key + "_max",
+               t.shown(key + "_max") + "must be >= " + key + "_min (" + formatNumber(band.min) + ")");
+    }
+    return band;
+}
+
+render::LayerRule readLayerRule(TableReader& t)
+{
+    render::LayerRule r;
+    r.altitude = readBand(t, "altitude", 1e7, 10.0);
+    r.slope = readBand(t, "slope", 180.0, 5.0);
+    r.cavity = readBand(t, "cavity", 1.0, 0.1);
+    r.cover = readBand(t, "cover", 1.0, 0.1);
+    if (t.has("noise_scale")) r.noiseFrequency = float(1.0 / t.number("noise_scale", 1.0, 0.01, 1e5));
+    r.noiseThreshold = float(t.number("noise_threshold", r.noiseThreshold, 0.0, 1.0));
+    r.noiseSoftness = float(t.number("noise_softness", r.noiseSoftness, 0.0, 1.0));
+    r.noiseSeed = std::uint32_t(t.integer("noise_seed", r.noiseSeed, 0, 0xffffffffll));
+    r.opacity = float(t.number("opacity", r.opacity, 0.0, 1.0));
+    return r;
+}
+
+/// The [[layer]] array of tables, bottom to top.
+void readLayers(TableReader& root, MaterialSettings& base, const std::map<std::string, MaterialSettings>& named,
+                const std::filesystem::path& baseDir, const std::string& source)
+{
+    const toml::node* node = root.node("layer");
+    if (!node) return;
+    const toml::array* array = node->as_array();
+    if (!array || !array->is_array_of_tables()) {
+        root.fail(node, "layer", TableReader::shown(node) + "must be an array of tables ([[layer]] ... )");
+    }
+    if (int(array->size()) + 1 > render::MAX_MATERIAL_LAYERS) {
+        root.fail(node, "layer",
+                  "has " + std::to_string(array->size()) + " tables; at most " +
+                      std::to_string(render::MAX_MATERIAL_LAYERS - 1) + " layers over [material]");
+    }
+    for (std::size_t i = 0; i < array->size(); ++i) {
+        const std::string prefix = "layer[" + std::to_string(i + 1) + "]";
+        TableReader t(array->get(i)->as_table(), prefix, source);
+        LayerSettings layer;
+        layer.where = t.where("");
+        const std::string use = t.string("use", "");
+        if (!use.empty()) {
+            auto found = named.find(use);
+            if (found == named.end()) t.fail(nullptr, "use", "= '" + use + "': no [materials." + use + "] table");
+            layer.material = found->second;
+            layer.material.layers.clear();
+        } else {
+            layer.material.top = "none";
+        }
+        layer.material.name = t.string("name", use.empty() ? prefix : use);
+        layer.rule = readLayerRule(t);
+        readMaterialTable(t, layer.material, baseDir);
+        t.finish();
+        base.layers.push_back(std::move(layer));
+    }
+}
+
 } // namespace
 
 void readMaterial(TableReader& root, MaterialSettings& settings, const std::filesystem::path& baseDir)
@@ -267,12 +354,30 @@ void readMaterial(TableReader& root, MaterialSettings& settings, const std::file
     } else {
         settings.name = "material";
     }
+    settings.parameters.layerBlendDepth =
+        float(m.number("layer_blend_depth", settings.parameters.layerBlendDepth, 1e-3, 100.0));
     readMaterialTable(m, settings, baseDir);
     m.finish();
+    settings.layers.clear();
+    readLayers(root, settings, named, baseDir, m.source());
 }
 
 render::Material buildMaterial(const MaterialSettings& settings)
 {
+    if (!settings.layers.empty()) {
+        MaterialSettings base = settings;
+        base.layers.clear();
+        render::Material material = buildMaterial(base);
+        for (const LayerSettings& layer : settings.layers) {
+            material.layers.push_back({layer.material.name, buildMaterial(layer.material), layer.rule});
+        }
+        try {
+            render::checkMaterial(material);
+        } catch (const Error& e) {
+            throw Error(ErrorKind::BadInput, e.what());
+        }
+        return material;
+    }
     render::Material material = settings.parameters;
     render::MipOptions mips;
     mips.detailFadeStart = settings.detailFadeStart;
@@ -290,11 +395,21 @@ render::Material buildMaterial(const MaterialSettings& settings)
     render::TexturePtr* slots[9] = {&material.albedo,    &material.mask,         &material.normal,
                                     &material.topAlbedo, &material.topMask,      &material.topNormal,
                                     &material.detail,    &material.detailNormal, &material.emission};
-    if (settings.side != "none") {
+    if (settings.side != "none" && settings.pbr.empty()) {
         const auto& s = set(settings.side);
         material.albedo = render::makeTexture(s.albedo, render::MapKind::Albedo, mips);
         if (settings.maskMaps) material.mask = render::makeTexture(s.mohs, render::MapKind::Mask, mips);
         if (settings.normalMaps) material.normal = render::makeTexture(s.normal, render::MapKind::Normal, mips);
+    }
+    if (!settings.pbr.empty()) {
+        try {
+            const render::PbrMaps pbr = render::loadPbrFolder(settings.pbr, mips, settings.pbrMaxSize, settings.pbrDirectX);
+            material.albedo = pbr.albedo;
+            material.mask = pbr.mask;
+            material.normal = pbr.normal;
+        } catch (const Error& e) {
+            throw Error(ErrorKind::BadInput, settings.pbrWhere + " (material '" + settings.name + "'): " + e.what());
+        }
     }
     if (settings.top != "none") {
         const auto& s = set(settings.top);

@@ -95,6 +95,9 @@ public:
     /// The node of `key`, or null when absent (marks the key as used).
     const toml::node* node(const std::string& key) { return find(key); }
 
+    /// The scene file this table comes from.
+    const std::string& source() const { return mSource; }
+
     /// Whether `key` is present (does not mark it as used).
     bool has(const std::string& key) const { return mTable && mTable->get(key); }
 

@@ -2,6 +2,7 @@
 /// \file
 /// The plain, engine-ready mesh buffers every mesher returns.
 
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 #include <cstddef>
@@ -19,6 +20,10 @@ struct TriangleMesh
     std::vector<glm::vec3> normals; ///< unit, one per position, or empty
     std::vector<std::uint32_t> indices;
     glm::dvec3 origin{0.0};
+    /// Optional (cavity, cover) per vertex for terrain layer rules
+    /// (computeSurfaceAttributes()), or empty. Mesh operations do not carry
+    /// it: compute it on the final mesh.
+    std::vector<glm::vec2> surface;
 
     std::size_t vertexCount() const { return positions.size(); }
     std::size_t triangleCount() const { return indices.size() / 3; }

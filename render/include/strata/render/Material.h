@@ -10,6 +10,7 @@
 #include <glm/vec3.hpp>
 
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -42,15 +43,57 @@ inline constexpr std::uint32_t DETAIL_NORMAL = 64u;
 inline constexpr std::uint32_t EMISSION = 128u;
 inline constexpr std::uint32_t NORMAL_UDN = 256u;
 inline constexpr std::uint32_t NORMAL_RNM = 512u;
-inline constexpr std::uint32_t ALL = 1023u;
+/// The material has layers (Material::layers): the program evaluates them
+/// all (TerrainLayers.h), its other bits being the union of theirs.
+inline constexpr std::uint32_t LAYERS = 1024u;
+inline constexpr std::uint32_t ALL = 2047u;
 } // namespace feature
 
 /// "mask+height+normal+top" style names of the bits, for logs and reports.
 std::string featureNames(std::uint32_t features);
 
+/// A soft band of a layer rule: weight 1 inside [min, max], smooth ramps
+/// `softness` wide outside each bound, 0 beyond. Off: weight 1
+/// everywhere. Unbounded sides are ±infinity.
+struct LayerBand
+{
+    bool enabled = false;
+    float min = -std::numeric_limits<float>::infinity();
+    float max = std::numeric_limits<float>::infinity();
+    float softness = 0.0f; ///< >= 0, in the band's unit
+};
+
+/// Where a layer shows (shaders/TerrainLayers.h): its coverage is opacity
+/// times every enabled criterion.
+struct LayerRule
+{
+    LayerBand altitude; ///< world height (Y), metres
+    LayerBand slope;    ///< degrees from horizontal of the interpolated normal: 0 flat, 90 a wall, 180 a ceiling
+    LayerBand cavity;   ///< the mesh's per-vertex cavity (MeshView::surface x), 0..1
+    LayerBand cover;    ///< the mesh's per-vertex cover (MeshView::surface y): 1 under rock, 0 open sky
+    /// Noise mask: three octaves of value noise in [0, 1] with features
+    /// about 1/noiseFrequency metres wide; the layer shows where it exceeds
+    /// noiseThreshold (ramp noiseSoftness wide). Off when noiseFrequency is 0.
+    float noiseFrequency = 0.0f;
+    float noiseThreshold = 0.5f;
+    float noiseSoftness = 0.1f;
+    std::uint32_t noiseSeed = 0;
+    float opacity = 1.0f; ///< 0..1, multiplies the coverage
+};
+
+struct MaterialLayer;
+
 /// A triplanar material. Every map is optional (null): the material's
 /// feature set (materialFeatures) enables exactly what is present and
 /// in use. Textures repeat every 1/mapScale metres in each projection.
+///
+/// With `layers`, this material is the base (layer 0, everywhere) and the
+/// layers are painted over it in order by their rules, combined by the
+/// N-layer height blend (shaders/TerrainLayers.h): at most
+/// MAX_MATERIAL_LAYERS in all. The maps of one slot (albedo, mask...) are
+/// one texture array on the GPU, so they must share a size or be mip
+/// levels of one another (a larger map then drops its top levels: see
+/// layerMaps()).
 struct Material
 {
     float mapScale = 0.125f;        ///< texture repeats per metre, > 0
@@ -84,30 +127,57 @@ struct Material
     TexturePtr detail;       ///< R albedo, B smoothness, 0.5 neutral
     TexturePtr detailNormal; ///< tangent-space detail normals
     TexturePtr emission;     ///< sRGB
+
+    std::vector<MaterialLayer> layers; ///< painted over this material, bottom to top (not nested)
+    /// > 0: how far below the highest (height + coverage) a layer still
+    /// shows; small values give sharp, height-driven edges, large ones a
+    /// plain cross-fade by coverage.
+    float layerBlendDepth = 0.2f;
+};
+
+/// The most layers a material has, the base included.
+inline constexpr int MAX_MATERIAL_LAYERS = 8;
+
+/// One layer of a layered material.
+struct MaterialLayer
+{
+    std::string name; ///< for errors and reports
+    Material material; ///< its maps and parameters (its own `layers` must be empty)
+    LayerRule rule;
 };
 
 /// The feature set `material` compiles to: a bit per present map (top
 /// maps when topAlbedo, topMask or topNormal is set), HEIGHT_BLEND when a
 /// MOHS mask is present and heightStrength > 0, MODS for that layout, the
-/// normal blend bits when a normal map is present.
+/// normal blend bits when a normal map is present. With layers: LAYERS and
+/// the union of every layer's set (normalised).
 std::uint32_t materialFeatures(const Material& material);
 
+/// The feature set of layer `index` alone (0: the base), without LAYERS,
+/// with the features outside `mask` switched off and normalised.
+std::uint32_t layerFeatures(const Material& material, int index, std::uint32_t mask = feature::ALL);
+
 /// The feature set that bits `features` can really compile to: MODS and
-/// HEIGHT_BLEND are dropped without MASK_MAP (and HEIGHT_BLEND with MODS),
-/// UDN and RNM without a normal or detail-normal map, UDN when RNM is set.
+/// HEIGHT_BLEND are dropped without MASK_MAP, UDN and RNM without a normal
+/// or detail-normal map; without LAYERS also HEIGHT_BLEND with MODS and
+/// UDN when RNM is set (a layered program serves layers of every kind).
 /// Idempotent; materialFeatures() results are already normalised.
 std::uint32_t normalizeFeatures(std::uint32_t features);
 
 /// normalizeFeatures(materialFeatures(material) & mask): what a renderer
-/// compiles for `material` with the features outside `mask` switched off.
+/// compiles for `material` with the features outside `mask` switched off
+/// (the base's own set when `mask` switches LAYERS off).
 std::uint32_t effectiveFeatures(const Material& material, std::uint32_t mask);
 
-/// Every distinct normalised feature set (320), in increasing order: the
-/// program variants a renderer may have to compile.
+/// Every distinct normalised feature set (840: 320 single-material, 520
+/// layered), in increasing order: the program variants a renderer may have
+/// to compile.
 std::vector<std::uint32_t> allFeatureSets();
 
 /// Throws strata::Error "material: KEY = VALUE outside RANGE" for a
-/// parameter out of range or a texture without levels.
+/// parameter out of range or a texture without levels; for layers
+/// "material layer 'NAME': ...", also for too many or nested layers and
+/// bands with min > max, negative softness or NaN bounds.
 void checkMaterial(const Material& material);
 
 /// One directional light.

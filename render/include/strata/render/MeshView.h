@@ -3,6 +3,7 @@
 /// A non-owning view of an indexed triangle mesh, so the renderer needs no
 /// mesh type of its own and no dependency on the meshing library.
 
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 #include <cstddef>
@@ -14,6 +15,10 @@ struct MeshView
 {
     const glm::vec3* positions = nullptr; ///< world metres, relative to `origin`
     const glm::vec3* normals = nullptr;   ///< unit, per vertex
+    /// Optional, per vertex: x the cavity (0 open .. 1 a deep crevice), y
+    /// the cover (0 open sky .. 1 rock overhead), as layer rules read them
+    /// (LayerRule::cavity, cover). Null reads (0, 0).
+    const glm::vec2* surface = nullptr;
     std::size_t vertexCount = 0;
     const std::uint32_t* indices = nullptr; ///< counter-clockwise seen from outside
     std::size_t indexCount = 0;             ///< multiple of 3

@@ -13,6 +13,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace strata::scene {
 
@@ -34,6 +35,8 @@ struct MapFileSettings
 /// The nine map slots in the order of MaterialMapSlot names below.
 inline constexpr const char* MATERIAL_MAP_KEYS[9] = {"albedo",     "mask",   "normal",        "top_albedo", "top_mask",
                                                      "top_normal", "detail", "detail_normal", "emission"};
+
+struct LayerSettings;
 
 struct MaterialSettings
 {
@@ -59,7 +62,32 @@ struct MaterialSettings
     float detailFadeStart = 1.0f;  ///< mip levels where detail maps start/finish fading
     float detailFadeEnd = 6.0f;
     std::array<std::optional<MapFileSettings>, 9> files; ///< per slot, MATERIAL_MAP_KEYS order
+    /// `pbr = "FOLDER"`: the side maps (albedo, MOHS mask, normal) from a
+    /// PBR texture folder (render::loadPbrFolder), instead of `side`'s set.
+    std::filesystem::path pbr;
+    int pbrMaxSize = 1024;        ///< `pbr_max_size`: maps are halved down to it (power of two)
+    bool pbrDirectX = false;      ///< `pbr_convention = "directx"`: unmarked normal maps are DirectX
+    std::string pbrWhere;         ///< "FILE:LINE: material.pbr", for errors
+    /// [[layer]] tables: painted over this material by their rules (the
+    /// base's only; render::Material::layers).
+    std::vector<LayerSettings> layers;
 };
+
+/// One [[layer]] table: a material of its own (every [material] key but
+/// `layer_blend_depth`, defaults side = "rock", top = "none") and its
+/// placement rule.
+struct LayerSettings
+{
+    MaterialSettings material;
+    render::LayerRule rule;
+    std::string where; ///< "FILE:LINE: layer[N]"
+};
+
+/// The rule keys of a [[layer]] table, for documentation and tests.
+inline constexpr const char* LAYER_RULE_KEYS[] = {
+    "altitude_min", "altitude_max", "altitude_softness", "slope_min",       "slope_max",       "slope_softness",
+    "cavity_min",   "cavity_max",   "cavity_softness",   "cover_min",       "cover_max",       "cover_softness",
+    "noise_scale",  "noise_threshold", "noise_softness", "noise_seed",      "opacity"};
 
 /// Builds the material: built-in sets, then the files (loaded through
 /// OpenImageIO with the colour space of each map, channel remapping and

@@ -1,0 +1,148 @@
+#include "MaterialMaps.h"
+
+#include <strata/Error.h>
+
+#include <algorithm>
+#include <string>
+
+namespace strata::render::detail {
+
+namespace {
+
+const char* const SLOT_NAMES[9] = {"albedo",     "mask",   "normal",        "top_albedo", "top_mask",
+                                   "top_normal", "detail", "detail_normal", "emission"};
+
+/// The neutral value of an absent map, per slot.
+const TexturePtr& standIn(int slot)
+{
+    static const TexturePtr GREY = makeConstantTexture(200, 200, 200, 255, MapKind::Albedo);
+    static const TexturePtr WHITE_MASK = makeConstantTexture(255, 255, 255, 255, MapKind::Mask);
+    static const TexturePtr FLAT = makeConstantTexture(128, 128, 255, 255, MapKind::Normal);
+    static const TexturePtr NEUTRAL = makeConstantTexture(128, 128, 128, 255, MapKind::Detail);
+    static const TexturePtr BLACK = makeConstantTexture(0, 0, 0, 255, MapKind::Emission);
+    static const TexturePtr* const BY_SLOT[9] = {&GREY, &WHITE_MASK, &FLAT, &GREY, &WHITE_MASK,
+                                                 &FLAT, &NEUTRAL,    &FLAT, &BLACK};
+    return *BY_SLOT[slot];
+}
+
+/// The slot's own maps of one material, null where absent (top maps fall
+/// back to the side maps).
+std::array<TexturePtr, 9> ownMaps(const Material& m)
+{
+    std::array<TexturePtr, 9> maps{m.albedo, m.mask, m.normal, m.topAlbedo, m.topMask, m.topNormal,
+                                   m.detail, m.detailNormal, m.emission};
+    for (int k = 0; k < 3; ++k) {
+        if (!maps[std::size_t(3 + k)]) maps[std::size_t(3 + k)] = maps[std::size_t(k)];
+    }
+    return maps;
+}
+
+std::string layerName(const Material& material, int layer)
+{
+    if (layer == 0) return "base";
+    const std::string& name = material.layers[std::size_t(layer - 1)].name;
+    return name.empty() ? std::to_string(layer) : name;
+}
+
+std::string size(int w, int h) { return std::to_string(w) + "x" + std::to_string(h); }
+
+/// `texture` from level `first` on, `count` levels (shares nothing: a copy).
+TexturePtr levelsFrom(const Texture& texture, std::size_t first, std::size_t count)
+{
+    auto out = std::make_shared<Texture>();
+    out->kind = texture.kind;
+    out->srgb = texture.srgb;
+    out->levels.assign(texture.levels.begin() + std::ptrdiff_t(first),
+                       texture.levels.begin() + std::ptrdiff_t(first + count));
+    return out;
+}
+
+/// A constant texture of `value` (one RGBA8 texel) with `count` levels from w × h.
+TexturePtr constantLevels(const Texture& value, int w, int h, std::size_t count)
+{
+    auto out = std::make_shared<Texture>();
+    out->kind = value.kind;
+    out->srgb = value.srgb;
+    const std::uint8_t* texel = value.levels[0].texels.data();
+    for (std::size_t i = 0; i < count; ++i) {
+        Texture::Level level;
+        level.width = w;
+        level.height = h;
+        level.texels.resize(std::size_t(w) * std::size_t(h) * 4);
+        for (std::size_t t = 0; t < level.texels.size(); t += 4) std::copy_n(texel, 4, level.texels.data() + t);
+        out->levels.push_back(std::move(level));
+        w = std::max(w / 2, 1);
+        h = std::max(h / 2, 1);
+    }
+    return out;
+}
+
+} // namespace
+
+std::array<TexturePtr, 9> resolveMaps(const Material& m)
+{
+    std::array<TexturePtr, 9> maps = ownMaps(m);
+    for (int k = 0; k < 9; ++k) {
+        if (!maps[std::size_t(k)]) maps[std::size_t(k)] = standIn(k);
+    }
+    return maps;
+}
+
+LayerMaps resolveLayerMaps(const Material& material)
+{
+    LayerMaps out;
+    out.layerCount = 1 + int(material.layers.size());
+    std::vector<std::array<TexturePtr, 9>> own;
+    own.push_back(ownMaps(material));
+    for (const MaterialLayer& layer : material.layers) own.push_back(ownMaps(layer.material));
+
+    for (int k = 0; k < 9; ++k) {
+        std::vector<TexturePtr>& slot = out.slots[std::size_t(k)];
+        // The smallest present map sets the slot's size.
+        int smallest = -1;
+        for (int i = 0; i < out.layerCount; ++i) {
+            const TexturePtr& t = own[std::size_t(i)][std::size_t(k)];
+            if (t && (smallest < 0 || t->width() < own[std::size_t(smallest)][std::size_t(k)]->width())) smallest = i;
+        }
+        if (smallest < 0) {
+            slot.assign(std::size_t(out.layerCount), standIn(k));
+            continue;
+        }
+        const Texture& reference = *own[std::size_t(smallest)][std::size_t(k)];
+        const int w = reference.width();
+        const int h = reference.height();
+        // Where each present map reaches that size, and how many levels all share from there.
+        std::vector<std::size_t> first(std::size_t(out.layerCount), 0);
+        std::size_t levels = reference.levels.size();
+        for (int i = 0; i < out.layerCount; ++i) {
+            const TexturePtr& t = own[std::size_t(i)][std::size_t(k)];
+            if (!t) continue;
+            const std::string what = "material: layer '" + layerName(material, i) + "' map " + SLOT_NAMES[k];
+            if (t->srgb != reference.srgb) {
+                throw Error(what + " is " + (t->srgb ? "sRGB" : "linear") + " but layer '" +
+                            layerName(material, smallest) + "''s is not (one colour space per map slot)");
+            }
+            std::size_t j = 0;
+            while (j < t->levels.size() && !(t->levels[j].width == w && t->levels[j].height == h)) ++j;
+            if (j == t->levels.size()) {
+                throw Error(what + " is " + size(t->width(), t->height()) + ": none of its mip levels is " + size(w, h) +
+                            ", the size of layer '" + layerName(material, smallest) + "''s (the layers' maps of one slot share a texture array: give them one size, or sizes a power of two apart)");
+            }
+            first[std::size_t(i)] = j;
+            levels = std::min(levels, t->levels.size() - j);
+        }
+        for (int i = 0; i < out.layerCount; ++i) {
+            const TexturePtr& t = own[std::size_t(i)][std::size_t(k)];
+            if (!t) {
+                slot.push_back(constantLevels(*standIn(k), w, h, levels));
+            } else if (first[std::size_t(i)] == 0 && t->levels.size() == levels) {
+                slot.push_back(t);
+            } else {
+                slot.push_back(levelsFrom(*t, first[std::size_t(i)], levels));
+            }
+        }
+    }
+    return out;
+}
+
+} // namespace strata::render::detail

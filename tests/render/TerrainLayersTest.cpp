@@ -1,0 +1,484 @@
+// Terrain layers (shaders/TerrainLayers.h): the rule and blend math as C++,
+// the layer maps' texture-array sizing, the material checks, and GL against
+// the CPU reference with layers of different feature sets, also 8.4e6 m
+// from the origin.
+
+#include <strata/Error.h>
+#include <strata/render/CpuRenderer.h>
+#include <strata/render/EglContext.h>
+#include <strata/render/GlRenderer.h>
+#include <strata/render/Image.h>
+
+#include "GoldenScenes.h"
+#include "LayerSetup.h"
+#include "MaterialMaps.h"
+#include "ShadingBridge.h"
+#include "TestDir.h"
+#include "TestMeshes.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <iostream>
+#include <memory>
+#include <string>
+
+namespace {
+
+using namespace strata::render;
+namespace shading = strata::shading;
+using strata::test::TestMesh;
+
+// ---------------------------------------------------------------------------
+// Rules.
+
+TEST(TerrainLayers, BandWeightIsOneInsideAndRampsOutside)
+{
+    const glm::vec4 band(10.0f, 20.0f, 4.0f, 1.0f);
+    EXPECT_FLOAT_EQ(shading::bandWeight(15.0f, band), 1.0f);
+    EXPECT_FLOAT_EQ(shading::bandWeight(10.0f, band), 1.0f); // the bounds are inside
+    EXPECT_FLOAT_EQ(shading::bandWeight(20.0f, band), 1.0f);
+    EXPECT_FLOAT_EQ(shading::bandWeight(8.0f, band), 0.5f); // half way down the ramp
+    EXPECT_FLOAT_EQ(shading::bandWeight(22.0f, band), 0.5f);
+    EXPECT_FLOAT_EQ(shading::bandWeight(6.0f, band), 0.0f);
+    EXPECT_FLOAT_EQ(shading::bandWeight(24.5f, band), 0.0f);
+    EXPECT_FLOAT_EQ(shading::bandWeight(-1e30f, band), 0.0f);
+    // Softness 0: a step, still finite.
+    const glm::vec4 hard(10.0f, 20.0f, 0.0f, 1.0f);
+    EXPECT_FLOAT_EQ(shading::bandWeight(9.999f, hard), 0.0f);
+    EXPECT_FLOAT_EQ(shading::bandWeight(10.0f, hard), 1.0f);
+    // Off, and unbounded sides far from the origin.
+    EXPECT_FLOAT_EQ(shading::bandWeight(1e7f, glm::vec4(0.0f, 0.0f, 0.0f, 0.0f)), 1.0f);
+    const glm::vec4 open(-1e30f, 1e30f, 1e6f, 1.0f);
+    EXPECT_FLOAT_EQ(shading::bandWeight(1e9f, open), 1.0f);
+    EXPECT_FLOAT_EQ(shading::bandWeight(-1e9f, open), 1.0f);
+}
+
+TEST(TerrainLayers, NoiseStaysInTheUnitRangeAndRepeatsEvery256Cells)
+{
+    float lo = 1.0f, hi = 0.0f;
+    for (int i = 0; i < 4000; ++i) {
+        const glm::vec3 p(float(i) * 0.37f - 700.0f, float(i % 61) * 1.3f, float(i % 17) * -2.1f);
+        const float v = shading::layerNoise(p, 9u);
+        ASSERT_TRUE(v >= 0.0f && v <= 1.0f) << v;
+        lo = std::min(lo, v);
+        hi = std::max(hi, v);
+        // Exact binary fractions: the shifted point has the same cell fraction.
+        const glm::vec3 q(float(i % 97) * 0.25f, float(i % 13) * 0.5f, float(i % 7) * 0.125f);
+        EXPECT_EQ(shading::valueNoise(q, 3u), shading::valueNoise(q + glm::vec3(256.0f, -512.0f, 1024.0f), 3u));
+    }
+    EXPECT_LT(lo, 0.3f); // it varies
+    EXPECT_GT(hi, 0.7f);
+}
+
+/// A sampler of constant maps: layer L, slot k returns value(L, k).
+struct ConstantMaps
+{
+    mutable int layer = 0;
+    mutable std::uint32_t features = feature::ALL & ~feature::LAYERS;
+    glm::vec4 albedo[STRATA_MAX_LAYERS];
+    float height[STRATA_MAX_LAYERS];
+
+    glm::vec4 sample(int map, glm::vec2, glm::vec2, glm::vec2) const
+    {
+        if (map == shading::MAP_ALBEDO || map == shading::MAP_TOP_ALBEDO) return albedo[layer];
+        if (map == shading::MAP_MASK || map == shading::MAP_TOP_MASK) return glm::vec4(0.0f, 1.0f, height[layer], 0.5f);
+        if (map == shading::MAP_NORMAL || map == shading::MAP_TOP_NORMAL || map == shading::MAP_DETAIL_NORMAL)
+            return glm::vec4(0.5f, 0.5f, 1.0f, 1.0f);
+        if (map == shading::MAP_EMISSION) return glm::vec4(0.0f);
+        return glm::vec4(0.5f);
+    }
+    void select(int index, std::uint32_t f) const
+    {
+        layer = index;
+        features = f;
+    }
+};
+
+struct LayerFixture
+{
+    ConstantMaps maps;
+    shading::LayerSetParams set{};
+    shading::SurfaceInput world{};
+
+    explicit LayerFixture(int count)
+    {
+        Material base;
+        set = strata::render::detail::makeLayerSet(base, glm::dvec3(0.0), feature::ALL);
+        set.count = count;
+        for (int i = 0; i < STRATA_MAX_LAYERS; ++i) {
+            set.layers[i] = set.layers[0];
+            set.layers[i].features = feature::MASK_MAP | feature::HEIGHT_BLEND;
+            set.materials[i] = set.materials[0];
+            set.materials[i].metallic = 1.0f;
+            set.materials[i].smoothness = 1.0f;
+            maps.albedo[i] = glm::vec4(float(i + 1) / 8.0f, 0.25f, 0.5f, 1.0f);
+            maps.height[i] = 0.5f;
+        }
+        world.p = glm::vec3(1.3f, 2.0f, -0.7f);
+        world.n = glm::vec3(0.0f, 1.0f, 0.0f);
+        world.dpdx = glm::vec3(0.01f, 0.0f, 0.0f);
+        world.dpdy = glm::vec3(0.0f, 0.0f, 0.01f);
+        world.viewDir = glm::vec3(0.0f, 1.0f, 0.0f);
+        world.detailOffset = glm::vec3(0.0f);
+    }
+    shading::SurfaceOutput evaluate(glm::vec2 surface = glm::vec2(0.0f)) const
+    {
+        return shading::evaluateLayers<feature::ALL, ConstantMaps>(maps, set, world, surface);
+    }
+    void cover(int i, float opacity) { set.layers[i].opacity = opacity; }
+};
+
+bool finite(const shading::SurfaceOutput& o)
+{
+    for (int c = 0; c < 3; ++c) {
+        if (!std::isfinite(o.albedo[c]) || !std::isfinite(o.normal[c])) return false;
+    }
+    return std::isfinite(o.metallic) && std::isfinite(o.smoothness) && std::isfinite(o.occlusion);
+}
+
+TEST(TerrainLayers, NoCoverageAnywhereGivesTheBaseNeverBlackOrNan)
+{
+    LayerFixture f(8);
+    for (int i = 1; i < 8; ++i) f.cover(i, 0.0f);
+    const shading::SurfaceOutput o = f.evaluate();
+    ASSERT_TRUE(finite(o));
+    EXPECT_FLOAT_EQ(o.albedo.x, f.maps.albedo[0].x);
+    EXPECT_GT(o.albedo.x + o.albedo.y + o.albedo.z, 0.1f);
+    EXPECT_NEAR(glm::length(o.normal), 1.0f, 1e-5f);
+}
+
+TEST(TerrainLayers, FullCoverageOfEveryLayerShowsTheTopOne)
+{
+    LayerFixture f(8);
+    const shading::SurfaceOutput o = f.evaluate();
+    ASSERT_TRUE(finite(o));
+    EXPECT_FLOAT_EQ(o.albedo.x, f.maps.albedo[7].x);
+}
+
+TEST(TerrainLayers, OneLayerIsTheMaterialItself)
+{
+    LayerFixture f(1);
+    const shading::SurfaceOutput layered = f.evaluate();
+    shading::SurfaceInput s = f.world;
+    s.p = f.world.p * f.set.layers[0].mapScale + glm::vec3(f.set.layers[0].textureOffset);
+    s.dpdx *= f.set.layers[0].mapScale;
+    s.dpdy *= f.set.layers[0].mapScale;
+    f.maps.select(0, f.set.layers[0].features);
+    const shading::SurfaceOutput single =
+        shading::evaluateSurface<feature::ALL, ConstantMaps>(f.maps, s, f.set.materials[0]);
+    EXPECT_FLOAT_EQ(layered.albedo.x, single.albedo.x);
+    EXPECT_FLOAT_EQ(layered.smoothness, single.smoothness);
+    EXPECT_FLOAT_EQ(layered.normal.y, single.normal.y);
+}
+
+TEST(TerrainLayers, HeightDecidesBetweenHalfCoveredLayers)
+{
+    LayerFixture f(2);
+    f.cover(1, 0.5f); // base and layer 1 share equally
+    f.set.blendDepth = 0.05f;
+    f.maps.height[0] = 0.9f; // the base's rocks stand out...
+    f.maps.height[1] = 0.4f;
+    EXPECT_FLOAT_EQ(f.evaluate().albedo.x, f.maps.albedo[0].x);
+    f.maps.height[0] = 0.2f; // ...or the layer fills the gaps between them
+    EXPECT_FLOAT_EQ(f.evaluate().albedo.x, f.maps.albedo[1].x);
+    // A large depth cross-fades by coverage alone.
+    f.set.blendDepth = 100.0f;
+    EXPECT_NEAR(f.evaluate().albedo.x, 0.5f * (f.maps.albedo[0].x + f.maps.albedo[1].x), 0.01f);
+}
+
+TEST(TerrainLayers, ALayerFadesInContinuouslyFromZeroCoverage)
+{
+    LayerFixture f(2);
+    f.cover(1, 0.0f);
+    f.maps.height[1] = 1.0f; // the highest possible height: still no pop
+    f.set.blendDepth = 0.2f;
+    float previous = f.evaluate().albedo.x;
+    EXPECT_FLOAT_EQ(previous, f.maps.albedo[0].x);
+    for (int step = 1; step <= 100; ++step) {
+        f.cover(1, float(step) * 1e-4f);
+        const float now = f.evaluate().albedo.x;
+        EXPECT_LT(std::abs(now - previous), 0.01f) << step;
+        previous = now;
+    }
+}
+
+TEST(TerrainLayers, RulesReadSlopeAltitudeCavityAndCover)
+{
+    LayerFixture f(2);
+    f.set.layers[1].slope = glm::vec4(0.0f, 30.0f, 0.0f, 1.0f);
+    EXPECT_FLOAT_EQ(f.evaluate().albedo.x, f.maps.albedo[1].x); // flat ground
+    f.world.n = glm::normalize(glm::vec3(1.0f, 1.0f, 0.0f));   // 45°
+    EXPECT_FLOAT_EQ(f.evaluate().albedo.x, f.maps.albedo[0].x);
+    f.world.n = glm::vec3(0.0f, -1.0f, 0.0f); // a ceiling: 180°
+    EXPECT_FLOAT_EQ(f.evaluate().albedo.x, f.maps.albedo[0].x);
+    f.world.n = glm::vec3(0.0f, 1.0f, 0.0f);
+    f.set.layers[1].altitude = glm::vec4(100.0f, 1e30f, 0.0f, 1.0f);
+    EXPECT_FLOAT_EQ(f.evaluate().albedo.x, f.maps.albedo[0].x);
+    f.world.p.y = 150.0f;
+    EXPECT_FLOAT_EQ(f.evaluate().albedo.x, f.maps.albedo[1].x);
+    f.set.layers[1].cover = glm::vec4(0.5f, 1.0f, 0.0f, 1.0f);
+    EXPECT_FLOAT_EQ(f.evaluate(glm::vec2(0.0f, 0.0f)).albedo.x, f.maps.albedo[0].x);
+    EXPECT_FLOAT_EQ(f.evaluate(glm::vec2(0.0f, 1.0f)).albedo.x, f.maps.albedo[1].x);
+    f.set.layers[1].cavity = glm::vec4(0.3f, 1.0f, 0.0f, 1.0f);
+    EXPECT_FLOAT_EQ(f.evaluate(glm::vec2(0.1f, 1.0f)).albedo.x, f.maps.albedo[0].x);
+    EXPECT_FLOAT_EQ(f.evaluate(glm::vec2(0.6f, 1.0f)).albedo.x, f.maps.albedo[1].x);
+}
+
+TEST(TerrainLayers, ExtremeInputsStayFinite)
+{
+    LayerFixture f(4);
+    f.set.blendDepth = 1e-3f;
+    f.cover(1, 0.5f);
+    f.set.layers[2].noise = glm::vec4(1000.0f, 0.5f, 0.0f, 1.0f);
+    f.set.layers[3].slope = glm::vec4(-1e30f, 1e30f, 1e6f, 1.0f);
+    const glm::vec3 normals[] = {glm::vec3(0.0f), glm::vec3(1e-30f, 0.0f, 0.0f), glm::vec3(0.0f, -1.0f, 0.0f),
+                                 glm::normalize(glm::vec3(1.0f))};
+    for (const glm::vec3& n : normals) {
+        f.world.n = n;
+        for (float y : {-1e9f, 0.0f, 1e9f}) {
+            f.world.p = glm::vec3(1e7f, y, -1e7f);
+            EXPECT_TRUE(finite(f.evaluate(glm::vec2(1.0f, 1.0f)))) << y;
+        }
+    }
+}
+
+// ---------------------------------------------------------------------------
+// Texture arrays and checks.
+
+TexturePtr solid(int size, std::uint8_t value, MapKind kind)
+{
+    Image image;
+    image.width = size;
+    image.height = size;
+    image.pixels.assign(std::size_t(size * size * 4), value);
+    return makeTexture(image, kind);
+}
+
+TEST(TerrainLayers, LayerMapsShareOneSizePerSlot)
+{
+    Material m;
+    m.albedo = solid(64, 90, MapKind::Albedo);
+    MaterialLayer grass;
+    grass.name = "grass";
+    grass.material.albedo = solid(128, 160, MapKind::Albedo); // a mip level of it is 64²
+    grass.material.normal = solid(32, 128, MapKind::Normal);
+    m.layers.push_back(grass);
+    const strata::render::detail::LayerMaps maps = strata::render::detail::resolveLayerMaps(m);
+    ASSERT_EQ(maps.layerCount, 2);
+    for (const auto& slot : maps.slots) {
+        ASSERT_EQ(slot.size(), 2u);
+        EXPECT_EQ(slot[0]->width(), slot[1]->width());
+        EXPECT_EQ(slot[0]->levels.size(), slot[1]->levels.size());
+    }
+    EXPECT_EQ(maps.slots[0][1]->width(), 64);
+    EXPECT_EQ(maps.slots[0][1]->levels[0].texels[0], 160);
+    EXPECT_EQ(maps.slots[2][0]->width(), 32); // the base's flat stand-in at the slot's size
+    EXPECT_EQ(maps.slots[2][0]->levels[0].texels[2], 255);
+
+    m.layers[0].material.albedo = solid(100, 160, MapKind::Albedo);
+    try {
+        strata::render::detail::resolveLayerMaps(m);
+        FAIL() << "sizes without a common mip level were accepted";
+    } catch (const strata::Error& e) {
+        EXPECT_NE(std::string(e.what()).find("layer 'grass' map albedo is 100x100"), std::string::npos) << e.what();
+    }
+}
+
+TEST(TerrainLayers, CheckMaterialNamesTheLayerAndTheKey)
+{
+    Material m;
+    auto expectError = [&](const std::string& part) {
+        try {
+            checkMaterial(m);
+            FAIL() << "accepted; expected " << part;
+        } catch (const strata::Error& e) {
+            EXPECT_NE(std::string(e.what()).find(part), std::string::npos) << e.what();
+        }
+    };
+    MaterialLayer snow;
+    snow.name = "snow";
+    snow.rule.altitude.enabled = true;
+    snow.rule.altitude.min = 200.0f;
+    snow.rule.altitude.max = 100.0f;
+    m.layers.push_back(snow);
+    expectError("material layer 'snow': altitude band");
+    m.layers[0].rule.altitude.max = 300.0f;
+    EXPECT_NO_THROW(checkMaterial(m));
+    m.layers[0].rule.opacity = 2.0f;
+    expectError("material layer 'snow': opacity");
+    m.layers[0].rule.opacity = 1.0f;
+    m.layers[0].material.layers.push_back(snow);
+    expectError("layers cannot have layers");
+    m.layers[0].material.layers.clear();
+    m.layers.assign(8, m.layers[0]);
+    expectError("8 layers over the base; at most 7");
+    m.layers.resize(7);
+    EXPECT_NO_THROW(checkMaterial(m));
+    m.layerBlendDepth = 0.0f;
+    expectError("layerBlendDepth");
+}
+
+TEST(TerrainLayers, FeatureSetsAreTheUnionAndEachLayersOwn)
+{
+    Material m = strata::test::circuitryMaterial("mohs-height");
+    EXPECT_EQ(materialFeatures(m) & feature::LAYERS, 0u);
+    MaterialLayer layer;
+    layer.material = strata::test::circuitryMaterial("normal-rnm");
+    layer.material.maskLayout = MaskLayout::Mods;
+    m.layers.push_back(layer);
+    const std::uint32_t all = materialFeatures(m);
+    EXPECT_TRUE(all & feature::LAYERS);
+    EXPECT_TRUE(all & feature::HEIGHT_BLEND); // the base's, kept beside the layer's MODS
+    EXPECT_TRUE(all & feature::MODS);
+    EXPECT_TRUE(all & feature::NORMAL_RNM);
+    EXPECT_EQ(layerFeatures(m, 0), feature::MASK_MAP | feature::HEIGHT_BLEND);
+    EXPECT_EQ(layerFeatures(m, 1), feature::MASK_MAP | feature::MODS | feature::NORMAL_MAP | feature::NORMAL_RNM);
+    // Switching LAYERS off renders the base alone.
+    EXPECT_EQ(effectiveFeatures(m, ~feature::LAYERS), layerFeatures(m, 0));
+}
+
+// ---------------------------------------------------------------------------
+// GL against the CPU.
+
+EglContext& context()
+{
+    static std::unique_ptr<EglContext> shared = EglContext::create();
+    return *shared;
+}
+
+/// A ground slab with a block standing on it: flat tops, walls, one mesh.
+TestMesh groundWithBlock()
+{
+    TestMesh mesh = strata::test::makeBox(glm::vec3(-4.0f, -1.0f, -4.0f), glm::vec3(4.0f, 0.0f, 4.0f));
+    const TestMesh block = strata::test::makeBox(glm::vec3(-1.5f, 0.0f, -1.5f), glm::vec3(1.5f, 2.5f, 1.5f));
+    const auto base = std::uint32_t(mesh.positions.size());
+    mesh.positions.insert(mesh.positions.end(), block.positions.begin(), block.positions.end());
+    mesh.normals.insert(mesh.normals.end(), block.normals.begin(), block.normals.end());
+    for (std::uint32_t i : block.indices) mesh.indices.push_back(base + i);
+    return mesh;
+}
+
+/// Four layers of different feature sets: circuitry (full) everywhere,
+/// grass (albedo + MOHS) on flat ground by a noise mask, MODS + RNM rock on
+/// the walls, snow (albedo only) above 2 m. `lift` is added to the rules'
+/// altitudes (for meshes moved up with their origin).
+Material fourLayers(double lift = 0.0)
+{
+    Material m = strata::test::circuitryMaterial("full");
+    MaterialLayer grass;
+    grass.name = "grass";
+    grass.material.albedo = makeTexture(strata::test::grass().albedo, MapKind::Albedo);
+    grass.material.mask = makeTexture(strata::test::grass().mohs, MapKind::Mask);
+    grass.material.mapScale = 0.25f;
+    grass.material.albedoTint = glm::vec3(1.4f, 1.1f, 0.3f); // dry grass, unlike the base's top maps
+    grass.rule.slope = {true, 0.0f, 30.0f, 10.0f};
+    grass.rule.noiseFrequency = 0.5f;
+    grass.rule.noiseThreshold = 0.45f;
+    grass.rule.noiseSoftness = 0.2f;
+    grass.rule.noiseSeed = 4;
+    MaterialLayer rock;
+    rock.name = "rock";
+    rock.material = strata::test::circuitryMaterial("normal-rnm");
+    rock.material.maskLayout = MaskLayout::Mods;
+    rock.material.albedoTint = glm::vec3(0.7f, 0.6f, 0.5f);
+    rock.rule.slope = {true, 60.0f, 120.0f, 20.0f};
+    rock.rule.opacity = 0.8f;
+    MaterialLayer snow;
+    snow.name = "snow";
+    snow.material.albedoTint = glm::vec3(1.2f);
+    snow.rule.altitude = {true, float(lift + 2.0), std::numeric_limits<float>::infinity(), 0.5f};
+    m.layers = {grass, rock, snow};
+    m.layerBlendDepth = 0.15f;
+    return m;
+}
+
+SnapshotOptions layerOptions(const TestMesh& mesh, glm::dvec3 origin = glm::dvec3(0.0))
+{
+    SnapshotOptions options = strata::test::goldenOptions(mesh, "albedo", 480, 270);
+    options.camera.position += origin;
+    options.camera.target += origin;
+    options.material = fourLayers(origin.y);
+    return options;
+}
+
+TEST(TerrainLayers, GlMatchesTheCpuWithFourLayersOfDifferentFeatureSets)
+{
+    const TestMesh mesh = groundWithBlock();
+    const SnapshotOptions options = layerOptions(mesh);
+    CpuRenderStats stats;
+    const Image cpu = renderSnapshotCpu(mesh.view(), options, &stats);
+    const Image gl = renderSnapshot(context(), mesh.view(), options);
+    const double p = psnr(gl, cpu);
+    const double within = fractionWithin(gl, cpu, 2);
+    std::cout << "[ layers   ] GL vs CPU, four layers: PSNR " << p << " dB, " << within * 100.0
+              << "% within 2/255, " << double(stats.textureFetches) / double(stats.shadedPixels)
+              << " fetches per shaded pixel" << std::endl;
+    EXPECT_GE(p, 40.0);
+    EXPECT_GE(within, 0.99);
+    // Each layer shows somewhere: switching one off changes the image.
+    for (std::size_t off = 0; off < options.material.layers.size(); ++off) {
+        SnapshotOptions less = options;
+        less.material.layers[off].rule.opacity = 0.0f;
+        EXPECT_LT(psnr(renderSnapshotCpu(mesh.view(), less), cpu), 40.0) << options.material.layers[off].name;
+    }
+    if (!(p >= 40.0 && within >= 0.99)) {
+        const auto dir = strata::test::freshTestDir();
+        writeImage(gl, dir / "layers-gl.png");
+        writeImage(cpu, dir / "layers-cpu.png");
+        std::cout << "  wrote " << dir.string() << std::endl;
+    }
+}
+
+TEST(TerrainLayers, FarFromTheOriginTheImageIsTheSame)
+{
+    // Origins that are whole periods of the textures (2 m, 4 m) and of the
+    // noise (256 cells of 2 m): the world looks the same from there.
+    const TestMesh mesh = groundWithBlock();
+    const Image near = renderSnapshotCpu(mesh.view(), layerOptions(mesh));
+    for (double offset : {1024.0, 131072.0, 8388608.0}) {
+        const glm::dvec3 origin(offset, offset, -offset);
+        TestMesh moved = mesh;
+        strata::render::MeshView view = moved.view();
+        view.origin = origin;
+        const Image cpu = renderSnapshotCpu(view, layerOptions(mesh, origin));
+        EXPECT_GE(psnr(cpu, near), 60.0) << offset;
+        if (offset == 8388608.0) {
+            const Image gl = renderSnapshot(context(), view, layerOptions(mesh, origin));
+            EXPECT_GE(psnr(gl, cpu), 40.0);
+        }
+    }
+}
+
+TEST(TerrainLayers, SurfaceAttributesReachTheRulesOnBothRenderers)
+{
+    // Cover 1 on the block's vertices: the "cave" layer paints the block only.
+    const TestMesh mesh = groundWithBlock();
+    std::vector<glm::vec2> surface(mesh.positions.size(), glm::vec2(0.0f));
+    for (std::size_t i = 24; i < surface.size(); ++i) surface[i] = glm::vec2(0.0f, 1.0f);
+    strata::render::MeshView view = mesh.view();
+    SnapshotOptions options = strata::test::goldenOptions(mesh, "albedo", 320, 180);
+    MaterialLayer cave;
+    cave.name = "cave";
+    cave.material.albedoTint = glm::vec3(0.05f, 0.05f, 0.9f);
+    cave.rule.cover = {true, 0.5f, 1.0f, 0.0f};
+    options.material.layers.push_back(cave);
+    const Image without = renderSnapshotCpu(view, options);
+    view.surface = surface.data();
+    const Image cpu = renderSnapshotCpu(view, options);
+    const Image gl = renderSnapshot(context(), view, options);
+    EXPECT_LT(psnr(cpu, without), 30.0);
+    EXPECT_GE(psnr(gl, cpu), 40.0);
+    if (psnr(gl, cpu) < 40.0) {
+        const auto dir = strata::test::freshTestDir();
+        writeImage(gl, dir / "surface-gl.png");
+        writeImage(cpu, dir / "surface-cpu.png");
+        writeImage(without, dir / "surface-without.png");
+        std::cout << "  wrote " << dir.string() << std::endl;
+    }
+    // The centre of the image is the block: blue there.
+    const std::uint8_t* centre = cpu.at(160, 90);
+    EXPECT_GT(centre[2], centre[0] + 40);
+}
+
+} // namespace
