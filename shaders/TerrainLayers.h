@@ -184,24 +184,29 @@ STRATA_INLINE SurfaceOutput accumulateSurface(SurfaceOutput sum, SurfaceOutput o
 STRATA_FEATURE_FUNCTION SurfaceOutput evaluateLayers(STRATA_MAPS_PARAM STRATA_LAYERS_PARAM SurfaceInput world,
                                                      vec2 surface)
 {
+    // GLSL programs are built for their layer count (STRATA_LAYER_COUNT), so
+    // the loops unroll to exactly that many copies of the material; C++
+    // reads the count at run time.
+#ifdef STRATA_LAYER_COUNT
+    const int count = STRATA_LAYER_COUNT;
+#else
+    int count = min(max(LAYER_SET.count, 1), STRATA_MAX_LAYERS);
+#endif
     float share[STRATA_MAX_LAYERS];
+    float keys[STRATA_MAX_LAYERS];
+    SurfaceOutput outputs[STRATA_MAX_LAYERS];
     float remaining = 1.0f;
-    for (int i = STRATA_MAX_LAYERS - 1; i >= 0; --i) {
-        share[i] = 0.0f;
-        if (i < LAYER_SET.count) {
-            float c = i == 0 ? 1.0f : layerCoverage(LAYER_SET.layers[i], world.n, world.p, surface);
-            share[i] = c * remaining;
-            remaining *= 1.0f - c;
-        }
+    for (int i = count - 1; i >= 0; --i) {
+        float c = i == 0 ? 1.0f : layerCoverage(LAYER_SET.layers[i], world.n, world.p, surface);
+        share[i] = c * remaining;
+        remaining *= 1.0f - c;
     }
 
-    SurfaceOutput outputs[STRATA_MAX_LAYERS];
-    float keys[STRATA_MAX_LAYERS];
     float best = -1e30f;
     int bestLayer = 0;
-    for (int i = 0; i < STRATA_MAX_LAYERS; ++i) {
+    for (int i = 0; i < count; ++i) {
         keys[i] = -1e30f;
-        if (i < LAYER_SET.count && share[i] > 0.0f) {
+        if (share[i] > 0.0f) {
             LayerParams l = LAYER_SET.layers[i];
             SurfaceInput s = world;
             s.p = world.p * l.mapScale + vec3(l.textureOffset.x, l.textureOffset.y, l.textureOffset.z);
@@ -228,8 +233,8 @@ STRATA_FEATURE_FUNCTION SurfaceOutput evaluateLayers(STRATA_MAPS_PARAM STRATA_LA
     sum.smoothness = 0.0f;
     sum.height = 0.0f;
     float total = 0.0f;
-    for (int i = 0; i < STRATA_MAX_LAYERS; ++i) {
-        if (i < LAYER_SET.count && share[i] > 0.0f) {
+    for (int i = 0; i < count; ++i) {
+        if (share[i] > 0.0f) {
             float w = share[i] * max(keys[i] - (best - LAYER_SET.blendDepth), 0.0f);
             if (w > 0.0f) {
                 sum = accumulateSurface(sum, outputs[i], w);

@@ -14,7 +14,9 @@
 //     (textureGrad, trilinear: 8 texels each), so fetches per shaded pixel =
 //     k · (1 + mask + normal + detail + detail-normal + emission), where k, the
 //     mean number of projections with a non-zero weight, is measured on the
-//     same view through the triplanar-weights debug view (GL).
+//     same view through the triplanar-weights debug view (GL); layered
+//     materials break this count, so the last column gives the fetches the
+//     CPU renderer really made per shaded pixel.
 //
 //   cmake --build <dir> --target render_benchmark && <dir>/tests/render/render_benchmark [runs] [WIDTHxHEIGHT]
 
@@ -126,6 +128,40 @@ int main(int argc, char** argv)
     Material rnm = m;
     rnm.normalBlend = NormalBlend::Rnm;
     cases.push_back({"  same, RNM normals", rnm});
+    {
+        // The default material under three layers (TerrainLayers.h), each a
+        // built-in set with albedo, MOHS and normals: sand low down, soil on
+        // the slopes, snow in patches on the heights.
+        const TextureSetImages sand = makeBuiltinSet(BuiltinSet::Sand, 512, 7);
+        const TextureSetImages soil = makeBuiltinSet(BuiltinSet::Soil, 512, 7);
+        const TextureSetImages snow = makeBuiltinSet(BuiltinSet::Snow, 512, 7);
+        auto layer = [&](const char* name, const TextureSetImages& set) {
+            MaterialLayer l;
+            l.name = name;
+            l.material.albedo = makeTexture(set.albedo, MapKind::Albedo);
+            l.material.mask = makeTexture(set.mohs, MapKind::Mask);
+            l.material.normal = makeTexture(set.normal, MapKind::Normal);
+            l.material.metallic = 1.0f;
+            l.material.smoothness = 1.0f;
+            l.material.heightStrength = 0.6f;
+            return l;
+        };
+        Material layered = m;
+        MaterialLayer l1 = layer("sand", sand);
+        l1.rule.altitude = {true, -1e9f, 1.5f, 1.0f};
+        MaterialLayer l2 = layer("soil", soil);
+        l2.rule.slope = {true, 25.0f, 50.0f, 8.0f};
+        MaterialLayer l3 = layer("snow", snow);
+        l3.rule.altitude = {true, 9.0f, 1e9f, 1.5f};
+        l3.rule.slope = {true, 0.0f, 30.0f, 8.0f};
+        l3.rule.noiseFrequency = 0.15f;
+        l3.rule.noiseThreshold = 0.35f;
+        layered.layers = {l1, l2, l3};
+        cases.push_back({"  default + 3 layers (4 in all)", layered});
+        Material two = m;
+        two.layers = {l1};
+        cases.push_back({"  default + 1 layer (sand)", two});
+    }
     m.detail = makeTexture(rock.detail, MapKind::Detail);
     cases.push_back({"  + detail", m});
     m.detailNormal = makeTexture(rock.normal, MapKind::DetailNormal);
@@ -207,13 +243,17 @@ int main(int argc, char** argv)
     std::printf("\n%dx%d, %zu triangles, median of %d runs (ms); GL = persistent renderer, draw + glFinish;\n"
                 "fetches = texture fetches per shaded pixel (k = mean projections with weight > 0)\n",
                 width, height, mesh.indexCount / 3, runs);
-    std::printf("%-40s %-36s %8s %10s %9s %10s %5s %8s\n", "feature set", "bits", "CPU 1x", "CPU 4xMSAA", "GL 1x",
-                "GL 4xMSAA", "k", "fetches");
+    std::printf("%-40s %-36s %8s %10s %9s %10s %5s %8s %8s\n", "feature set", "bits", "CPU 1x", "CPU 4xMSAA", "GL 1x",
+                "GL 4xMSAA", "k", "fetches", "CPU f/px");
     for (const Case& c : cases) {
         options.material = c.material;
         const std::uint32_t f = materialFeatures(c.material);
         options.samples = 1;
         const double cpu1 = median([&] { renderSnapshotCpu(mesh, options); });
+        CpuRenderStats counted;
+        renderSnapshotCpu(mesh, options, &counted); // fetches the CPU renderer really made, per shaded pixel
+        const double cpuFetches =
+            counted.shadedPixels ? double(counted.textureFetches) / double(counted.shadedPixels) : 0.0;
         options.samples = 4;
         const double cpu4 = median([&] { renderSnapshotCpu(mesh, options); });
         double gl1 = -1.0, gl4 = -1.0, k = 0.0;
@@ -251,8 +291,8 @@ int main(int argc, char** argv)
         const int maps = 1 + ((f & feature::MASK_MAP) != 0) + ((f & feature::NORMAL_MAP) != 0) +
                          ((f & feature::DETAIL) != 0) + ((f & feature::DETAIL_NORMAL) != 0) +
                          ((f & feature::EMISSION) != 0);
-        std::printf("%-40s %-36s %8.0f %10.0f %9.0f %10.0f %5.2f %8.2f\n", c.name, featureNames(f).c_str(), cpu1, cpu4,
-                    gl1, gl4, k, k * maps);
+        std::printf("%-40s %-36s %8.0f %10.0f %9.0f %10.0f %5.2f %8.2f %8.2f\n", c.name, featureNames(f).c_str(), cpu1,
+                    cpu4, gl1, gl4, k, k * maps, cpuFetches);
     }
     if (renderer) {
         const ProgramStats stats = renderer->stats();
