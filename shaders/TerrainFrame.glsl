@@ -15,4 +15,5 @@ layout(std140, binding = 0) uniform FrameBlock
     int wireframePass;    // 1 while drawing the wireframe overlay
     int reserved;
     vec4 detailOffset;    // xyz: fract(floor(origin · mapScale) · detailScale), computed in double
+    vec4 tileOffset;      // xyz: floor(origin · mapScale) modulo 256 (anti-tiling's lattice)
 } uFrame;

@@ -31,7 +31,7 @@
 /// One layer's placement rule and texture mapping. A band (vec4) is
 /// (min, max, softness, enabled): weight 1 inside [min, max], smooth ramps
 /// `softness` wide outside each bound, 0 beyond; enabled = 0 switches it
-/// off (weight 1). std140: 144 bytes (offsets checked in
+/// off (weight 1). std140: 160 bytes (offsets checked in
 /// render/src/UniformBlocks.h).
 struct LayerParams
 {
@@ -43,6 +43,7 @@ struct LayerParams
     vec4 noiseOffset;   ///< xyz: origin · frequency modulo the noise period (in double on the host)
     vec4 textureOffset; ///< xyz: fract(origin · mapScale), as FrameBlock's
     vec4 detailOffset;  ///< xyz: as FrameBlock's, for this layer's scales
+    vec4 tileOffset;    ///< xyz: as FrameBlock's, for this layer's mapScale
     float mapScale;     ///< texture repeats per metre
     float opacity;      ///< 0..1: multiplies the coverage
     uint features;      ///< the layer's feature set (FEATURE_* bits)
@@ -85,17 +86,6 @@ STRATA_INLINE float bandWeight(float x, vec4 band)
     up = up * up * (3.0f - 2.0f * up);
     down = down * down * (3.0f - 2.0f * down);
     return up * down;
-}
-
-/// A 32-bit hash of a lattice point (PCG's output permutation), the same
-/// bits in GLSL and C++. The lattice repeats every 256 cells per axis, so
-/// the host can rebase far origins in double without changing the pattern.
-STRATA_INLINE uint latticeHash(int x, int y, int z, uint seed)
-{
-    uint h = uint(x & 255) | (uint(y & 255) << 8u) | (uint(z & 255) << 16u);
-    h = h * 747796405u + 2891336453u + seed * 2654435761u;
-    uint word = ((h >> ((h >> 28u) + 4u)) ^ h) * 277803737u;
-    return (word >> 22u) ^ word;
 }
 
 /// The lattice value at (x, y, z) in [0, 1].
@@ -211,6 +201,7 @@ STRATA_FEATURE_FUNCTION SurfaceOutput evaluateLayers(STRATA_MAPS_PARAM STRATA_LA
             SurfaceInput s = world;
             s.p = world.p * l.mapScale + vec3(l.textureOffset.x, l.textureOffset.y, l.textureOffset.z);
             s.detailOffset = vec3(l.detailOffset.x, l.detailOffset.y, l.detailOffset.z);
+            s.tileOffset = vec3(l.tileOffset.x, l.tileOffset.y, l.tileOffset.z);
             s.dpdx = world.dpdx * l.mapScale;
             s.dpdy = world.dpdy * l.mapScale;
             STRATA_SELECT_LAYER(i, l.features);

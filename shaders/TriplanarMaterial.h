@@ -27,6 +27,7 @@ const uint FEATURE_EMISSION = 128u;    ///< emission map × HDR colour
 const uint FEATURE_NORMAL_UDN = 256u;  ///< UDN instead of whiteout
 const uint FEATURE_NORMAL_RNM = 512u;  ///< RNM instead of whiteout
 const uint FEATURE_LAYERS = 1024u;     ///< several layers (TerrainLayers.h); the other bits are their union
+const uint FEATURE_ANTI_TILING = 2048u; ///< albedo, mask and normal maps fetched by stochastic tiling (3 taps)
 
 // Map slots.
 const int MAP_ALBEDO = 0;
@@ -62,6 +63,7 @@ struct MaterialParams
     float detailSmoothness;     ///< 0..1
     float detailNormalStrength; ///< 0..1 (× detail mask)
     float biplanar;             ///< 1: two projections (the smallest normal axis' is cut), 0: three
+    float antiTilingSharpness;  ///< 1..16: exponent of the stochastic-tiling weights (FEATURE_ANTI_TILING)
     vec3 emissionColor;         ///< HDR, linear, multiplies the emission map
     float fresnelStrength;      ///< 0..1
 };
@@ -90,6 +92,9 @@ struct SurfaceInput
     /// detail maps follow the world whatever the mesh origin, also when
     /// detailScale is not a whole number.
     vec3 detailOffset;
+    /// The whole texture repeats the rebasing origin dropped from p, modulo
+    /// 256 (integers as floats): anchors the anti-tiling lattice to the world.
+    vec3 tileOffset;
     vec3 dpdx;    ///< its screen-space derivatives
     vec3 dpdy;
     vec3 n;       ///< unit interpolated surface normal
@@ -120,6 +125,21 @@ STRATA_INLINE int normalBlendMode(uint features)
     return NORMAL_BLEND_WHITEOUT;
 }
 
+/// A base map (albedo, mask, normal, or their top versions) at one
+/// projection: one fetch, or with anti-tiling the three taps' blend.
+STRATA_FEATURE_FUNCTION vec4 sampleTiled(STRATA_MAPS_PARAM int map, vec2 uv, vec2 dUVdx, vec2 dUVdy, StochasticTaps t)
+{
+    STRATA_IF_FEATURE(FEATURE_ANTI_TILING)
+    {
+        return SAMPLE_MAP(map, uv + t.offset0, dUVdx, dUVdy) * t.weights.x +
+               SAMPLE_MAP(map, uv + t.offset1, dUVdx, dUVdy) * t.weights.y +
+               SAMPLE_MAP(map, uv + t.offset2, dUVdx, dUVdy) * t.weights.z;
+    }
+    return SAMPLE_MAP(map, uv, dUVdx, dUVdy);
+}
+
+#define SAMPLE_TILED(map, uv, dUVdx, dUVdy, taps) sampleTiled STRATA_FEATURE_ARGS(STRATA_MAPS_ARG map, uv, dUVdx, dUVdy, taps)
+
 /// Samples and combines every enabled map of the material at one fragment.
 STRATA_FEATURE_FUNCTION SurfaceOutput evaluateSurface(STRATA_MAPS_PARAM SurfaceInput s, MaterialParams m)
 {
@@ -135,6 +155,22 @@ STRATA_FEATURE_FUNCTION SurfaceOutput evaluateSurface(STRATA_MAPS_PARAM SurfaceI
     {
         useTop = n.y > 0.0f;
     }
+    StochasticTaps tapsX = singleTap();
+    StochasticTaps tapsY = singleTap();
+    StochasticTaps tapsZ = singleTap();
+    STRATA_IF_FEATURE(FEATURE_ANTI_TILING)
+    {
+        TriplanarUV shift = triplanarUVDerivative(s.tileOffset, n);
+        if (need.x > 0.0f) {
+            tapsX = stochasticTaps(uv.x, shift.x, m.antiTilingSharpness);
+        }
+        if (need.y > 0.0f) {
+            tapsY = stochasticTaps(uv.y, shift.y, m.antiTilingSharpness);
+        }
+        if (need.z > 0.0f) {
+            tapsZ = stochasticTaps(uv.z, shift.z, m.antiTilingSharpness);
+        }
+    }
     // The Y projection's maps are chosen per fragment (top or side) with a
     // branch around two constant-slot fetches rather than one fetch from a
     // computed slot: a GLSL compiler then keeps two texture fetches instead
@@ -145,17 +181,17 @@ STRATA_FEATURE_FUNCTION SurfaceOutput evaluateSurface(STRATA_MAPS_PARAM SurfaceI
     vec4 albedoY = one;
     vec4 albedoZ = one;
     if (need.x > 0.0f) {
-        albedoX = SAMPLE_MAP(MAP_ALBEDO, uv.x, ddx.x, ddy.x);
+        albedoX = SAMPLE_TILED(MAP_ALBEDO, uv.x, ddx.x, ddy.x, tapsX);
     }
     if (need.y > 0.0f) {
         if (useTop) {
-            albedoY = SAMPLE_MAP(MAP_TOP_ALBEDO, uv.y, ddx.y, ddy.y);
+            albedoY = SAMPLE_TILED(MAP_TOP_ALBEDO, uv.y, ddx.y, ddy.y, tapsY);
         } else {
-            albedoY = SAMPLE_MAP(MAP_ALBEDO, uv.y, ddx.y, ddy.y);
+            albedoY = SAMPLE_TILED(MAP_ALBEDO, uv.y, ddx.y, ddy.y, tapsY);
         }
     }
     if (need.z > 0.0f) {
-        albedoZ = SAMPLE_MAP(MAP_ALBEDO, uv.z, ddx.z, ddy.z);
+        albedoZ = SAMPLE_TILED(MAP_ALBEDO, uv.z, ddx.z, ddy.z, tapsZ);
     }
 
     vec4 maskX = one;
@@ -164,17 +200,17 @@ STRATA_FEATURE_FUNCTION SurfaceOutput evaluateSurface(STRATA_MAPS_PARAM SurfaceI
     STRATA_IF_FEATURE(FEATURE_MASK_MAP)
     {
         if (need.x > 0.0f) {
-            maskX = SAMPLE_MAP(MAP_MASK, uv.x, ddx.x, ddy.x);
+            maskX = SAMPLE_TILED(MAP_MASK, uv.x, ddx.x, ddy.x, tapsX);
         }
         if (need.y > 0.0f) {
             if (useTop) {
-                maskY = SAMPLE_MAP(MAP_TOP_MASK, uv.y, ddx.y, ddy.y);
+                maskY = SAMPLE_TILED(MAP_TOP_MASK, uv.y, ddx.y, ddy.y, tapsY);
             } else {
-                maskY = SAMPLE_MAP(MAP_MASK, uv.y, ddx.y, ddy.y);
+                maskY = SAMPLE_TILED(MAP_MASK, uv.y, ddx.y, ddy.y, tapsY);
             }
         }
         if (need.z > 0.0f) {
-            maskZ = SAMPLE_MAP(MAP_MASK, uv.z, ddx.z, ddy.z);
+            maskZ = SAMPLE_TILED(MAP_MASK, uv.z, ddx.z, ddy.z, tapsZ);
         }
     }
 
@@ -241,17 +277,17 @@ STRATA_FEATURE_FUNCTION SurfaceOutput evaluateSurface(STRATA_MAPS_PARAM SurfaceI
         STRATA_IF_FEATURE(FEATURE_NORMAL_MAP)
         {
             if (w.x > 0.0f) {
-                tangentX = decodeNormal(SAMPLE_MAP(MAP_NORMAL, uv.x, ddx.x, ddy.x), m.normalStrength);
+                tangentX = decodeNormal(SAMPLE_TILED(MAP_NORMAL, uv.x, ddx.x, ddy.x, tapsX), m.normalStrength);
             }
             if (w.y > 0.0f) {
                 if (useTop) {
-                    tangentY = decodeNormal(SAMPLE_MAP(MAP_TOP_NORMAL, uv.y, ddx.y, ddy.y), m.normalStrength);
+                    tangentY = decodeNormal(SAMPLE_TILED(MAP_TOP_NORMAL, uv.y, ddx.y, ddy.y, tapsY), m.normalStrength);
                 } else {
-                    tangentY = decodeNormal(SAMPLE_MAP(MAP_NORMAL, uv.y, ddx.y, ddy.y), m.normalStrength);
+                    tangentY = decodeNormal(SAMPLE_TILED(MAP_NORMAL, uv.y, ddx.y, ddy.y, tapsY), m.normalStrength);
                 }
             }
             if (w.z > 0.0f) {
-                tangentZ = decodeNormal(SAMPLE_MAP(MAP_NORMAL, uv.z, ddx.z, ddy.z), m.normalStrength);
+                tangentZ = decodeNormal(SAMPLE_TILED(MAP_NORMAL, uv.z, ddx.z, ddy.z, tapsZ), m.normalStrength);
             }
         }
         STRATA_IF_FEATURE(FEATURE_DETAIL_NORMAL)
@@ -385,5 +421,7 @@ STRATA_FEATURE_FUNCTION vec3 shadeDebugFragment(STRATA_MAPS_PARAM SurfaceInput s
 {
     return debugViewColor(evaluateSurface STRATA_FEATURE_ARGS(STRATA_MAPS_ARG s, m), view);
 }
+
+#undef SAMPLE_TILED
 
 #endif // STRATA_TRIPLANAR_MATERIAL_H

@@ -188,6 +188,87 @@ STRATA_INLINE vec3 triplanarWeightsHeight(vec3 n, float offset, float exponent, 
     return triplanarWeights(n, 2.0f, 1.0f); // offset 2 cuts everything: the dominant-axis fallback
 }
 
+/// A 32-bit hash of a lattice point (PCG's output permutation), the same
+/// bits in GLSL and C++. The lattice repeats every 256 cells per axis, so
+/// the host can rebase far origins in double without changing the pattern.
+STRATA_INLINE uint latticeHash(int x, int y, int z, uint seed)
+{
+    uint h = uint(x & 255) | (uint(y & 255) << 8u) | (uint(z & 255) << 16u);
+    h = h * 747796405u + 2891336453u + seed * 2654435761u;
+    uint word = ((h >> ((h >> 28u) + 4u)) ^ h) * 277803737u;
+    return (word >> 22u) ^ word;
+}
+
+// ---------------------------------------------------------------------------
+// Anti-tiling: stochastic tiling on a triangle grid (after Mikkelsen's
+// hex-tiling, 2022, and Heitz & Neyret's stochastic texturing). The texture
+// plane is cut into unit cells (one texture repeat), each split along its
+// diagonal; every lattice corner carries a random UV offset, and a fragment
+// blends the map at its triangle's three corner offsets by barycentric
+// weights raised to `sharpness`. The lattice is the texture repeats' own
+// (not a skewed hex grid), so a host that rebases far origins by whole
+// repeats can pass the dropped repeats (modulo the hash's 256) and the
+// pattern stays anchored to the world. Offsets only, no rotation: normal
+// maps need no re-orientation.
+
+/// The three taps of one projection's anti-tiled fetch.
+struct StochasticTaps
+{
+    vec2 offset0;
+    vec2 offset1;
+    vec2 offset2;
+    vec3 weights; ///< sum 1
+};
+
+/// One tap, no offset: the plain fetch.
+STRATA_INLINE StochasticTaps singleTap()
+{
+    StochasticTaps t;
+    t.offset0 = vec2(0.0f);
+    t.offset1 = vec2(0.0f);
+    t.offset2 = vec2(0.0f);
+    t.weights = vec3(1.0f, 0.0f, 0.0f);
+    return t;
+}
+
+/// The random UV offset of lattice corner (x, y), in [0, 1)².
+STRATA_INLINE vec2 cornerOffset(int x, int y)
+{
+    uint h = latticeHash(x, y, 0, 2654435769u);
+    return vec2(float(h & 65535u), float(h >> 16u)) / 65536.0f;
+}
+
+/// The taps at `uv`; `shift` is the integer number of repeats the host
+/// dropped from this projection's UVs (as floats). `sharpness` >= 1: larger
+/// keeps more of one copy's contrast, smaller blends more.
+STRATA_INLINE StochasticTaps stochasticTaps(vec2 uv, vec2 shift, float sharpness)
+{
+    vec2 cell = floor(uv);
+    vec2 f = uv - cell;
+    int x = int(cell.x) + int(shift.x);
+    int y = int(cell.y) + int(shift.y);
+    StochasticTaps t;
+    vec3 w;
+    if (f.x + f.y > 1.0f) {
+        w = vec3(f.x + f.y - 1.0f, 1.0f - f.x, 1.0f - f.y);
+        t.offset0 = cornerOffset(x + 1, y + 1);
+        t.offset1 = cornerOffset(x, y + 1);
+        t.offset2 = cornerOffset(x + 1, y);
+    } else {
+        w = vec3(1.0f - f.x - f.y, f.x, f.y);
+        t.offset0 = cornerOffset(x, y);
+        t.offset1 = cornerOffset(x + 1, y);
+        t.offset2 = cornerOffset(x, y + 1);
+    }
+    // The largest barycentric weight is >= 1/3: divide it out before pow(),
+    // so the sum stays in [1, 3] for any sharpness.
+    w = max(w, vec3(0.0f));
+    float m = max(w.x, max(w.y, w.z));
+    w = pow(w / m, vec3(sharpness));
+    t.weights = w / (w.x + w.y + w.z);
+    return t;
+}
+
 /// Weighted sum of four-component samples.
 STRATA_INLINE vec4 triplanarBlend4(vec4 sampleX, vec4 sampleY, vec4 sampleZ, vec3 weights)
 {

@@ -53,6 +53,7 @@ void main()
     SurfaceInput s;
     s.p = texelFetch(uInputs, ivec2(0, index), 0).xyz;
     s.detailOffset = vec3(0.0f);
+    s.tileOffset = vec3(0.0f);
     s.n = texelFetch(uInputs, ivec2(1, index), 0).xyz;
     s.dpdx = texelFetch(uInputs, ivec2(2, index), 0).xyz;
     s.dpdy = texelFetch(uInputs, ivec2(3, index), 0).xyz;

@@ -82,6 +82,7 @@ void main()
     s.n = len > 1e-12f ? vNormal / len : vec3(0.0f, 1.0f, 0.0f);
     s.p = vTexturePosition;
     s.detailOffset = uFrame.detailOffset.xyz;
+    s.tileOffset = uFrame.tileOffset.xyz;
     s.dpdx = dFdx(vTexturePosition);
     s.dpdy = dFdy(vTexturePosition);
     s.viewDir = safeNormalize(vec3(uFrame.cameraPosition) - vPosition, s.n);

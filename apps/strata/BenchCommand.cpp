@@ -122,6 +122,7 @@ std::vector<Config> benchConfigs(bool haveGl)
         {"filtering", {"bilinear"}},
         {"normal_blend", {"udn", "rnm"}},
         {"projections", {"2"}},
+        {"anti_tiling", {"on"}},
         {"shadow_resolution", {"1024", "4096"}},
         {"backend", haveGl ? std::vector<std::string>{"cpu", "gl"} : std::vector<std::string>{"cpu"}},
     };

@@ -190,6 +190,7 @@ struct Frame
     float mapScale;
     glm::vec3 textureOffset;
     glm::vec3 detailOffset;   // fract(floor(origin · mapScale) · detailScale), as GlRenderer.cpp
+    glm::vec3 tileOffset;     // floor(origin · mapScale) modulo 256
     glm::vec3 cameraPosition; // relative to the mesh origin
     shading::MaterialParams material;
     shading::LayerSetParams layerSet; // layered materials (feature::LAYERS)
@@ -519,10 +520,10 @@ Image renderSnapshotCpu(const MeshView& mesh, const SnapshotOptions& options, Cp
     frame.width = width;
     frame.height = height;
     frame.mapScale = material.mapScale;
-    const glm::dvec3 originScaled = mesh.origin * double(material.mapScale);
-    frame.textureOffset = glm::vec3(originScaled - glm::floor(originScaled));
-    const glm::dvec3 detailShift = glm::floor(originScaled) * double(material.detailScale);
-    frame.detailOffset = glm::vec3(detailShift - glm::floor(detailShift));
+    const detail::TextureRebase rebase = detail::rebaseTextures(material.mapScale, material.detailScale, mesh.origin);
+    frame.textureOffset = rebase.textureOffset;
+    frame.detailOffset = rebase.detailOffset;
+    frame.tileOffset = rebase.tileOffset;
     frame.cameraPosition = glm::vec3(options.camera.position - mesh.origin);
     frame.material = detail::toShading(material);
     frame.lighting = detail::toShading(options.lighting);
@@ -622,6 +623,7 @@ Image renderSnapshotCpu(const MeshView& mesh, const SnapshotOptions& options, Cp
             const glm::vec3 dy = ny.valid ? ny.position - self.position : glm::vec3(0.0f);
             f.world.p = self.position;
             f.world.detailOffset = glm::vec3(0.0f);
+            f.world.tileOffset = glm::vec3(0.0f);
             f.world.dpdx = px == qx ? dx : -dx;
             f.world.dpdy = py == qy ? dy : -dy;
             f.world.n = shading::safeNormalize(self.normal, glm::vec3(0.0f, 1.0f, 0.0f));
@@ -629,6 +631,7 @@ Image renderSnapshotCpu(const MeshView& mesh, const SnapshotOptions& options, Cp
             s = f.world;
             s.p = self.position * frame.mapScale + frame.textureOffset;
             s.detailOffset = frame.detailOffset;
+            s.tileOffset = frame.tileOffset;
             s.dpdx = f.world.dpdx * frame.mapScale;
             s.dpdy = f.world.dpdy * frame.mapScale;
             f.surface = self.surface;

@@ -602,15 +602,14 @@ void GlRenderer::draw(const Camera& camera, const Lighting& lighting, unsigned f
     detail::FrameBlock frame{};
     frame.viewProjection = projectionMatrix(camera, aspect) * viewMatrix(camera, r.origin);
     frame.cameraPosition = glm::vec4(glm::vec3(camera.position - r.origin), 1.0f);
-    // Texture space is world · mapScale; the integer part of the origin's
-    // share is dropped in double precision (textures repeat every unit).
-    const glm::dvec3 originScaled = r.origin * double(r.material.mapScale);
-    frame.textureOffset = glm::vec4(glm::vec3(originScaled - glm::floor(originScaled)), 0.0f);
-    // Detail maps repeat detailScale times per unit: the dropped whole tiles
-    // times detailScale leave this fraction (not zero unless detailScale is
-    // a whole number).
-    const glm::dvec3 detailShift = glm::floor(originScaled) * double(r.material.detailScale);
-    frame.detailOffset = glm::vec4(glm::vec3(detailShift - glm::floor(detailShift)), 0.0f);
+    // Texture space is world · mapScale with the origin's whole repeats
+    // dropped in double precision (detail maps and the anti-tiling lattice
+    // keep track of what was dropped).
+    const detail::TextureRebase rebase =
+        detail::rebaseTextures(r.material.mapScale, r.material.detailScale, r.origin);
+    frame.textureOffset = glm::vec4(rebase.textureOffset, 0.0f);
+    frame.detailOffset = glm::vec4(rebase.detailOffset, 0.0f);
+    frame.tileOffset = glm::vec4(rebase.tileOffset, 0.0f);
     frame.wireColor = options.wireColor;
     frame.mapScale = r.material.mapScale;
     frame.debugView = int(options.debugView);

@@ -19,16 +19,15 @@ glm::vec4 band(const LayerBand& b, double shift = 0.0)
     return glm::vec4(bound(double(b.min) - shift), bound(double(b.max) - shift), b.softness, 1.0f);
 }
 
-glm::vec4 fraction(const glm::dvec3& v) { return glm::vec4(glm::vec3(v - glm::floor(v)), 0.0f); }
 
 shading::LayerParams layerParams(const Material& m, const LayerRule* rule, const glm::dvec3& origin,
                                  std::uint32_t features)
 {
     shading::LayerParams l{};
-    // Texture space as FrameBlock's: whole tiles of the origin dropped in double.
-    const glm::dvec3 originScaled = origin * double(m.mapScale);
-    l.textureOffset = fraction(originScaled);
-    l.detailOffset = fraction(glm::floor(originScaled) * double(m.detailScale));
+    const TextureRebase rebase = rebaseTextures(m.mapScale, m.detailScale, origin);
+    l.textureOffset = glm::vec4(rebase.textureOffset, 0.0f);
+    l.detailOffset = glm::vec4(rebase.detailOffset, 0.0f);
+    l.tileOffset = glm::vec4(rebase.tileOffset, 0.0f);
     l.mapScale = m.mapScale;
     l.features = features;
     l.opacity = 1.0f;
@@ -54,6 +53,18 @@ shading::LayerParams layerParams(const Material& m, const LayerRule* rule, const
 }
 
 } // namespace
+
+TextureRebase rebaseTextures(float mapScale, float detailScale, const glm::dvec3& origin)
+{
+    const glm::dvec3 scaled = origin * double(mapScale);
+    const glm::dvec3 whole = glm::floor(scaled);
+    const glm::dvec3 detail = whole * double(detailScale);
+    TextureRebase r;
+    r.textureOffset = glm::vec3(scaled - whole);
+    r.detailOffset = glm::vec3(detail - glm::floor(detail));
+    r.tileOffset = glm::vec3(whole - glm::floor(whole / 256.0) * 256.0);
+    return r;
+}
 
 shading::LayerSetParams makeLayerSet(const Material& material, const glm::dvec3& origin, std::uint32_t mask)
 {

@@ -13,13 +13,27 @@
 
 namespace strata::render::detail {
 
-static_assert(sizeof(shading::LayerParams) == 144, "LayerParams must match its std140 layout");
+static_assert(sizeof(shading::LayerParams) == 160, "LayerParams must match its std140 layout");
 static_assert(offsetof(shading::LayerParams, altitude) == 0);
 static_assert(offsetof(shading::LayerParams, noise) == 64);
 static_assert(offsetof(shading::LayerParams, detailOffset) == 112);
-static_assert(offsetof(shading::LayerParams, mapScale) == 128);
-static_assert(offsetof(shading::LayerParams, features) == 136);
-static_assert(offsetof(shading::LayerParams, seed) == 140);
+static_assert(offsetof(shading::LayerParams, tileOffset) == 128);
+static_assert(offsetof(shading::LayerParams, mapScale) == 144);
+static_assert(offsetof(shading::LayerParams, features) == 152);
+static_assert(offsetof(shading::LayerParams, seed) == 156);
+
+/// Texture space for a mesh at `origin` (TerrainFrame.glsl's FrameBlock
+/// and each layer): the origin's whole texture repeats are dropped in
+/// double precision, leaving the fraction (textureOffset), its share of
+/// the detail maps' repeats (detailOffset) and the dropped repeats modulo
+/// 256 for the anti-tiling lattice (tileOffset).
+struct TextureRebase
+{
+    glm::vec3 textureOffset;
+    glm::vec3 detailOffset;
+    glm::vec3 tileOffset;
+};
+TextureRebase rebaseTextures(float mapScale, float detailScale, const glm::dvec3& origin);
 
 /// Binding point of the layer block in layered terrain programs.
 inline constexpr unsigned LAYER_BLOCK_BINDING = 5;
@@ -28,17 +42,17 @@ inline constexpr unsigned LAYER_BLOCK_BINDING = 5;
 /// MaterialParams is 76 bytes, its std140 form (MaterialBlock) 80.
 struct LayerSetBlock
 {
-    shading::LayerParams layers[STRATA_MAX_LAYERS]; // 0, stride 144
-    MaterialBlock materials[STRATA_MAX_LAYERS];     // 1152, stride 80
-    std::int32_t count;                             // 1792
-    float blendDepth;                               // 1796
+    shading::LayerParams layers[STRATA_MAX_LAYERS]; // 0, stride 160
+    MaterialBlock materials[STRATA_MAX_LAYERS];     // 1280, stride 80
+    std::int32_t count;                             // 1920
+    float blendDepth;                               // 1924
     float padding0;
     float padding1;
 };
-static_assert(offsetof(LayerSetBlock, materials) == 1152);
-static_assert(offsetof(LayerSetBlock, count) == 1792);
-static_assert(offsetof(LayerSetBlock, blendDepth) == 1796);
-static_assert(sizeof(LayerSetBlock) == 1808);
+static_assert(offsetof(LayerSetBlock, materials) == 1280);
+static_assert(offsetof(LayerSetBlock, count) == 1920);
+static_assert(offsetof(LayerSetBlock, blendDepth) == 1924);
+static_assert(sizeof(LayerSetBlock) == 1936);
 
 /// The layers of `material` (layer 0 its base) for a mesh at `origin`:
 /// altitudes, texture and noise offsets relative to it (in double), each

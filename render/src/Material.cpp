@@ -11,10 +11,10 @@ namespace strata::render {
 
 std::string featureNames(std::uint32_t features)
 {
-    static const char* NAMES[] = {"mask",   "mods",          "height",   "normal", "top",   "detail",
-                                  "detail-normal", "emission", "udn",    "rnm",    "layers"};
+    static const char* NAMES[] = {"mask", "mods", "height", "normal", "top",    "detail",
+                                  "detail-normal", "emission", "udn", "rnm", "layers", "anti-tiling"};
     std::string out;
-    for (int i = 0; i < 11; ++i) {
+    for (int i = 0; i < 12; ++i) {
         if (features & (1u << i)) {
             if (!out.empty()) out += '+';
             out += NAMES[i];
@@ -38,6 +38,7 @@ std::uint32_t ownFeatures(const Material& m)
     if (m.detail) f |= feature::DETAIL;
     if (m.detailNormal) f |= feature::DETAIL_NORMAL;
     if (m.emission) f |= feature::EMISSION;
+    if (m.antiTiling) f |= feature::ANTI_TILING;
     if (f & (feature::NORMAL_MAP | feature::DETAIL_NORMAL)) {
         if (m.normalBlend == NormalBlend::Udn) f |= feature::NORMAL_UDN;
         if (m.normalBlend == NormalBlend::Rnm) f |= feature::NORMAL_RNM;
@@ -127,6 +128,7 @@ void checkOne(const Material& m, const std::string& what)
     range("detailSmoothness", m.detailSmoothness, 0.0f, 1.0f);
     range("detailNormalStrength", m.detailNormalStrength, 0.0f, 1.0f);
     range("fresnelStrength", m.fresnelStrength, 0.0f, 1.0f);
+    range("antiTilingSharpness", m.antiTilingSharpness, 1.0f, 16.0f);
     if (m.projections != 2 && m.projections != 3) {
         throw Error(what + ": projections = " + std::to_string(m.projections) + " must be 2 (biplanar) or 3 (triplanar)");
     }

@@ -29,6 +29,7 @@ inline shading::MaterialParams toShading(const Material& m)
     p.detailSmoothness = m.detailSmoothness;
     p.detailNormalStrength = m.detailNormalStrength;
     p.biplanar = m.projections == 2 ? 1.0f : 0.0f;
+    p.antiTilingSharpness = m.antiTilingSharpness;
     p.emissionColor = m.emissionColor;
     p.fresnelStrength = m.fresnelStrength;
     return p;

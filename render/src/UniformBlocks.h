@@ -38,6 +38,7 @@ struct FrameBlock
     std::int32_t wireframePass; // 120
     std::int32_t reserved;     // 124
     glm::vec4 detailOffset;    // 128, xyz
+    glm::vec4 tileOffset;      // 144, xyz
 };
 static_assert(offsetof(FrameBlock, viewProjection) == 0);
 static_assert(offsetof(FrameBlock, cameraPosition) == 64);
@@ -47,7 +48,8 @@ static_assert(offsetof(FrameBlock, mapScale) == 112);
 static_assert(offsetof(FrameBlock, debugView) == 116);
 static_assert(offsetof(FrameBlock, wireframePass) == 120);
 static_assert(offsetof(FrameBlock, detailOffset) == 128);
-static_assert(sizeof(FrameBlock) == 144);
+static_assert(offsetof(FrameBlock, tileOffset) == 144);
+static_assert(sizeof(FrameBlock) == 160);
 
 /// MaterialBlock { MaterialParams uMaterial; } (terrain.frag).
 struct MaterialBlock
@@ -65,7 +67,7 @@ struct MaterialBlock
     float detailSmoothness;     // 48
     float detailNormalStrength; // 52
     float biplanar;             // 56
-    float padding0;             // 60: the vec3 below aligns to 16
+    float antiTilingSharpness;  // 60
     glm::vec3 emissionColor;    // 64
     float fresnelStrength;      // 76
 };
@@ -82,6 +84,7 @@ static_assert(offsetof(MaterialBlock, detailAlbedo) == 44);
 static_assert(offsetof(MaterialBlock, detailSmoothness) == 48);
 static_assert(offsetof(MaterialBlock, detailNormalStrength) == 52);
 static_assert(offsetof(MaterialBlock, biplanar) == 56);
+static_assert(offsetof(MaterialBlock, antiTilingSharpness) == 60);
 static_assert(offsetof(MaterialBlock, emissionColor) == 64);
 static_assert(offsetof(MaterialBlock, fresnelStrength) == 76);
 static_assert(sizeof(MaterialBlock) == 80); // a struct's size rounds up to 16
@@ -133,6 +136,7 @@ inline MaterialBlock toBlock(const shading::MaterialParams& p)
     b.detailSmoothness = p.detailSmoothness;
     b.detailNormalStrength = p.detailNormalStrength;
     b.biplanar = p.biplanar;
+    b.antiTilingSharpness = p.antiTilingSharpness;
     b.emissionColor = p.emissionColor;
     b.fresnelStrength = p.fresnelStrength;
     return b;

@@ -62,6 +62,7 @@ void writeReport(const GenerateResult& result, const Scene& scene, int threads, 
                          {"filtering", filteringName(q.filtering)},
                          {"normal_blend", normalBlendName(q.normalBlend)},
                          {"projections", q.projections},
+                         {"anti_tiling", q.antiTiling ? "on" : "off"},
                          {"shadow_resolution", q.shadowResolution},
                          {"backend", q.backend}};
     // Model only what the scene requires: work done against work possible.

@@ -43,6 +43,7 @@ const std::vector<Knob>& knobs()
         {"filtering", KnobKind::Choice, 0, 0, {"bilinear", "trilinear"}},
         {"normal_blend", KnobKind::Choice, 0, 0, {"whiteout", "udn", "rnm"}},
         {"projections", KnobKind::Integer, 2, 3, {}},
+        {"anti_tiling", KnobKind::Choice, 0, 0, {"off", "on"}},
         {"shadow_resolution", KnobKind::Integer, 16, 16384, {}},
         {"backend", KnobKind::Choice, 0, 0, {"auto", "gl", "cpu"}},
     };
@@ -85,6 +86,7 @@ const std::map<std::string, QualityOverrides>& presetTable()
           {"filtering", "bilinear"},
           {"normal_blend", "udn"},
           {"projections", "2"},
+          {"anti_tiling", "off"},
           {"shadow_resolution", "1024"}}},
         {"balanced", {}},
         {"accurate",
@@ -137,6 +139,7 @@ void apply(const QualityOverrides& overrides, double sceneVoxel, QualitySettings
                             : value == "rnm" ? render::NormalBlend::Rnm
                                              : render::NormalBlend::Whiteout;
         else if (key == "projections") s.projections = int(number(overrides, key));
+        else if (key == "anti_tiling") s.antiTiling = value == "on";
         else if (key == "shadow_resolution") s.shadowResolution = int(number(overrides, key));
         else if (key == "backend") s.backend = value;
     }
@@ -266,6 +269,7 @@ QualitySettings resolveQuality(const Scene& scene, const std::optional<std::stri
     s.shadowResolution = scene.snapshot.shadows.resolution;
     s.normalBlend = scene.material.parameters.normalBlend;
     s.projections = scene.material.parameters.projections;
+    s.antiTiling = scene.material.parameters.antiTiling;
     if (presetFlag) checkPreset(*presetFlag, "--preset");
     s.preset = presetFlag.value_or(scene.quality.preset.value_or("balanced"));
     apply(presetKnobs(s.preset), scene.voxelSize, s);
@@ -283,8 +287,14 @@ Scene applyQuality(const Scene& scene, const QualitySettings& settings)
     out.adaptivity = settings.adaptivity;
     out.snapshot.shadows.resolution = settings.shadowResolution;
     out.snapshot.filtering = settings.filtering;
-    out.material.parameters.normalBlend = settings.normalBlend;
-    out.material.parameters.projections = settings.projections;
+    // The material knobs apply to the base and to every layer.
+    auto knobs = [&settings](render::Material& m) {
+        m.normalBlend = settings.normalBlend;
+        m.projections = settings.projections;
+        m.antiTiling = settings.antiTiling;
+    };
+    knobs(out.material.parameters);
+    for (LayerSettings& layer : out.material.layers) knobs(layer.material.parameters);
     return out;
 }
 
@@ -307,7 +317,7 @@ std::string describeQuality(const QualitySettings& s)
     if (s.projectionSteps > 0) out << ", " << s.projectionSteps << " projection steps";
     if (s.simplifyRatio < 1.0) out << ", simplify " << s.simplifyRatio;
     out << ", " << filteringName(s.filtering) << ", " << normalBlendName(s.normalBlend)
-        << (s.projections == 2 ? ", biplanar" : "") << ", shadows "
+        << (s.projections == 2 ? ", biplanar" : "") << (s.antiTiling ? ", anti-tiling" : "") << ", shadows "
         << s.shadowResolution << ", backend " << s.backend;
     return out.str();
 }

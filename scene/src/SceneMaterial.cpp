@@ -145,6 +145,8 @@ void readMaterialTable(TableReader& m, MaterialSettings& s, const std::filesyste
     p.blendOffset = float(m.number("blend_offset", p.blendOffset, 0.0, 0.5));
     p.blendExponent = float(m.number("blend_exponent", p.blendExponent, 1.0, 8.0));
     p.projections = int(m.integer("projections", p.projections, 2, 3));
+    p.antiTiling = m.boolean("anti_tiling", p.antiTiling);
+    p.antiTilingSharpness = float(m.number("anti_tiling_sharpness", p.antiTilingSharpness, 1.0, 16.0));
     p.heightStrength = float(m.number("height_strength", p.heightStrength, 0.0, 0.99));
     s.textureSize = int(m.integer("texture_size", s.textureSize, 16, 4096));
     if ((s.textureSize & (s.textureSize - 1)) != 0) {

@@ -351,8 +351,9 @@ TEST(GlRendererCache, FeatureSetsAreNormalisedAndCounted)
 {
     const std::vector<std::uint32_t> sets = allFeatureSets();
     // Single material: 4 mask states × 10 normal states × 2³ (top, detail,
-    // emission); layered (no exclusions): 5 mask states × 13 normal states × 2³.
-    EXPECT_EQ(sets.size(), 320u + 520u);
+    // emission); layered (no exclusions): 5 mask states × 13 normal states ×
+    // 2³; each with and without anti-tiling.
+    EXPECT_EQ(sets.size(), 2u * (320u + 520u));
     EXPECT_EQ(sets.front(), 0u);
     EXPECT_EQ(sets.back(), feature::ALL);
     for (std::uint32_t f : sets) {
@@ -391,16 +392,18 @@ TEST_P(GlRendererVariants, EveryFeatureSetCompilesAndRendersWithoutGlErrors)
     std::set<std::uint32_t> seen;
     std::size_t expected = 0;
     for (std::size_t i = std::size_t(GetParam()); i < sets.size(); i += SHARDS) {
-        // Layered programs: every 7th (each is the whole layer loop around
-        // the material; compiling all 520 would take minutes on llvmpipe).
+        // Layered and anti-tiled programs: every 7th (each layered one is the
+        // material once per layer; compiling all 1360 would take many
+        // minutes on llvmpipe).
         const bool layered = (sets[i] & feature::LAYERS) != 0u;
-        if (layered && (i / SHARDS) % 7 != 0) continue;
+        if ((sets[i] & (feature::LAYERS | feature::ANTI_TILING)) && (i / SHARDS) % 7 != 0) continue;
         ++expected;
         // The full material with the variant's layout and normal blend; the
         // feature mask switches the other maps off (textures stay uploaded).
         // Layered: a MOHS/UDN base under a MODS/RNM layer, so that the union
         // holds every bit.
         Material m = fullMaterial();
+        m.antiTiling = true; // off through the mask where the set lacks it
         m.maskLayout = (sets[i] & feature::MODS) && !layered ? MaskLayout::Mods : MaskLayout::Mohs;
         m.normalBlend = layered                           ? NormalBlend::Udn
                         : (sets[i] & feature::NORMAL_RNM) ? NormalBlend::Rnm
@@ -432,7 +435,7 @@ TEST_P(GlRendererVariants, EveryFeatureSetCompilesAndRendersWithoutGlErrors)
         ++drawn;
     }
     const ProgramStats stats = renderer.stats();
-    EXPECT_EQ(stats.possible, 840);
+    EXPECT_EQ(stats.possible, 1680);
     EXPECT_EQ(stats.compiled, drawn);
     EXPECT_EQ(std::set<std::uint32_t>(stats.featureSets.begin(), stats.featureSets.end()), seen);
     EXPECT_EQ(drawn, int(expected));

@@ -98,6 +98,7 @@ std::vector<shading::SurfaceInput> samplePoints()
         shading::SurfaceInput s;
         s.p = glm::vec3(r.next(), r.next(), r.next()) * 8.0f - glm::vec3(4.0f);
         s.detailOffset = glm::vec3(0.0f); // as probe.frag
+        s.tileOffset = glm::vec3(0.0f);
         glm::vec3 n;
         if (i < 10 * 16) {
             n = special[i % 10];

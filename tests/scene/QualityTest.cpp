@@ -327,8 +327,8 @@ TEST(Quality, ReportMeasuresWhatTheSceneRequires)
     const nlohmann::json report = readJson(dir / "gl" / "report.json");
     if (report["renderer"] == "strata CPU reference renderer") GTEST_SKIP() << "no OpenGL context here";
     EXPECT_EQ(report["model"]["shader_variants_compiled"], 1);
-    EXPECT_EQ(report["model"]["shader_variants_possible"], 840);
-    EXPECT_TRUE(contains(run.output, "1 of 840 shader variants compiled")) << run.output;
+    EXPECT_EQ(report["model"]["shader_variants_possible"], 1680);
+    EXPECT_TRUE(contains(run.output, "1 of 1680 shader variants compiled")) << run.output;
 }
 
 TEST(Quality, BilinearFilteringMatchesOnBothRenderersAndDiffersFromTrilinear)

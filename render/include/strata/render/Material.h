@@ -46,7 +46,8 @@ inline constexpr std::uint32_t NORMAL_RNM = 512u;
 /// The material has layers (Material::layers): the program evaluates them
 /// all (TerrainLayers.h), its other bits being the union of theirs.
 inline constexpr std::uint32_t LAYERS = 1024u;
-inline constexpr std::uint32_t ALL = 2047u;
+inline constexpr std::uint32_t ANTI_TILING = 2048u;
+inline constexpr std::uint32_t ALL = 4095u;
 } // namespace feature
 
 /// "mask+height+normal+top" style names of the bits, for logs and reports.
@@ -103,6 +104,12 @@ struct Material
     /// normal component is never sampled (the blend offset is raised to it
     /// per fragment), fewer fetches for a harder blend near the diagonals.
     int projections = 3;
+    /// Anti-tiling: the albedo, mask and normal maps are fetched by
+    /// stochastic tiling (three taps at random offsets per texture repeat,
+    /// shaders/TriplanarShading.h), so repeats do not show; three times
+    /// their fetches.
+    bool antiTiling = false;
+    float antiTilingSharpness = 4.0f; ///< 1..16: larger keeps more contrast, smaller blends more
     float heightStrength = 0.5f;    ///< 0..0.99: height blending (MOHS layout, mask map present)
     glm::vec3 albedoTint{1.0f};     ///< linear, multiplies albedo
     float metallic = 0.0f;          ///< 0..1; multiplies mask R (the value itself without a mask map; 1 with one)
@@ -169,9 +176,10 @@ std::uint32_t normalizeFeatures(std::uint32_t features);
 /// (the base's own set when `mask` switches LAYERS off).
 std::uint32_t effectiveFeatures(const Material& material, std::uint32_t mask);
 
-/// Every distinct normalised feature set (840: 320 single-material, 520
-/// layered), in increasing order: the program variants a renderer may have
-/// to compile.
+/// Every distinct normalised feature set (1680: 320 single-material and
+/// 520 layered, each with and without anti-tiling), in increasing order:
+/// the program variants a renderer may have to compile (a layered program
+/// also for each layer count).
 std::vector<std::uint32_t> allFeatureSets();
 
 /// Throws strata::Error "material: KEY = VALUE outside RANGE" for a

@@ -46,6 +46,7 @@ struct QualitySettings
     render::TextureFilter filtering = render::TextureFilter::Trilinear;
     render::NormalBlend normalBlend = render::NormalBlend::Whiteout;
     int projections = 3;            ///< 3 triplanar, 2 biplanar (Material::projections)
+    bool antiTiling = false;        ///< stochastic tiling of the base maps (Material::antiTiling)
     int shadowResolution = 2048;    ///< shadow-map texels per side
     std::string backend = "auto";   ///< auto | gl | cpu
 };
@@ -55,7 +56,7 @@ const std::vector<std::string>& presetNames();
 
 /// The knob keys, in documentation order: voxel_size, voxel_scale,
 /// half_width, mesher, adaptivity, normals, projection, simplify,
-/// filtering, normal_blend, projections, shadow_resolution, backend.
+/// filtering, normal_blend, projections, anti_tiling, shadow_resolution, backend.
 const std::vector<std::string>& qualityKeys();
 
 /// The choices of a string knob (empty for numeric knobs). Throws
