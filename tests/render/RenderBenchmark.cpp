@@ -128,6 +128,12 @@ int main(int argc, char** argv)
     Material rnm = m;
     rnm.normalBlend = NormalBlend::Rnm;
     cases.push_back({"  same, RNM normals", rnm});
+    Material biplanar = m;
+    biplanar.projections = 2;
+    cases.push_back({"  same, biplanar", biplanar});
+    Material antiTiled = m;
+    antiTiled.antiTiling = true;
+    cases.push_back({"  same, anti-tiling", antiTiled});
     {
         // The default material under three layers (TerrainLayers.h), each a
         // built-in set with albedo, MOHS and normals: sand low down, soil on
