@@ -172,6 +172,20 @@ struct ResidentTexture
 
 } // namespace
 
+namespace {
+
+/// The sampling state of a material map: its mip chain, trilinear, repeating.
+void setMapSampling(GLuint id, GLsizei levels)
+{
+    glTextureParameteri(id, GL_TEXTURE_MAX_LEVEL, levels - 1);
+    glTextureParameteri(id, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+    glTextureParameteri(id, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTextureParameteri(id, GL_TEXTURE_WRAP_S, GL_REPEAT);
+    glTextureParameteri(id, GL_TEXTURE_WRAP_T, GL_REPEAT);
+}
+
+} // namespace
+
 detail::GlObject detail::uploadTexture(const Texture& texture)
 {
     GlObject object = detail::createTexture2D();
@@ -184,11 +198,7 @@ detail::GlObject detail::uploadTexture(const Texture& texture)
         glTextureSubImage2D(id, level, 0, 0, l.width, l.height, GL_RGBA, GL_UNSIGNED_BYTE, l.texels.data());
     }
     glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-    glTextureParameteri(id, GL_TEXTURE_MAX_LEVEL, levels - 1);
-    glTextureParameteri(id, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
-    glTextureParameteri(id, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    glTextureParameteri(id, GL_TEXTURE_WRAP_S, GL_REPEAT);
-    glTextureParameteri(id, GL_TEXTURE_WRAP_T, GL_REPEAT);
+    setMapSampling(id, levels);
     detail::checkGl("uploading a texture");
     return object;
 }
@@ -210,11 +220,7 @@ detail::GlObject detail::uploadTextureArray(const std::vector<TexturePtr>& layer
         }
     }
     glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-    glTextureParameteri(id, GL_TEXTURE_MAX_LEVEL, levels - 1);
-    glTextureParameteri(id, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
-    glTextureParameteri(id, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    glTextureParameteri(id, GL_TEXTURE_WRAP_S, GL_REPEAT);
-    glTextureParameteri(id, GL_TEXTURE_WRAP_T, GL_REPEAT);
+    setMapSampling(id, levels);
     detail::checkGl("uploading a texture array");
     return object;
 }

@@ -47,6 +47,7 @@ std::map<std::string, std::string> fields(const QualitySettings& q)
             {"filtering", filteringName(q.filtering)},
             {"normal_blend", normalBlendName(q.normalBlend)},
             {"projections", std::to_string(q.projections)},
+            {"anti_tiling", q.antiTiling ? "on" : "off"},
             {"shadow_resolution", std::to_string(q.shadowResolution)},
             {"backend", q.backend}};
 }
@@ -143,6 +144,7 @@ TEST(Quality, PresetsDifferAsDocumented)
     EXPECT_EQ(fast.projections, 2); // biplanar
     EXPECT_EQ(accurate.projections, 3);
     EXPECT_EQ(applyQuality(scene, fast).material.parameters.projections, 2);
+    EXPECT_FALSE(fast.antiTiling);
     EXPECT_LT(fast.simplifyRatio, 1.0);
     EXPECT_LT(fast.shadowResolution, balanced.shadowResolution);
     EXPECT_GT(accurate.shadowResolution, balanced.shadowResolution);
@@ -164,7 +166,7 @@ TEST(Quality, EachOverrideChangesExactlyItsKnob)
         {"projection", {"3", "projection"}},     {"simplify", {"0.25", "simplify"}},
         {"filtering", {"bilinear", "filtering"}}, {"normal_blend", {"rnm", "normal_blend"}},
         {"shadow_resolution", {"512", "shadow_resolution"}}, {"backend", {"cpu", "backend"}},
-        {"projections", {"2", "projections"}},
+        {"projections", {"2", "projections"}},   {"anti_tiling", {"on", "anti_tiling"}},
     };
     ASSERT_EQ(cases.size(), qualityKeys().size()); // every knob is covered
     for (const auto& [key, valueAndField] : cases) {

@@ -1,9 +1,12 @@
 // The [[layer]] tables and `pbr` folders of the scene file (SceneMaterial.cpp).
 
 #include <strata/scene/Scene.h>
+#include <strata/scene/Quality.h>
 #include <strata/scene/SceneMaterial.h>
 
 #include <strata/Error.h>
+
+#include "SceneParseError.h"
 
 #include <gtest/gtest.h>
 
@@ -15,16 +18,7 @@ using strata::scene::Scene;
 
 namespace {
 
-std::string parseError(const std::string& text)
-{
-    try {
-        parseScene(text, "test.toml");
-    } catch (const strata::Error& e) {
-        return e.what();
-    }
-    ADD_FAILURE() << "no error for:\n" << text;
-    return {};
-}
+using strata::test::parseError;
 
 const char* const FOUR_LAYERS = R"(
 [material]
@@ -123,5 +117,19 @@ TEST(SceneLayers, PbrFoldersOfTheDocsLoadAsLayers)
     for (const auto& layer : m.layers) {
         EXPECT_TRUE(layer.material.albedo && layer.material.mask && layer.material.normal) << layer.name;
         EXPECT_LE(layer.material.albedo->width(), 512) << layer.name;
+    }
+}
+
+TEST(SceneLayers, MaterialQualityKnobsReachEveryLayer)
+{
+    const Scene scene = parseScene(FOUR_LAYERS, "layers.toml");
+    strata::scene::QualityOverrides flags;
+    strata::scene::addQualityFlag("anti_tiling=on", flags);
+    strata::scene::addQualityFlag("projections=2", flags);
+    const Scene applied = strata::scene::applyQuality(scene, strata::scene::resolveQuality(scene, std::nullopt, flags));
+    EXPECT_TRUE(applied.material.parameters.antiTiling);
+    for (const auto& layer : applied.material.layers) {
+        EXPECT_TRUE(layer.material.parameters.antiTiling) << layer.material.name;
+        EXPECT_EQ(layer.material.parameters.projections, 2) << layer.material.name;
     }
 }

@@ -7,6 +7,8 @@
 #include <strata/Error.h>
 
 #include <OpenImageIO/imageio.h>
+#include "SceneParseError.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -23,16 +25,7 @@ using strata::scene::Scene;
 
 namespace {
 
-std::string parseError(const std::string& text)
-{
-    try {
-        parseScene(text, "test.toml");
-    } catch (const strata::Error& e) {
-        return e.what();
-    }
-    ADD_FAILURE() << "no error for:\n" << text;
-    return {};
-}
+using strata::test::parseError;
 
 /// A scene whose root is one node of `type` with extra `keys`.
 std::string oneNode(const std::string& type, const std::string& keys)

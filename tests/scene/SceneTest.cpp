@@ -3,6 +3,8 @@
 #include <strata/Error.h>
 
 #include <glm/trigonometric.hpp>
+#include "SceneParseError.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -12,17 +14,7 @@ using strata::scene::Scene;
 
 namespace {
 
-// The message of the strata::Error that parsing `text` throws.
-std::string parseError(const std::string& text)
-{
-    try {
-        parseScene(text, "test.toml");
-    } catch (const strata::Error& e) {
-        return e.what();
-    }
-    ADD_FAILURE() << "no error for:\n" << text;
-    return {};
-}
+using strata::test::parseError;
 
 } // namespace
 
