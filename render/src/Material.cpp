@@ -2,6 +2,7 @@
 
 #include <strata/Error.h>
 
+#include "MaterialMaps.h"
 #include "RangeCheck.h"
 
 #include <cmath>
@@ -169,6 +170,7 @@ void checkMaterial(const Material& m)
         detail::checkRange(what.c_str(), "noiseThreshold", r.noiseThreshold, 0.0, 1.0);
         detail::checkRange(what.c_str(), "noiseSoftness", r.noiseSoftness, 0.0, 1.0);
     }
+    detail::planLayerSlots(m); // the maps of each slot can share a texture array
 }
 
 } // namespace strata::render

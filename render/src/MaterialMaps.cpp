@@ -88,33 +88,32 @@ std::array<TexturePtr, 9> resolveMaps(const Material& m)
     return maps;
 }
 
-LayerMaps resolveLayerMaps(const Material& material)
+std::array<SlotPlan, 9> planLayerSlots(const Material& material)
 {
-    LayerMaps out;
-    out.layerCount = 1 + int(material.layers.size());
+    const int layerCount = 1 + int(material.layers.size());
     std::vector<std::array<TexturePtr, 9>> own;
     own.push_back(ownMaps(material));
     for (const MaterialLayer& layer : material.layers) own.push_back(ownMaps(layer.material));
 
+    std::array<SlotPlan, 9> plans;
     for (int k = 0; k < 9; ++k) {
-        std::vector<TexturePtr>& slot = out.slots[std::size_t(k)];
+        SlotPlan& plan = plans[std::size_t(k)];
+        plan.textures.resize(std::size_t(layerCount));
+        plan.first.assign(std::size_t(layerCount), 0);
         // The smallest present map sets the slot's size.
         int smallest = -1;
-        for (int i = 0; i < out.layerCount; ++i) {
+        for (int i = 0; i < layerCount; ++i) {
             const TexturePtr& t = own[std::size_t(i)][std::size_t(k)];
+            plan.textures[std::size_t(i)] = t;
             if (t && (smallest < 0 || t->width() < own[std::size_t(smallest)][std::size_t(k)]->width())) smallest = i;
         }
-        if (smallest < 0) {
-            slot.assign(std::size_t(out.layerCount), standIn(k));
-            continue;
-        }
+        if (smallest < 0) continue; // every layer takes the stand-in as it is
         const Texture& reference = *own[std::size_t(smallest)][std::size_t(k)];
-        const int w = reference.width();
-        const int h = reference.height();
+        plan.width = reference.width();
+        plan.height = reference.height();
+        plan.levels = reference.levels.size();
         // Where each present map reaches that size, and how many levels all share from there.
-        std::vector<std::size_t> first(std::size_t(out.layerCount), 0);
-        std::size_t levels = reference.levels.size();
-        for (int i = 0; i < out.layerCount; ++i) {
+        for (int i = 0; i < layerCount; ++i) {
             const TexturePtr& t = own[std::size_t(i)][std::size_t(k)];
             if (!t) continue;
             const std::string what = "material: layer '" + layerName(material, i) + "' map " + SLOT_NAMES[k];
@@ -123,22 +122,40 @@ LayerMaps resolveLayerMaps(const Material& material)
                             layerName(material, smallest) + "''s is not (one colour space per map slot)");
             }
             std::size_t j = 0;
-            while (j < t->levels.size() && !(t->levels[j].width == w && t->levels[j].height == h)) ++j;
+            while (j < t->levels.size() && !(t->levels[j].width == plan.width && t->levels[j].height == plan.height)) ++j;
             if (j == t->levels.size()) {
-                throw Error(what + " is " + size(t->width(), t->height()) + ": none of its mip levels is " + size(w, h) +
-                            ", the size of layer '" + layerName(material, smallest) + "''s (the layers' maps of one slot share a texture array: give them one size, or sizes a power of two apart)");
+                throw Error(what + " is " + size(t->width(), t->height()) + ": none of its mip levels is " +
+                            size(plan.width, plan.height) + ", the size of layer '" + layerName(material, smallest) +
+                            "''s (the layers' maps of one slot share a texture array: give them one size, or sizes a "
+                            "power of two apart)");
             }
-            first[std::size_t(i)] = j;
-            levels = std::min(levels, t->levels.size() - j);
+            plan.first[std::size_t(i)] = j;
+            plan.levels = std::min(plan.levels, t->levels.size() - j);
+        }
+    }
+    return plans;
+}
+
+LayerMaps resolveLayerMaps(const Material& material)
+{
+    LayerMaps out;
+    out.layerCount = 1 + int(material.layers.size());
+    const std::array<SlotPlan, 9> plans = planLayerSlots(material);
+    for (int k = 0; k < 9; ++k) {
+        const SlotPlan& plan = plans[std::size_t(k)];
+        std::vector<TexturePtr>& slot = out.slots[std::size_t(k)];
+        if (plan.levels == 0) {
+            slot.assign(std::size_t(out.layerCount), standIn(k));
+            continue;
         }
         for (int i = 0; i < out.layerCount; ++i) {
-            const TexturePtr& t = own[std::size_t(i)][std::size_t(k)];
+            const TexturePtr& t = plan.textures[std::size_t(i)];
             if (!t) {
-                slot.push_back(constantLevels(*standIn(k), w, h, levels));
-            } else if (first[std::size_t(i)] == 0 && t->levels.size() == levels) {
+                slot.push_back(constantLevels(*standIn(k), plan.width, plan.height, plan.levels));
+            } else if (plan.first[std::size_t(i)] == 0 && t->levels.size() == plan.levels) {
                 slot.push_back(t);
             } else {
-                slot.push_back(levelsFrom(*t, first[std::size_t(i)], levels));
+                slot.push_back(levelsFrom(*t, plan.first[std::size_t(i)], plan.levels));
             }
         }
     }

@@ -27,8 +27,26 @@ struct LayerMaps
     std::array<std::vector<TexturePtr>, 9> slots;
 };
 
-/// Throws strata::Error "material: layer 'NAME' map KEY is WxH: ..." when
-/// the maps of a slot cannot share one size, or differ in colour space.
+/// How one slot's layers fit one texture array: each layer's own map (null:
+/// the stand-in), the array's size and level count, and the level of each
+/// map that has that size. levels = 0: no layer has a map of this slot.
+struct SlotPlan
+{
+    std::vector<TexturePtr> textures;
+    std::vector<std::size_t> first;
+    int width = 0;
+    int height = 0;
+    std::size_t levels = 0;
+};
+
+/// The plans of the nine slots, without building anything (checkMaterial()
+/// runs it). Throws strata::Error "material: layer 'NAME' map KEY is WxH:
+/// ..." when the maps of a slot cannot share one size, or differ in colour
+/// space.
+std::array<SlotPlan, 9> planLayerSlots(const Material& material);
+
+/// The slots' textures as planLayerSlots() plans them (copies of the levels
+/// only where a map starts below its top level). Throws as planLayerSlots().
 LayerMaps resolveLayerMaps(const Material& material);
 
 } // namespace strata::render::detail

@@ -283,6 +283,7 @@ TEST(TerrainLayers, LayerMapsShareOneSizePerSlot)
     } catch (const strata::Error& e) {
         EXPECT_NE(std::string(e.what()).find("layer 'grass' map albedo is 100x100"), std::string::npos) << e.what();
     }
+    EXPECT_THROW(checkMaterial(m), strata::Error); // found before any texture is built
 }
 
 TEST(TerrainLayers, CheckMaterialNamesTheLayerAndTheKey)

@@ -93,8 +93,8 @@ struct MaterialLayer;
 /// N-layer height blend (shaders/TerrainLayers.h): at most
 /// MAX_MATERIAL_LAYERS in all. The maps of one slot (albedo, mask...) are
 /// one texture array on the GPU, so they must share a size or be mip
-/// levels of one another (a larger map then drops its top levels: see
-/// layerMaps()).
+/// levels of one another (a larger map then starts at its level of the
+/// smallest map's size; checkMaterial() rejects other sizes).
 struct Material
 {
     float mapScale = 0.125f;        ///< texture repeats per metre, > 0
