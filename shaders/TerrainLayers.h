@@ -159,6 +159,7 @@ STRATA_INLINE SurfaceOutput accumulateSurface(SurfaceOutput sum, SurfaceOutput o
     sum.occlusion += o.occlusion * w;
     sum.smoothness += o.smoothness * w;
     sum.height += o.height * w;
+    sum.layerColor += o.layerColor * w;
     return sum;
 }
 
@@ -206,6 +207,7 @@ STRATA_FEATURE_FUNCTION SurfaceOutput evaluateLayers(STRATA_MAPS_PARAM STRATA_LA
             s.dpdy = world.dpdy * l.mapScale;
             STRATA_SELECT_LAYER(i, l.features);
             outputs[i] = evaluateSurface STRATA_FEATURE_ARGS(STRATA_MAPS_ARG s, LAYER_SET.materials[i]);
+            outputs[i].layerColor = layerPaletteColor(i);
             keys[i] = layerHeight(outputs[i], l.features) + share[i];
             if (keys[i] > best) {
                 best = keys[i];
@@ -223,6 +225,7 @@ STRATA_FEATURE_FUNCTION SurfaceOutput evaluateLayers(STRATA_MAPS_PARAM STRATA_LA
     sum.occlusion = 0.0f;
     sum.smoothness = 0.0f;
     sum.height = 0.0f;
+    sum.layerColor = vec3(0.0f);
     float total = 0.0f;
     for (int i = 0; i < count; ++i) {
         if (share[i] > 0.0f) {
@@ -244,6 +247,7 @@ STRATA_FEATURE_FUNCTION SurfaceOutput evaluateLayers(STRATA_MAPS_PARAM STRATA_LA
     sum.occlusion *= inv;
     sum.smoothness *= inv;
     sum.height *= inv;
+    sum.layerColor *= inv;
     sum.normal = safeNormalize(sum.normal, world.n);
     return sum;
 }

@@ -112,7 +112,21 @@ struct SurfaceOutput
     float occlusion;
     float smoothness;
     float height; ///< blended mask B: height (MOHS) or detail mask (MODS); 1 without a mask map
+    vec3 layerColor; ///< the layers' weights as colour (DEBUG_VIEW_LAYERS); layer 0's alone outside TerrainLayers.h
 };
+
+/// The colour of layer `i` in the layers debug view (linear display values).
+STRATA_INLINE vec3 layerPaletteColor(int i)
+{
+    if (i == 1) return vec3(0.8f, 0.1f, 0.05f);
+    if (i == 2) return vec3(0.1f, 0.6f, 0.05f);
+    if (i == 3) return vec3(0.05f, 0.15f, 0.9f);
+    if (i == 4) return vec3(0.9f, 0.75f, 0.05f);
+    if (i == 5) return vec3(0.05f, 0.7f, 0.8f);
+    if (i == 6) return vec3(0.75f, 0.1f, 0.8f);
+    if (i == 7) return vec3(1.0f, 1.0f, 1.0f);
+    return vec3(0.2f, 0.2f, 0.2f);
+}
 
 STRATA_INLINE int normalBlendMode(uint features)
 {
@@ -230,6 +244,7 @@ STRATA_FEATURE_FUNCTION SurfaceOutput evaluateSurface(STRATA_MAPS_PARAM SurfaceI
     o.occlusion = mix(1.0f, mask.y, m.occlusionStrength);
     o.smoothness = saturate(mask.w * m.smoothness);
     o.height = mask.z;
+    o.layerColor = layerPaletteColor(0);
     float detailMask = 1.0f;
     STRATA_IF_FEATURE(FEATURE_MODS)
     {
@@ -376,7 +391,8 @@ const int DEBUG_VIEW_OCCLUSION = 4;  ///< occlusion (after occlusionStrength) as
 const int DEBUG_VIEW_HEIGHT = 5;     ///< mask B (height, or the MODS detail mask) as grey
 const int DEBUG_VIEW_SMOOTHNESS = 6; ///< smoothness (after detail) as grey
 const int DEBUG_VIEW_ALBEDO = 7;     ///< albedo (tinted, with detail), unlit
-const int DEBUG_VIEW_COUNT = 8;
+const int DEBUG_VIEW_LAYERS = 8;     ///< the terrain layers' weights, each layer a colour (layerPaletteColor)
+const int DEBUG_VIEW_COUNT = 9;
 
 /// The sRGB decoding function, for one encoded value 0..1 (inverse of
 /// linearToSrgb()).
@@ -398,6 +414,9 @@ STRATA_INLINE vec3 debugViewColor(SurfaceOutput o, int view)
     vec3 v = vec3(0.0f);
     if (view == DEBUG_VIEW_ALBEDO) {
         return saturate(o.albedo);
+    }
+    if (view == DEBUG_VIEW_LAYERS) {
+        return saturate(o.layerColor);
     }
     if (view == DEBUG_VIEW_WEIGHTS) {
         v = o.weights;

@@ -41,6 +41,7 @@ static_assert(int(DebugView::Occlusion) == shading::DEBUG_VIEW_OCCLUSION);
 static_assert(int(DebugView::Height) == shading::DEBUG_VIEW_HEIGHT);
 static_assert(int(DebugView::Smoothness) == shading::DEBUG_VIEW_SMOOTHNESS);
 static_assert(int(DebugView::Albedo) == shading::DEBUG_VIEW_ALBEDO);
+static_assert(int(DebugView::Layers) == shading::DEBUG_VIEW_LAYERS);
 static_assert(DEBUG_VIEW_COUNT == shading::DEBUG_VIEW_COUNT);
 static_assert(detail::MATERIAL_MAP_UNITS == STRATA_MAP_COUNT);
 

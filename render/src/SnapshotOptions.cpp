@@ -11,7 +11,8 @@ namespace strata::render {
 const char* debugViewName(DebugView view)
 {
     static const char* const NAMES[DEBUG_VIEW_COUNT] = {"shaded",    "weights", "normals",    "metallic",
-                                                        "occlusion", "height",  "smoothness", "albedo"};
+                                                        "occlusion", "height",  "smoothness", "albedo",
+                                                        "layers"};
     const int i = int(view);
     return i >= 0 && i < DEBUG_VIEW_COUNT ? NAMES[i] : "unknown";
 }

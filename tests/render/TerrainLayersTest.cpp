@@ -483,3 +483,31 @@ TEST(TerrainLayers, SurfaceAttributesReachTheRulesOnBothRenderers)
 }
 
 } // namespace
+
+namespace {
+
+TEST(TerrainLayers, TheLayersDebugViewShowsWhereEachLayerIs)
+{
+    const TestMesh mesh = groundWithBlock();
+    SnapshotOptions options = layerOptions(mesh);
+    options.debugView = DebugView::Layers;
+    const Image cpu = renderSnapshotCpu(mesh.view(), options);
+    const Image gl = renderSnapshot(context(), mesh.view(), options);
+    EXPECT_GE(psnr(gl, cpu), 40.0);
+    // The block's top (above 2 m) is snow, layer 3: blue.
+    const glm::dvec3 top(0.0, 2.5, 0.0);
+    const glm::dvec4 clip = glm::dmat4(projectionMatrix(options.camera, 480.0 / 270.0)) *
+                            glm::dmat4(viewMatrix(options.camera, glm::dvec3(0.0))) * glm::dvec4(top, 1.0);
+    const int x = int((clip.x / clip.w * 0.5 + 0.5) * 480.0);
+    const int y = int((0.5 - clip.y / clip.w * 0.5) * 270.0) + 2; // just below the top face's centre line
+    const std::uint8_t* p = cpu.at(x, y);
+    EXPECT_GT(p[2], p[0] + 60) << x << "," << y;
+    EXPECT_GT(p[2], p[1] + 30) << x << "," << y;
+    // Switching LAYERS off shows the base's colour everywhere on the terrain.
+    options.featureMask = ~feature::LAYERS;
+    const Image base = renderSnapshotCpu(mesh.view(), options);
+    const std::uint8_t* q = base.at(x, y);
+    EXPECT_NEAR(q[0], q[2], 2);
+}
+
+} // namespace

@@ -35,11 +35,12 @@ enum class DebugView
     Height = 5,           ///< mask B (height; the detail mask with MODS), grey
     Smoothness = 6,       ///< grey, after detail
     Albedo = 7,           ///< albedo with tint and detail, unlit
+    Layers = 8,           ///< terrain layers' weights: base dark grey, then red, green, blue, yellow, cyan, magenta, white
 };
-inline constexpr int DEBUG_VIEW_COUNT = 8;
+inline constexpr int DEBUG_VIEW_COUNT = 9;
 
 /// "shaded", "weights", "normals", "metallic", "occlusion", "height",
-/// "smoothness", "albedo".
+/// "smoothness", "albedo", "layers".
 const char* debugViewName(DebugView view);
 
 struct SnapshotOptions
