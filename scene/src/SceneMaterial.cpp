@@ -310,7 +310,7 @@ void readLayers(TableReader& root, MaterialSettings& base, const std::map<std::s
         const std::string prefix = "layer[" + std::to_string(i + 1) + "]";
         TableReader t(array->get(i)->as_table(), prefix, source);
         LayerSettings layer;
-        layer.where = t.where("");
+        layer.where = t.where("name");
         const std::string use = t.string("use", "");
         if (!use.empty()) {
             auto found = named.find(use);
@@ -376,7 +376,15 @@ render::Material buildMaterial(const MaterialSettings& settings)
         try {
             render::checkMaterial(material);
         } catch (const Error& e) {
-            throw Error(ErrorKind::BadInput, e.what());
+            // Name the scene file and the [[layer]] table the message is about.
+            std::string where;
+            for (const LayerSettings& layer : settings.layers) {
+                if (std::string(e.what()).find("layer '" + layer.material.name + "'") != std::string::npos) {
+                    where = layer.where + ": ";
+                    break;
+                }
+            }
+            throw Error(ErrorKind::BadInput, where + e.what());
         }
         return material;
     }
