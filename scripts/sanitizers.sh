@@ -20,7 +20,7 @@ set -eu
 root=$(cd "$(dirname "$0")/.." && pwd)
 jobs=${JOBS:-2}
 fuzz_seconds=${FUZZ_SECONDS:-60}
-tests=${SANITIZE_TESTS:-'^(AtomicFile|OutputLock|StderrCapture|FuzzCorpus|MeshReadErrors|MeshFile|PlyIO|GltfIO|GridIO|WriteFailure|Scene|SceneErrors|SceneTerrain|SceneMaterial|NodeRegistry)\.'}
+tests=${SANITIZE_TESTS:-'^(AtomicFile|OutputLock|StderrCapture|FuzzCorpus|MeshReadErrors|MeshFile|PlyIO|GltfIO|GridIO|WriteFailure|Scene|SceneErrors|SceneTerrain|SceneMaterial|SceneLayers|SurfaceAttributes|NodeRegistry)\.'}
 san=$root/build-sanitize
 tsan=$root/build-tsan
 cxx=$(command -v clang++-15 || command -v clang++-14 || command -v clang++)
