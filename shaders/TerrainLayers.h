@@ -160,6 +160,7 @@ STRATA_INLINE SurfaceOutput accumulateSurface(SurfaceOutput sum, SurfaceOutput o
     sum.smoothness += o.smoothness * w;
     sum.height += o.height * w;
     sum.layerColor += o.layerColor * w;
+    sum.fresnelStrength += o.fresnelStrength * w;
     return sum;
 }
 
@@ -226,6 +227,7 @@ STRATA_FEATURE_FUNCTION SurfaceOutput evaluateLayers(STRATA_MAPS_PARAM STRATA_LA
     sum.smoothness = 0.0f;
     sum.height = 0.0f;
     sum.layerColor = vec3(0.0f);
+    sum.fresnelStrength = 0.0f;
     float total = 0.0f;
     for (int i = 0; i < count; ++i) {
         if (share[i] > 0.0f) {
@@ -248,6 +250,7 @@ STRATA_FEATURE_FUNCTION SurfaceOutput evaluateLayers(STRATA_MAPS_PARAM STRATA_LA
     sum.smoothness *= inv;
     sum.height *= inv;
     sum.layerColor *= inv;
+    sum.fresnelStrength *= inv;
     sum.normal = safeNormalize(sum.normal, world.n);
     return sum;
 }

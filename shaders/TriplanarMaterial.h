@@ -113,6 +113,7 @@ struct SurfaceOutput
     float smoothness;
     float height; ///< blended mask B: height (MOHS) or detail mask (MODS); 1 without a mask map
     vec3 layerColor; ///< the layers' weights as colour (DEBUG_VIEW_LAYERS); layer 0's alone outside TerrainLayers.h
+    float fresnelStrength; ///< the material's (blended across layers)
 };
 
 /// The colour of layer `i` in the layers debug view (linear display values).
@@ -245,6 +246,7 @@ STRATA_FEATURE_FUNCTION SurfaceOutput evaluateSurface(STRATA_MAPS_PARAM SurfaceI
     o.smoothness = saturate(mask.w * m.smoothness);
     o.height = mask.z;
     o.layerColor = layerPaletteColor(0);
+    o.fresnelStrength = m.fresnelStrength;
     float detailMask = 1.0f;
     STRATA_IF_FEATURE(FEATURE_MODS)
     {

@@ -106,11 +106,6 @@ void main()
     // The interpolated normal (not the mapped one) biases the shadow lookup.
     float sun = sunVisibility(uShadow, vPosition, vNormal);
     LightingParams lit = shadowedLighting(uLighting, sun);
-#ifdef STRATA_LAYERED
-    float fresnelStrength = uLayerSet.materials[0].fresnelStrength;
-#else
-    float fresnelStrength = uMaterial.fresnelStrength;
-#endif
-    vec3 radiance = lightSurface(o, s.viewDir, lit, fresnelStrength);
+    vec3 radiance = lightSurface(o, s.viewDir, lit, o.fresnelStrength);
     fragColor = vec4(finishFragment(radiance, lit.exposure, uAtmosphere, vec3(uFrame.cameraPosition), vPosition), 1.0f);
 }

@@ -230,7 +230,7 @@ glm::vec3 shadeWith(const Frame& frame, const CpuMaps& maps, const Fragment& f, 
     const std::uint32_t selected = maps.features;
     const shading::SurfaceOutput o = evaluateWith<FEATURES>(frame, maps, f);
     maps.features = selected; // the layers select their own sets
-    const glm::vec3 radiance = shading::lightSurface(o, f.s.viewDir, lighting, frame.material.fresnelStrength);
+    const glm::vec3 radiance = shading::lightSurface(o, f.s.viewDir, lighting, o.fresnelStrength);
     return shading::finishFragment(radiance, lighting.exposure, frame.atmosphere, frame.cameraPosition,
                                    f.world.p);
 }

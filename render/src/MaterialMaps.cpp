@@ -3,6 +3,8 @@
 #include <strata/Error.h>
 
 #include <algorithm>
+#include <memory>
+#include <mutex>
 #include <string>
 
 namespace strata::render::detail {
@@ -75,6 +77,54 @@ TexturePtr constantLevels(const Texture& value, int w, int h, std::size_t count)
         h = std::max(h / 2, 1);
     }
     return out;
+}
+
+/// The textures resolveLayerMaps() derives (a map from a lower level, a
+/// stand-in at a slot's size), kept while in use, so that the same material
+/// resolves to the same texture objects every time: the GL renderer then
+/// keeps its texture arrays between setMaterial() calls (a turntable sets the
+/// material once per frame) instead of uploading them again.
+class DerivedTextures
+{
+public:
+    template <class Make>
+    TexturePtr get(const TexturePtr& source, std::size_t first, int w, int h, std::size_t count, Make make)
+    {
+        const std::lock_guard<std::mutex> lock(mMutex);
+        for (auto it = mEntries.begin(); it != mEntries.end();) {
+            const TexturePtr alive = it->source.lock();
+            const TexturePtr derived = it->derived.lock();
+            if (!alive || !derived) {
+                it = mEntries.erase(it); // its source or its result is gone
+                continue;
+            }
+            if (alive == source && it->first == first && it->w == w && it->h == h && it->count == count) {
+                return derived;
+            }
+            ++it;
+        }
+        TexturePtr made = make();
+        mEntries.push_back({source, made, first, w, h, count});
+        return made;
+    }
+
+private:
+    struct Entry
+    {
+        std::weak_ptr<const Texture> source;
+        std::weak_ptr<const Texture> derived;
+        std::size_t first;
+        int w, h;
+        std::size_t count;
+    };
+    std::mutex mMutex;
+    std::vector<Entry> mEntries;
+};
+
+DerivedTextures& derivedTextures()
+{
+    static DerivedTextures cache;
+    return cache;
 }
 
 } // namespace
@@ -151,11 +201,15 @@ LayerMaps resolveLayerMaps(const Material& material)
         for (int i = 0; i < out.layerCount; ++i) {
             const TexturePtr& t = plan.textures[std::size_t(i)];
             if (!t) {
-                slot.push_back(constantLevels(*standIn(k), plan.width, plan.height, plan.levels));
+                slot.push_back(derivedTextures().get(standIn(k), 0, plan.width, plan.height, plan.levels, [&] {
+                    return constantLevels(*standIn(k), plan.width, plan.height, plan.levels);
+                }));
             } else if (plan.first[std::size_t(i)] == 0 && t->levels.size() == plan.levels) {
                 slot.push_back(t);
             } else {
-                slot.push_back(levelsFrom(*t, plan.first[std::size_t(i)], plan.levels));
+                const std::size_t first = plan.first[std::size_t(i)];
+                slot.push_back(derivedTextures().get(t, first, plan.width, plan.height, plan.levels,
+                                                     [&] { return levelsFrom(*t, first, plan.levels); }));
             }
         }
     }

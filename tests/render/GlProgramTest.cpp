@@ -6,6 +6,7 @@
 #include <strata/render/EglContext.h>
 
 #include "GlProgram.h"
+#include "LayerSetup.h"
 #include "UniformBlocks.h"
 #include <strata/shaders/EmbeddedShaders.h>
 
@@ -176,8 +177,9 @@ TEST(GlProgram, UniformBlocksMatchTheStd140MirrorsInCpp)
     ASSERT_TRUE(context);
     const detail::GlObject vertex =
         detail::compileShader(GL_VERTEX_SHADER, strata::shaders::TERRAIN_VERT, "terrain vertex");
-    // Every feature and the debug views: every member is active.
-    const detail::GlObject fragment = detail::compileShader(GL_FRAGMENT_SHADER, fragmentSource(1023u), "terrain fragment");
+    // Every feature but layers, and the debug views: every member is active.
+    const detail::GlObject fragment =
+        detail::compileShader(GL_FRAGMENT_SHADER, fragmentSource(4095u & ~1024u), "terrain fragment");
     const detail::GlObject linked = detail::linkProgram(vertex, fragment, "terrain");
     const GLuint p = linked.id();
 
@@ -198,10 +200,12 @@ TEST(GlProgram, UniformBlocksMatchTheStd140MirrorsInCpp)
     STRATA_EXPECT_OFFSET("FrameBlock.debugView", FrameBlock, debugView);
     STRATA_EXPECT_OFFSET("FrameBlock.wireframePass", FrameBlock, wireframePass);
     STRATA_EXPECT_OFFSET("FrameBlock.detailOffset", FrameBlock, detailOffset);
+    STRATA_EXPECT_OFFSET("FrameBlock.tileOffset", FrameBlock, tileOffset);
 
     STRATA_EXPECT_OFFSET("uMaterial.albedoTint", MaterialBlock, albedoTint);
     STRATA_EXPECT_OFFSET("uMaterial.blendOffset", MaterialBlock, blendOffset);
     STRATA_EXPECT_OFFSET("uMaterial.biplanar", MaterialBlock, biplanar);
+    STRATA_EXPECT_OFFSET("uMaterial.antiTilingSharpness", MaterialBlock, antiTilingSharpness);
     STRATA_EXPECT_OFFSET("uMaterial.blendExponent", MaterialBlock, blendExponent);
     STRATA_EXPECT_OFFSET("uMaterial.heightStrength", MaterialBlock, heightStrength);
     STRATA_EXPECT_OFFSET("uMaterial.metallic", MaterialBlock, metallic);
@@ -231,6 +235,42 @@ TEST(GlProgram, UniformBlocksMatchTheStd140MirrorsInCpp)
     STRATA_EXPECT_OFFSET("uLighting.groundAmbient", LightingBlock, groundAmbient);
     STRATA_EXPECT_OFFSET("uLighting.exposure", LightingBlock, exposure);
 #undef STRATA_EXPECT_OFFSET
+}
+
+TEST(GlProgram, TheLayerBlockMatchesItsStd140MirrorInCpp)
+{
+    auto context = createContext();
+    ASSERT_TRUE(context);
+    const detail::GlObject vertex =
+        detail::compileShader(GL_VERTEX_SHADER, strata::shaders::TERRAIN_VERT, "terrain vertex");
+    // Every feature, eight layers: every member of every layer is active.
+    std::string source = fragmentSource(4095u);
+    source.insert(source.find('\n') + 1, "#define STRATA_LAYERED 1\n#define STRATA_LAYER_COUNT 8\n");
+    const detail::GlObject fragment = detail::compileShader(GL_FRAGMENT_SHADER, source, "layered terrain fragment");
+    const detail::GlObject linked = detail::linkProgram(vertex, fragment, "layered terrain");
+    const GLuint p = linked.id();
+    EXPECT_EQ(blockSize(p, "LayerBlock"), GLint(sizeof(detail::LayerSetBlock)));
+    EXPECT_EQ(blockBinding(p, "LayerBlock"), GLint(detail::LAYER_BLOCK_BINDING));
+    for (int i : {0, 3, 7}) {
+        const std::string layer = "uLayerSet.layers[" + std::to_string(i) + "].";
+        const std::size_t base = offsetof(detail::LayerSetBlock, layers) + std::size_t(i) * sizeof(strata::shading::LayerParams);
+        EXPECT_EQ(uniformOffset(p, layer + "slope"), GLint(base + offsetof(strata::shading::LayerParams, slope))) << layer;
+        EXPECT_EQ(uniformOffset(p, layer + "tileOffset"), GLint(base + offsetof(strata::shading::LayerParams, tileOffset)))
+            << layer;
+        EXPECT_EQ(uniformOffset(p, layer + "mapScale"), GLint(base + offsetof(strata::shading::LayerParams, mapScale)))
+            << layer;
+        EXPECT_EQ(uniformOffset(p, layer + "seed"), GLint(base + offsetof(strata::shading::LayerParams, seed))) << layer;
+        const std::string material = "uLayerSet.materials[" + std::to_string(i) + "].";
+        const std::size_t mbase = offsetof(detail::LayerSetBlock, materials) + std::size_t(i) * sizeof(detail::MaterialBlock);
+        EXPECT_EQ(uniformOffset(p, material + "emissionColor"),
+                  GLint(mbase + offsetof(detail::MaterialBlock, emissionColor)))
+            << material;
+        EXPECT_EQ(uniformOffset(p, material + "fresnelStrength"),
+                  GLint(mbase + offsetof(detail::MaterialBlock, fresnelStrength)))
+            << material;
+    }
+    EXPECT_EQ(uniformOffset(p, "uLayerSet.count"), GLint(offsetof(detail::LayerSetBlock, count)));
+    EXPECT_EQ(uniformOffset(p, "uLayerSet.blendDepth"), GLint(offsetof(detail::LayerSetBlock, blendDepth)));
 }
 
 } // namespace

@@ -275,6 +275,10 @@ TEST(TerrainLayers, LayerMapsShareOneSizePerSlot)
     EXPECT_EQ(maps.slots[0][1]->levels[0].texels[0], 160);
     EXPECT_EQ(maps.slots[2][0]->width(), 32); // the base's flat stand-in at the slot's size
     EXPECT_EQ(maps.slots[2][0]->levels[0].texels[2], 255);
+    // While in use, the same material resolves to the same texture objects
+    // (the GL renderer then keeps its texture arrays between setMaterial calls).
+    const strata::render::detail::LayerMaps again = strata::render::detail::resolveLayerMaps(m);
+    for (std::size_t k = 0; k < 9; ++k) EXPECT_EQ(again.slots[k], maps.slots[k]) << k;
 
     m.layers[0].material.albedo = solid(100, 160, MapKind::Albedo);
     try {
