@@ -42,8 +42,12 @@ TEST(SurfaceAttributes, ASphereIsNeitherConcaveNorCovered)
     for (std::size_t i = 0; i < a.size(); ++i) {
         EXPECT_LT(a[i].x, 0.1f) << i;
         // Only the underside has rock above it.
-        if (mesh.normals[i].y > 0.2f) EXPECT_EQ(a[i].y, 0.0f) << i;
-        if (mesh.normals[i].y < -0.5f) EXPECT_EQ(a[i].y, 1.0f) << i;
+        if (mesh.normals[i].y > 0.2f) {
+            EXPECT_EQ(a[i].y, 0.0f) << i;
+        }
+        if (mesh.normals[i].y < -0.5f) {
+            EXPECT_EQ(a[i].y, 1.0f) << i;
+        }
     }
 }
 
