@@ -51,7 +51,8 @@ int renderWorld(const RenderArguments& args, SnapshotRequest request, const std:
 {
     for (const auto& [given, flag] : {std::pair{!args.meshPath.empty(), "--mesh"}, std::pair{!args.offset.empty(), "--offset"},
                                       std::pair{args.seed.has_value(), "--seed"}, std::pair{request.turntable > 0, "--turntable"},
-                                      std::pair{request.view == "cave", "--view cave"}})
+                                      std::pair{request.view == "cave", "--view cave"},
+                                      std::pair{!request.debugView.empty(), "--debug-view"}})
         if (given) throw Error(std::string(flag) + " cannot be used when rendering a bake folder ('" + args.scenePath + "')");
     const Scene scene = loadBakedScene(args.scenePath);
     const QualitySettings quality = resolveQuality(scene, std::nullopt, {});

@@ -42,6 +42,7 @@ struct SnapshotFlags
     std::optional<double> fov;
     int turntable = 0;
     std::string format;
+    std::string debugView;
 
     void add(CLI::App* command)
     {
@@ -60,6 +61,9 @@ struct SnapshotFlags
             "--turntable", turntable,
             "Render N frames around the vertical axis through the target: NAME_000.EXT, NAME_001.EXT, ...");
         command->add_option("--snapshot-format", format, "png (8-bit sRGB) or exr (linear float through OpenImageIO)");
+        command->add_option("--debug-view", debugView,
+                            "Show what the material computed instead of the lit image: weights, normals, metallic, "
+                            "occlusion, height, smoothness, albedo or layers (each terrain layer a colour)");
     }
 
     /// The request; throws strata::Error naming the flag and value.
@@ -76,6 +80,7 @@ struct SnapshotFlags
             throw Error("--turntable '" + std::to_string(turntable) + "' must be a frame count in [1, 3600]");
         }
         r.format = format;
+        r.debugView = debugView;
         checkSnapshotRequest(r);
         return r;
     }

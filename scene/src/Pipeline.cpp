@@ -112,6 +112,7 @@ render::SnapshotOptions makeSnapshotOptions(const Scene& scene, const meshing::T
                                      double(snapshot.width) / snapshot.height, cave);
     snapshot.lighting = scene.lighting;
     snapshot.material = material ? *material : buildMaterial(scene.material);
+    if (!request.debugView.empty()) snapshot.debugView = debugViewFromName(request.debugView).value_or(render::DebugView::Shaded);
     return snapshot;
 }
 
@@ -449,6 +450,7 @@ GenerateResult generate(const Scene& input, const GenerateOptions& options, Pipe
         result.naiveFetches = stats.naiveFetches;
         log.end(std::to_string(width) + "x" + std::to_string(height) + ", " + (context ? "gl" : "cpu") + ", " +
                 stats.features +
+                (options.request.debugView.empty() ? std::string() : ", debug view " + options.request.debugView) +
                 (paths.size() > 1 ? ", " + std::to_string(paths.size()) + " frames" : std::string()));
     }
 

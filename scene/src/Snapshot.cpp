@@ -13,6 +13,14 @@
 
 namespace strata::scene {
 
+std::optional<render::DebugView> debugViewFromName(const std::string& name)
+{
+    for (int v = 0; v < render::DEBUG_VIEW_COUNT; ++v) {
+        if (name == render::debugViewName(render::DebugView(v))) return render::DebugView(v);
+    }
+    return std::nullopt;
+}
+
 void checkSnapshotRequest(const SnapshotRequest& r)
 {
     if (r.backend != "auto" && r.backend != "gl" && r.backend != "cpu") {
@@ -29,6 +37,14 @@ void checkSnapshotRequest(const SnapshotRequest& r)
     }
     if (!r.format.empty() && r.format != "png" && r.format != "exr") {
         throw Error("--snapshot-format '" + r.format + "' is not a format (use png or exr)");
+    }
+    if (!r.debugView.empty() && !debugViewFromName(r.debugView)) {
+        std::string names;
+        for (int v = 1; v < render::DEBUG_VIEW_COUNT; ++v) {
+            names += std::string(v == 1 ? "" : v + 1 == render::DEBUG_VIEW_COUNT ? " or " : ", ") +
+                     render::debugViewName(render::DebugView(v));
+        }
+        throw Error("--debug-view '" + r.debugView + "' is not a debug view (use " + names + ")");
     }
     if (r.cameraPosition && r.cameraTarget && glm::length(*r.cameraPosition - *r.cameraTarget) == 0.0) {
         throw Error("--camera-position equals --camera-target");

@@ -199,6 +199,7 @@ TEST(SnapshotCommand, BadValuesNameTheFlagExitTwoAndWriteNothing)
         {"--turntable 0", "--turntable '0'"},
         {"--turntable -2", "--turntable '-2'"},
         {"--snapshot-format jpg", "--snapshot-format 'jpg'"},
+        {"--debug-view shiny", "--debug-view 'shiny' is not a debug view (use weights, normals"},
     };
     for (const Case& c : cases) {
         const Result render =
@@ -241,6 +242,30 @@ TEST(SnapshotCommand, CameraFlagsOverrideTheSceneCamera)
     EXPECT_LT(strata::render::fractionWithin(scene, flags, 2), 0.9);
     EXPECT_LT(strata::render::fractionWithin(flags, fov, 2), 0.9);
     EXPECT_GT(standardDeviation(flags), 5.0);
+}
+
+TEST(SnapshotCommand, DebugViewsShowTheMaterialInsteadOfTheLitImage)
+{
+    const auto dir = strata::test::freshTestDir();
+    writeTetrahedron(dir);
+    const std::string base = "render " + tetrahedron(dir) + " --backend cpu -o ";
+    ASSERT_EQ(run(base + (dir / "lit.png").string(), dir).exitCode, 0);
+    const Result normals = run(base + (dir / "normals.png").string() + " --debug-view normals", dir);
+    ASSERT_EQ(normals.exitCode, 0) << normals.output;
+    const Result layers = run(base + (dir / "layers.png").string() + " --debug-view layers", dir);
+    ASSERT_EQ(layers.exitCode, 0) << layers.output;
+    const Image lit = strata::render::readImage(dir / "lit.png");
+    const Image normalView = strata::render::readImage(dir / "normals.png");
+    const Image layerView = strata::render::readImage(dir / "layers.png");
+    EXPECT_LT(strata::render::fractionWithin(lit, normalView, 2), 0.9);
+    // Without [[layer]] tables the whole surface is the base: its colour,
+    // 0.2 as a display value, byte 124 after the sRGB encoding.
+    int baseColoured = 0;
+    for (std::size_t i = 0; i < layerView.pixels.size(); i += 4) {
+        const std::uint8_t* p = layerView.pixels.data() + i;
+        baseColoured += std::abs(p[0] - 124) <= 1 && std::abs(p[1] - 124) <= 1 && std::abs(p[2] - 124) <= 1;
+    }
+    EXPECT_GT(baseColoured, int(layerView.pixels.size() / 4 / 50)) << "the surface shows the base layer's colour";
 }
 
 /// The default scene: the presets give different, non-constant images, and
@@ -297,7 +322,7 @@ TEST(SnapshotCommand, HelpDocumentsTheSnapshotFlags)
         const Result help = run(std::string(command) + " --help", dir);
         EXPECT_EQ(help.exitCode, 0);
         for (const char* flag : {"--backend", "auto", "--view", "cave", "--camera-position", "--camera-target", "--fov",
-                                 "--turntable", "--snapshot-format", "exr"}) {
+                                 "--turntable", "--snapshot-format", "exr", "--debug-view", "layers"}) {
             EXPECT_TRUE(contains(help.output, flag)) << command << " --help lacks " << flag << "\n" << help.output;
         }
     }

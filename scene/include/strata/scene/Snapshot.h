@@ -8,6 +8,7 @@
 #include <strata/meshing/MeshMetrics.h>
 #include <strata/render/Camera.h>
 #include <strata/render/EglContext.h>
+#include <strata/render/SnapshotOptions.h>
 
 #include <glm/vec3.hpp>
 
@@ -35,12 +36,20 @@ struct SnapshotRequest
     int turntable = 0; ///< 0: one image; N >= 1: N frames around the vertical axis through the target
     /// "png" or "exr"; "" = from the output name (render) or png (generate).
     std::string format;
+    /// "" (the lit image) or a debug view of the material: weights, normals,
+    /// metallic, occlusion, height, smoothness, albedo, layers
+    /// (render::debugViewName); scene renders only.
+    std::string debugView;
 };
 
 /// Throws strata::Error naming the flag and its value for a bad backend,
-/// view, fov, turntable count, format, or a camera position equal to its
-/// target. Cheap: call it before any work so that nothing is written.
+/// view, fov, turntable count, format, debug view, or a camera position
+/// equal to its target. Cheap: call it before any work so that nothing is written.
 void checkSnapshotRequest(const SnapshotRequest& request);
+
+/// The debug view named `name` (render::debugViewName: "shaded", "weights",
+/// ..., "layers"), or nothing.
+std::optional<render::DebugView> debugViewFromName(const std::string& name);
 
 /// "X,Y,Z" (three finite numbers) → vector; throws strata::Error
 /// "FLAG 'TEXT' must look like X,Y,Z ..." otherwise.
