@@ -513,7 +513,6 @@ Image renderSnapshotCpu(const MeshView& mesh, const SnapshotOptions& options, Cp
     const int width = options.width;
     const int height = options.height;
     const Material& material = options.material;
-    checkMaterial(material);
     const detail::LayerMaps textures = detail::resolveLayerMaps(material);
 
     Frame frame;
