@@ -120,6 +120,7 @@ private:
         NodeArgs args(name, seed);
         for (const NodeKey& key : type.keys) {
             if (key.required && !t.has(key.name)) t.fail(nullptr, key.name, "is required (" + key.description + ")");
+            if (t.has(key.name)) args.markGiven(key.name);
             switch (key.type) {
             case NodeKeyType::Number:
                 args.set(key.name, t.number(key.name, std::get<double>(key.defaultValue), key.min, key.max));
@@ -141,7 +142,11 @@ private:
             case NodeKeyType::Vec3:
                 args.set(key.name, t.vec3(key.name, key.max).value_or(std::get<glm::dvec3>(key.defaultValue)));
                 break;
-            case NodeKeyType::Child: args.set(key.name, build(t.string(key.name, ""), t, key.name)); break;
+            case NodeKeyType::Child:
+                if (!key.required && !t.has(key.name)) args.set(key.name, DensityFieldPtr{});
+                else args.set(key.name, build(t.string(key.name, ""), t, key.name));
+                break;
+            case NodeKeyType::Points: args.set(key.name, points(t, key)); break;
             case NodeKeyType::Children: args.set(key.name, children(t, key.name)); break;
             case NodeKeyType::Image: {
                 std::filesystem::path file = t.string(key.name, "");
@@ -192,6 +197,34 @@ private:
             const toml::node& element = *array->get(i);
             if (!element.is_string()) t.fail(&element, key, TableReader::shown(&element) + "must hold node names (strings)");
             out.push_back(build(*element.value<std::string>(), t, key));
+        }
+        return out;
+    }
+
+    /// A curve: [[in, out], ...], two or more pairs of finite numbers
+    /// within the key's range (the node checks the order).
+    std::vector<glm::dvec2> points(TableReader& t, const NodeKey& key)
+    {
+        const toml::node* node = t.node(key.name);
+        if (!node) return std::get<std::vector<glm::dvec2>>(key.defaultValue);
+        const toml::array* array = node->as_array();
+        const std::string form = "must be an array of two or more [input, output] pairs of finite numbers within ±" +
+                                 formatNumber(key.max) + ", e.g. [[0, 0], [50, 20], [100, 100]]";
+        if (!array || array->size() < 2) t.fail(node, key.name, TableReader::shown(node) + form);
+        std::vector<glm::dvec2> out;
+        for (std::size_t i = 0; i < array->size(); ++i) {
+            const toml::array* pair = array->get(i)->as_array();
+            if (!pair || pair->size() != 2) t.fail(node, key.name, TableReader::shown(node) + form);
+            glm::dvec2 p;
+            for (int c = 0; c < 2; ++c) {
+                const toml::node& element = *pair->get(std::size_t(c));
+                const std::optional<double> value = element.value<double>();
+                if (!value || element.is_boolean() || !std::isfinite(*value) || std::abs(*value) > key.max) {
+                    t.fail(node, key.name, TableReader::shown(node) + form);
+                }
+                p[c] = *value;
+            }
+            out.push_back(p);
         }
         return out;
     }

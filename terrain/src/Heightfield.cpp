@@ -198,7 +198,14 @@ void registerHeightfieldNodes(NodeRegistry& registry)
                   numberKey("amplitude", n.amplitude, 0.0, 1e6, "m", "height scale of the noise"),
                   numberKey("wavelength", n.wavelength, 1e-3, MAX_LENGTH, "m", "size of the largest features")};
     addFractalKeys(noise.keys, n.noise);
+    noise.keys.push_back(optionalChildKey("height", "a height node (height graph) instead of the noise keys"));
     noise.build = [](const NodeArgs& a) -> DensityFieldPtr {
+        if (DensityFieldPtr graph = heightChild(a, "height")) {
+            for (const char* key : {"base", "amplitude", "wavelength", "noise", "fractal", "octaves", "lacunarity", "gain"}) {
+                if (a.given(key)) a.fail(key, "cannot be given with height: the height node replaces the noise");
+            }
+            return graph;
+        }
         NoiseHeightfieldOptions o;
         o.base = a.number("base");
         o.amplitude = a.number("amplitude");

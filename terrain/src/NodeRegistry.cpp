@@ -57,6 +57,7 @@ const char* nodeKeyTypeName(NodeKeyType type)
     case NodeKeyType::Children: return "nodes";
     case NodeKeyType::Image: return "image";
     case NodeKeyType::Seed: return "seed";
+    case NodeKeyType::Points: return "[[in, out], ...]";
     }
     return "number";
 }
@@ -71,6 +72,12 @@ std::string NodeKey::defaultText() const
     if (const auto* s = std::get_if<std::string>(&defaultValue)) return *s;
     if (const auto* v = std::get_if<glm::dvec2>(&defaultValue)) return showVector(&v->x, 2);
     if (const auto* v = std::get_if<glm::dvec3>(&defaultValue)) return showVector(&v->x, 3);
+    if (const auto* p = std::get_if<std::vector<glm::dvec2>>(&defaultValue)) {
+        std::string out = "[";
+        for (std::size_t i = 0; i < p->size(); ++i) out += (i ? ", " : "") + showVector(&(*p)[i].x, 2);
+        return out + "]";
+    }
+    if (type == NodeKeyType::Child) return "none";
     return "";
 }
 
@@ -79,7 +86,8 @@ std::string NodeKey::rangeText() const
     switch (type) {
     case NodeKeyType::Number:
     case NodeKeyType::Vec2:
-    case NodeKeyType::Vec3: return formatNumber(min) + " .. " + formatNumber(max);
+    case NodeKeyType::Vec3:
+    case NodeKeyType::Points: return formatNumber(min) + " .. " + formatNumber(max);
     case NodeKeyType::Integer: return std::to_string(std::int64_t(min)) + " .. " + std::to_string(std::int64_t(max));
     case NodeKeyType::Choice: {
         std::string out;
@@ -112,6 +120,7 @@ template const glm::dvec2& NodeArgs::get<glm::dvec2>(const std::string&) const;
 template const glm::dvec3& NodeArgs::get<glm::dvec3>(const std::string&) const;
 template const DensityFieldPtr& NodeArgs::get<DensityFieldPtr>(const std::string&) const;
 template const std::vector<DensityFieldPtr>& NodeArgs::get<std::vector<DensityFieldPtr>>(const std::string&) const;
+template const std::vector<glm::dvec2>& NodeArgs::get<std::vector<glm::dvec2>>(const std::string&) const;
 
 const HeightImage& NodeArgs::image(const std::string& key) const
 {
@@ -168,6 +177,7 @@ const NodeRegistry& NodeRegistry::builtin()
         registerTransformNodes(r);
         registerCsgNodes(r);
         registerPrimitiveNodes(r);
+        registerHeightGraphNodes(r);
         return r;
     }();
     return registry;
@@ -246,6 +256,23 @@ NodeKey childrenKey(std::string name, std::string description)
 {
     NodeKey k = childKey(std::move(name), std::move(description));
     k.type = NodeKeyType::Children;
+    return k;
+}
+
+NodeKey optionalChildKey(std::string name, std::string description)
+{
+    NodeKey k = childKey(std::move(name), std::move(description));
+    k.required = false;
+    k.defaultValue = DensityFieldPtr{};
+    return k;
+}
+
+NodeKey pointsKey(std::string name, std::vector<glm::dvec2> fallback, double limit, std::string unit,
+                  std::string description)
+{
+    NodeKey k = numberKey(std::move(name), 0.0, -limit, limit, std::move(unit), std::move(description));
+    k.type = NodeKeyType::Points;
+    k.defaultValue = std::move(fallback);
     return k;
 }
 

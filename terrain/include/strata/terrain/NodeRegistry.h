@@ -20,6 +20,7 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <set>
 #include <string>
 #include <variant>
 #include <vector>
@@ -44,15 +45,18 @@ enum class NodeKeyType
     Children, ///< two or more node names
     Image,    ///< a height image file (relative to the scene's folder)
     Seed,     ///< this node's seed stream, an integer in [0, 2^63 − 1]; default: a hash of the node's name
+    Points,   ///< a curve: two or more [input, output] pairs, inputs strictly increasing
 };
 
-/// "number", "integer", "boolean", "choice", "[x, z]", "[x, y, z]", "node", "nodes", "image", "seed".
+/// "number", "integer", "boolean", "choice", "[x, z]", "[x, y, z]", "node", "nodes", "image", "seed",
+/// "[[in, out], ...]".
 const char* nodeKeyTypeName(NodeKeyType type);
 
 /// A key's value: numbers, integers (and seeds), booleans, strings (choices,
 /// image paths), vectors, child nodes, or the loaded image.
 using NodeValue = std::variant<std::monostate, double, std::int64_t, bool, std::string, glm::dvec2, glm::dvec3,
-                               DensityFieldPtr, std::vector<DensityFieldPtr>, std::shared_ptr<const HeightImage>>;
+                               DensityFieldPtr, std::vector<DensityFieldPtr>, std::shared_ptr<const HeightImage>,
+                               std::vector<glm::dvec2>>;
 
 /// One key of a node type.
 struct NodeKey
@@ -61,7 +65,7 @@ struct NodeKey
     NodeKeyType type = NodeKeyType::Number;
     std::string description; ///< one line
     std::string unit;        ///< "m", "noise units", ... ("" for none)
-    bool required = false;   ///< no default: the user must give it
+    bool required = false;   ///< no default: the user must give it (child keys: optional ones read null when absent)
     NodeValue defaultValue;  ///< for optional keys (monostate for seeds and required keys)
     double min = 0.0, max = 0.0;      ///< Number, Integer, Vec2, Vec3 (per component)
     std::vector<std::string> choices; ///< Choice
@@ -95,6 +99,11 @@ public:
         return get<std::vector<DensityFieldPtr>>(key);
     }
     const HeightImage& image(const std::string& key) const;
+    /// A Points key's pairs.
+    const std::vector<glm::dvec2>& points(const std::string& key) const { return get<std::vector<glm::dvec2>>(key); }
+    /// Whether the user wrote `key` (rather than taking its default).
+    bool given(const std::string& key) const { return mGiven.count(key) > 0; }
+    void markGiven(const std::string& key) { mGiven.insert(key); }
 
     /// This node's noise seed: the scene seed combined with the `seed` key
     /// (deriveSeed), set by the reader.
@@ -114,6 +123,7 @@ private:
     std::string mNodeName;
     std::uint64_t mSeed;
     std::map<std::string, NodeValue> mValues;
+    std::set<std::string> mGiven;
 };
 
 /// A node type: its name, what it makes, its keys and how to build it.
@@ -160,6 +170,10 @@ NodeKey choiceKey(std::string name, std::string fallback, std::vector<std::strin
 NodeKey vec2Key(std::string name, glm::dvec2 fallback, double limit, std::string unit, std::string description);
 NodeKey vec3Key(std::string name, glm::dvec3 fallback, double limit, std::string unit, std::string description);
 NodeKey childKey(std::string name, std::string description);
+/// A child key that may be left out (the child then reads null).
+NodeKey optionalChildKey(std::string name, std::string description);
+NodeKey pointsKey(std::string name, std::vector<glm::dvec2> fallback, double limit, std::string unit,
+                  std::string description);
 NodeKey childrenKey(std::string name, std::string description);
 NodeKey imageKey(std::string name, std::string description);
 NodeKey seedKey();

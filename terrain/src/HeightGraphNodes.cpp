@@ -1,0 +1,201 @@
+// The height graph's node types (HeightGraph.h, ErodedHeightfield.h) as a
+// scene names them.
+
+#include <strata/terrain/ErodedHeightfield.h>
+#include <strata/terrain/HeightGraph.h>
+#include <strata/terrain/NodeRegistry.h>
+
+#include "NodeRegistrations.h"
+
+#include <strata/Format.h>
+
+namespace strata::terrain {
+
+HeightNodePtr heightChild(const NodeArgs& args, const std::string& key)
+{
+    const DensityFieldPtr child = args.child(key);
+    if (!child) return nullptr;
+    HeightNodePtr height = std::dynamic_pointer_cast<const HeightfieldBase>(child);
+    if (!height) {
+        args.fail(key, "must name a height node (heightfield, image_heightfield, erode, height_* or mask_*), "
+                       "not a 3D node");
+    }
+    return height;
+}
+
+namespace {
+
+std::vector<HeightNodePtr> heightChildren(const NodeArgs& args, const std::string& key)
+{
+    std::vector<HeightNodePtr> out;
+    for (const DensityFieldPtr& child : args.children(key)) {
+        HeightNodePtr height = std::dynamic_pointer_cast<const HeightfieldBase>(child);
+        if (!height) args.fail(key, "must name height nodes only (heightfield, erode, height_*, mask_*), not 3D nodes");
+        out.push_back(std::move(height));
+    }
+    return out;
+}
+
+void addCombine(NodeRegistry& registry, const char* name, HeightOp op, const char* description)
+{
+    NodeType t{name, description, {}, {}};
+    t.keys = {childrenKey("children", "the height nodes, folded left to right")};
+    t.build = [op](const NodeArgs& a) -> DensityFieldPtr {
+        return std::make_shared<HeightCombine>(op, heightChildren(a, "children"));
+    };
+    registry.add(std::move(t));
+}
+
+void addMask(NodeRegistry& registry, const char* name, MaskSource source, const char* description, const char* unit,
+             double min, double max, double softness)
+{
+    NodeType t{name, description, {}, {}};
+    t.keys = {childKey("child", "the height node measured"),
+              numberKey("min", min, -1e9, 1e9, unit, "lower end of the band where the mask is 1"),
+              numberKey("max", max, -1e9, 1e9, unit, "upper end of the band where the mask is 1"),
+              numberKey("softness", softness, 1e-9, 1e9, unit, "the mask falls to 0 over this much outside the band")};
+    if (source != MaskSource::Height) {
+        t.keys.push_back(numberKey("radius", 4.0, 1e-3, MAX_LENGTH, "m", "step of the finite differences (smooths)"));
+    }
+    t.build = [source](const NodeArgs& a) -> DensityFieldPtr {
+        MaskOptions o;
+        o.source = source;
+        o.min = a.number("min");
+        o.max = a.number("max");
+        if (o.max < o.min) a.fail("max", "must be >= min (" + formatNumber(o.min) + ")");
+        o.softness = a.number("softness");
+        if (source != MaskSource::Height) o.radius = a.number("radius");
+        return std::make_shared<HeightMask>(heightChild(a, "child"), o);
+    };
+    registry.add(std::move(t));
+}
+
+} // namespace
+
+void registerHeightGraphNodes(NodeRegistry& registry)
+{
+    NodeType constant{"height_constant", "h = value: a flat height", {}, {}};
+    constant.keys = {numberKey("value", 0.0, -HUGE_LENGTH, HUGE_LENGTH, "m", "the height")};
+    constant.build = [](const NodeArgs& a) -> DensityFieldPtr { return std::make_shared<ConstantHeight>(a.number("value")); };
+    registry.add(std::move(constant));
+
+    addCombine(registry, "height_add", HeightOp::Add, "h = a + b + ...: sums height nodes");
+    addCombine(registry, "height_subtract", HeightOp::Subtract, "h = a - b - ...: the first minus the rest");
+    addCombine(registry, "height_multiply", HeightOp::Multiply, "h = a * b * ...: e.g. a height times a mask");
+    addCombine(registry, "height_min", HeightOp::Min, "h = min(a, b, ...): the lowest");
+    addCombine(registry, "height_max", HeightOp::Max, "h = max(a, b, ...): the highest");
+
+    NodeType blend{"height_blend", "h = a + mask * (b - a): b where the mask is 1, a where it is 0", {}, {}};
+    blend.keys = {childKey("a", "height where the mask is 0"), childKey("b", "height where the mask is 1"),
+                  childKey("mask", "height node read as 0..1 (clamped), e.g. a mask_* node")};
+    blend.build = [](const NodeArgs& a) -> DensityFieldPtr {
+        return std::make_shared<HeightBlend>(heightChild(a, "a"), heightChild(a, "b"), heightChild(a, "mask"));
+    };
+    registry.add(std::move(blend));
+
+    NodeType curve{"height_curve", "h = curve(child): remaps heights through points (monotone cubic, no overshoot)",
+                   {}, {}};
+    curve.keys = {childKey("child", "the height node remapped"),
+                  pointsKey("points", {{0.0, 0.0}, {1.0, 1.0}}, HUGE_LENGTH, "m",
+                            "[input, output] pairs, inputs increasing; flat beyond the ends")};
+    curve.build = [](const NodeArgs& a) -> DensityFieldPtr {
+        return std::make_shared<HeightCurve>(heightChild(a, "child"), a.points("points"));
+    };
+    registry.add(std::move(curve));
+
+    NodeType scale{"height_scale", "h = child * scale + offset", {}, {}};
+    scale.keys = {childKey("child", "the height node scaled"),
+                  numberKey("scale", 1.0, -1e6, 1e6, "", "factor (negative flips)"),
+                  numberKey("offset", 0.0, -HUGE_LENGTH, HUGE_LENGTH, "m", "added after scaling")};
+    scale.build = [](const NodeArgs& a) -> DensityFieldPtr {
+        HeightAffineOptions o;
+        o.scale = a.number("scale");
+        o.offset = a.number("offset");
+        return std::make_shared<HeightAffine>(heightChild(a, "child"), o);
+    };
+    registry.add(std::move(scale));
+
+    NodeType clamp{"height_clamp", "h = clamp(child, min, max): plateaus and flat floors", {}, {}};
+    clamp.keys = {childKey("child", "the height node clamped"),
+                  numberKey("min", -HUGE_LENGTH, -HUGE_LENGTH, HUGE_LENGTH, "m", "lowest height"),
+                  numberKey("max", HUGE_LENGTH, -HUGE_LENGTH, HUGE_LENGTH, "m", "highest height")};
+    clamp.build = [](const NodeArgs& a) -> DensityFieldPtr {
+        HeightAffineOptions o;
+        o.min = a.number("min");
+        o.max = a.number("max");
+        if (o.max < o.min) a.fail("max", "must be >= min");
+        return std::make_shared<HeightAffine>(heightChild(a, "child"), o);
+    };
+    registry.add(std::move(clamp));
+
+    const HeightWarpOptions w;
+    NodeType warp{"height_warp", "h = child(p + amplitude * noise2(p / wavelength)): 2D domain warp", {}, {}};
+    warp.keys = {childKey("child", "the height node warped"),
+                 numberKey("amplitude", w.amplitude, 0.0, MAX_LENGTH, "m", "how far points move"),
+                 numberKey("wavelength", w.wavelength, 1e-3, MAX_LENGTH, "m", "size of the warp's features")};
+    addFractalKeys(warp.keys, w.noise);
+    warp.build = [](const NodeArgs& a) -> DensityFieldPtr {
+        HeightWarpOptions o;
+        o.amplitude = a.number("amplitude");
+        o.wavelength = a.number("wavelength");
+        o.noise = fractalOptions(a);
+        return std::make_shared<HeightWarp>(heightChild(a, "child"), a.seed(), o);
+    };
+    registry.add(std::move(warp));
+
+    NodeType terrace{"height_terrace", "heights cut into steps (the terrace profile on h)", {}, {}};
+    terrace.keys = {childKey("child", "the height node terraced"),
+                    numberKey("step", 10.0, 1e-6, MAX_LENGTH, "m", "height of one step"),
+                    numberKey("sharpness", 4.0, 1.0, 64.0, "", "1 = no terraces, larger = flatter treads")};
+    terrace.build = [](const NodeArgs& a) -> DensityFieldPtr {
+        return std::make_shared<HeightTerrace>(heightChild(a, "child"), a.number("step"), a.number("sharpness"));
+    };
+    registry.add(std::move(terrace));
+
+    addMask(registry, "mask_height", MaskSource::Height, "1 where the child's height is within [min, max], else 0",
+            "m", 0.0, 100.0, 10.0);
+    addMask(registry, "mask_slope", MaskSource::Slope, "1 where the child's slope (rise/run) is within [min, max]",
+            "", 0.0, 0.5, 0.1);
+    addMask(registry, "mask_curvature", MaskSource::Curvature,
+            "1 where the child's curvature -laplacian(h) is within [min, max] (> 0 ridges, < 0 valleys)", "1/m",
+            0.0, 1.0, 0.01);
+
+    const ErodeOptions e;
+    NodeType erode{"erode",
+                   "landscape evolution of a height node over a fixed domain: uplift, stream-power rivers with lakes, "
+                   "hillslope creep; leaves flow, wear, deposition and water masks",
+                   {}, {}};
+    erode.keys = {
+        childKey("height", "the height node eroded (the initial surface)"),
+        optionalChildKey("uplift_map", "height node scaling the uplift per place (e.g. 0..1); none: uniform"),
+        vec2Key("min", e.min, HUGE_LENGTH, "m", "world (x, z) of the domain's first corner"),
+        vec2Key("max", e.max, HUGE_LENGTH, "m", "world (x, z) of the domain's far corner"),
+        numberKey("cell_size", e.evolution.cellSize, 1e-3, 1e6, "m", "grid spacing of the evolution"),
+        numberKey("years", e.evolution.years, 0.0, 1e10, "yr", "time simulated"),
+        numberKey("time_step", e.evolution.timeStep, 1e-3, 1e10, "yr", "years per implicit step"),
+        numberKey("uplift", e.evolution.uplift, -1.0, 1.0, "m/yr", "rock uplift rate U"),
+        numberKey("erodibility", e.evolution.erodibility, 0.0, 1.0, "m^(1-2m)/yr", "stream-power constant K"),
+        numberKey("m", e.evolution.areaExponent, 0.0, 2.0, "", "drainage-area exponent"),
+        numberKey("n", e.evolution.slopeExponent, 0.01, 4.0, "", "slope exponent"),
+        numberKey("diffusivity", e.evolution.diffusivity, 0.0, 1e4, "m^2/yr", "hillslope creep D"),
+        numberKey("river_area", e.riverArea, 1e-6, 1e15, "m^2", "drainage area where the water mask starts"),
+    };
+    erode.build = [](const NodeArgs& a) -> DensityFieldPtr {
+        ErodeOptions o;
+        o.min = a.vec2("min");
+        o.max = a.vec2("max");
+        o.evolution.cellSize = a.number("cell_size");
+        o.evolution.years = a.number("years");
+        o.evolution.timeStep = a.number("time_step");
+        o.evolution.uplift = a.number("uplift");
+        o.evolution.erodibility = a.number("erodibility");
+        o.evolution.areaExponent = a.number("m");
+        o.evolution.slopeExponent = a.number("n");
+        o.evolution.diffusivity = a.number("diffusivity");
+        o.riverArea = a.number("river_area");
+        return std::make_shared<ErodedHeightfield>(heightChild(a, "height"), heightChild(a, "uplift_map"), o);
+    };
+    registry.add(std::move(erode));
+}
+
+} // namespace strata::terrain
