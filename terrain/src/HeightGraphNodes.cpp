@@ -193,6 +193,20 @@ void registerHeightGraphNodes(NodeRegistry& registry)
         o.evolution.slopeExponent = a.number("n");
         o.evolution.diffusivity = a.number("diffusivity");
         o.riverArea = a.number("river_area");
+        // Refused before any work when the pass would not fit the budget.
+        const std::uint64_t budget = a.context().maxMemoryBytes;
+        const std::size_t cells = ErodedHeightfield::cellCount(o);
+        if (cells > ErodedHeightfield::MAX_CELLS) {
+            a.fail("cell_size", "= " + formatNumber(o.evolution.cellSize) + " makes " + std::to_string(cells) +
+                                    " cells over the domain, more than the 8193 x 8193 an erode node may have");
+        }
+        if (budget > 0 && ErodedHeightfield::peakBytes(o) > budget) {
+            a.fail("cell_size", "= " + formatNumber(o.evolution.cellSize) + ": the erosion pass over " +
+                                    std::to_string(cells) + " cells needs about " +
+                                    std::to_string(ErodedHeightfield::peakBytes(o) >> 20) +
+                                    " MiB, over the memory budget of " + std::to_string(budget >> 20) +
+                                    " MiB (--max-memory): use a larger cell_size or a smaller domain");
+        }
         return std::make_shared<ErodedHeightfield>(heightChild(a, "height"), heightChild(a, "uplift_map"), o);
     };
     registry.add(std::move(erode));

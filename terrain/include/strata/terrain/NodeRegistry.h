@@ -77,6 +77,13 @@ struct NodeKey
     std::string rangeText() const;
 };
 
+/// What a whole scene's build shares with each node: limits the caller
+/// set (the CLI's --max-memory) for nodes that do heavy work when built.
+struct NodeBuildContext
+{
+    std::uint64_t maxMemoryBytes = 0; ///< 0: no budget
+};
+
 /// The checked values of one node's keys, given or defaulted. A reader
 /// fills it (set()), a NodeType::build reads it.
 class NodeArgs
@@ -104,6 +111,8 @@ public:
     /// Whether the user wrote `key` (rather than taking its default).
     bool given(const std::string& key) const { return mGiven.count(key) > 0; }
     void markGiven(const std::string& key) { mGiven.insert(key); }
+    const NodeBuildContext& context() const { return mContext; }
+    void setContext(const NodeBuildContext& context) { mContext = context; }
 
     /// This node's noise seed: the scene seed combined with the `seed` key
     /// (deriveSeed), set by the reader.
@@ -124,6 +133,7 @@ private:
     std::uint64_t mSeed;
     std::map<std::string, NodeValue> mValues;
     std::set<std::string> mGiven;
+    NodeBuildContext mContext;
 };
 
 /// A node type: its name, what it makes, its keys and how to build it.
