@@ -1,6 +1,7 @@
 // The height graph's node types (HeightGraph.h, ErodedHeightfield.h) as a
 // scene names them.
 
+#include <strata/terrain/DetailErodedHeightfield.h>
 #include <strata/terrain/ErodedHeightfield.h>
 #include <strata/terrain/HeightGraph.h>
 #include <strata/terrain/NodeRegistry.h>
@@ -210,6 +211,49 @@ void registerHeightGraphNodes(NodeRegistry& registry)
         return std::make_shared<ErodedHeightfield>(heightChild(a, "height"), heightChild(a, "uplift_map"), o);
     };
     registry.add(std::move(erode));
+
+    const DetailErodeOptions d;
+    const DetailErosionOptions& de = d.erosion;
+    NodeType detail{"erode_detail",
+                    "voxel-scale erosion over a height node: water droplets carve rills and drop sediment, steep "
+                    "slopes slide to the talus angle; computed in fixed world blocks, the same for any tiling",
+                    {}, {}};
+    detail.keys = {
+        childKey("height", "the height node detailed"),
+        numberKey("cell_size", de.cellSize, 1e-3, 1e4, "m", "spacing of the droplet grid (the voxel size suits)"),
+        numberKey("droplets_per_cell", de.dropletsPerCell, 0.0, 8.0, "", "droplets started per cell"),
+        integerKey("droplet_steps", de.dropletSteps, 1, 256, "cells", "how far a droplet may run"),
+        numberKey("inertia", de.inertia, 0.0, 1.0, "", "how much a droplet keeps its direction"),
+        numberKey("capacity", de.capacity, 0.0, 1e3, "", "sediment carried per unit of drop, speed and water"),
+        numberKey("erosion", de.erosion, 0.0, 1.0, "", "fraction of spare capacity picked up per step"),
+        numberKey("deposition", de.deposition, 0.0, 1.0, "", "fraction of excess sediment dropped per step"),
+        numberKey("evaporation", de.evaporation, 0.0, 1.0, "", "fraction of water lost per step"),
+        numberKey("talus_angle", de.talusAngle, 1.0, 89.0, "deg", "slopes steeper than this slide (thermal erosion)"),
+        integerKey("talus_sweeps", de.talusSweeps, 0, 256, "", "relaxation sweeps of the talus slide"),
+        numberKey("max_depth", de.maxDepth, 1e-3, 1e3, "m", "largest change, up or down"),
+        integerKey("block", d.blockCells, 8, 1024, "cells", "side of the fixed world blocks"),
+        integerKey("halo", 0, 0, 512, "cells", "reach beyond a block (0: droplet_steps, at most block / 2)"),
+        seedKey(),
+    };
+    detail.build = [](const NodeArgs& a) -> DensityFieldPtr {
+        DetailErodeOptions o;
+        DetailErosionOptions& e = o.erosion;
+        e.cellSize = a.number("cell_size");
+        e.dropletsPerCell = a.number("droplets_per_cell");
+        e.dropletSteps = int(a.integer("droplet_steps"));
+        e.inertia = a.number("inertia");
+        e.capacity = a.number("capacity");
+        e.erosion = a.number("erosion");
+        e.deposition = a.number("deposition");
+        e.evaporation = a.number("evaporation");
+        e.talusAngle = a.number("talus_angle");
+        e.talusSweeps = int(a.integer("talus_sweeps"));
+        e.maxDepth = a.number("max_depth");
+        o.blockCells = int(a.integer("block"));
+        o.halo = int(a.integer("halo"));
+        return std::make_shared<DetailErodedHeightfield>(heightChild(a, "height"), a.seed(), o);
+    };
+    registry.add(std::move(detail));
 }
 
 } // namespace strata::terrain

@@ -1,0 +1,195 @@
+#include <strata/terrain/DetailErodedHeightfield.h>
+
+#include "ShowValue.h"
+
+#include <strata/Error.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <deque>
+#include <map>
+#include <mutex>
+
+namespace strata::terrain {
+
+using detail::show;
+
+/// One block's displacement over its patch: (block + 2·halo + 1)² corners,
+/// the first at world cell (bx·block − halo, bz·block − halo).
+struct DetailErodedHeightfield::Block
+{
+    std::int64_t originX = 0, originZ = 0; ///< world cell of corner (0, 0)
+    int size = 0;                          ///< corners per side
+    std::vector<float> change;             ///< metres
+};
+
+/// The blocks computed so far, by index; the oldest are dropped past a
+/// bound (a dropped block computed again gives the same bits).
+class DetailErodedHeightfield::Cache
+{
+public:
+    std::shared_ptr<const Block> find(std::int64_t bx, std::int64_t bz)
+    {
+        std::lock_guard<std::mutex> lock(mMutex);
+        const auto found = mBlocks.find({bx, bz});
+        return found == mBlocks.end() ? nullptr : found->second;
+    }
+    void add(std::int64_t bx, std::int64_t bz, std::shared_ptr<const Block> block)
+    {
+        std::lock_guard<std::mutex> lock(mMutex);
+        if (!mBlocks.emplace(std::make_pair(bx, bz), std::move(block)).second) return;
+        mOrder.emplace_back(bx, bz);
+        ++mComputed;
+        if (mOrder.size() > CAPACITY) {
+            mBlocks.erase(mOrder.front());
+            mOrder.pop_front();
+        }
+    }
+    std::size_t computed() const { return mComputed.load(); }
+
+private:
+    static constexpr std::size_t CAPACITY = 1024; // about 40 MiB at 64-cell blocks
+    std::mutex mMutex;
+    std::map<std::pair<std::int64_t, std::int64_t>, std::shared_ptr<const Block>> mBlocks;
+    std::deque<std::pair<std::int64_t, std::int64_t>> mOrder;
+    std::atomic<std::size_t> mComputed{0};
+};
+
+namespace {
+
+double smoothstep01(double t)
+{
+    t = std::clamp(t, 0.0, 1.0);
+    return t * t * (3.0 - 2.0 * t);
+}
+
+std::int64_t floorDiv(std::int64_t a, std::int64_t b) { return a >= 0 ? a / b : -((-a + b - 1) / b); }
+
+} // namespace
+
+DetailErodedHeightfield::DetailErodedHeightfield(HeightNodePtr child, std::uint64_t seed,
+                                                 const DetailErodeOptions& options)
+    : mChild(std::move(child)), mSeed(seed), mOptions(options), mCache(std::make_unique<Cache>())
+{
+    checkDetailErosionOptions(options.erosion);
+    if (options.blockCells < 8 || options.blockCells > 1024) {
+        throw Error(ErrorKind::BadInput, "block = " + std::to_string(options.blockCells) + " is out of range [8, 1024]",
+                    {"", 0, "block", ""});
+    }
+    if (mOptions.halo == 0) mOptions.halo = std::min(options.erosion.dropletSteps, options.blockCells / 2);
+    if (mOptions.halo < 1 || mOptions.halo > options.blockCells / 2) {
+        throw Error(ErrorKind::BadInput,
+                    "halo = " + std::to_string(mOptions.halo) + " is out of range [1, block / 2 = " +
+                        std::to_string(options.blockCells / 2) + "]",
+                    {"", 0, "halo", ""});
+    }
+    // |∇h| <= |∇child| + |∇(Σ w·d / Σ w)|: each block's bilinear d moves at
+    // most 2·maxDepth per cell along an axis; the weights (a product of two
+    // smoothsteps over half the halo, at most 4 of them non-zero, Σ w >= 1)
+    // each add |∇w|·2·maxDepth.
+    const double cell = options.erosion.cellSize, depth = options.erosion.maxDepth;
+    const double ownSlope = std::sqrt(2.0) * 2.0 * depth / cell;
+    const double weightSlope = std::sqrt(2.0) * 1.5 / (0.5 * mOptions.halo * cell);
+    setSlopeBound(mChild->slopeBound() + ownSlope + 4.0 * weightSlope * 2.0 * depth);
+}
+
+DetailErodedHeightfield::~DetailErodedHeightfield() = default;
+
+std::size_t DetailErodedHeightfield::blocksComputed() const { return mCache->computed(); }
+
+std::shared_ptr<const DetailErodedHeightfield::Block> DetailErodedHeightfield::block(std::int64_t bx,
+                                                                                   std::int64_t bz) const
+{
+    if (auto found = mCache->find(bx, bz)) return found;
+    const int b = mOptions.blockCells, halo = mOptions.halo;
+    auto out = std::make_shared<Block>();
+    out->originX = bx * b - halo;
+    out->originZ = bz * b - halo;
+    out->size = b + 2 * halo + 1;
+    const std::size_t n = std::size_t(out->size);
+    const double cell = mOptions.erosion.cellSize;
+    std::vector<double> x(n * n), z(n * n), h(n * n);
+    for (std::size_t j = 0; j < n; ++j) {
+        for (std::size_t i = 0; i < n; ++i) {
+            x[j * n + i] = double(out->originX + std::int64_t(i)) * cell;
+            z[j * n + i] = double(out->originZ + std::int64_t(j)) * cell;
+        }
+    }
+    mChild->heights(x.data(), z.data(), n * n, h.data());
+    std::vector<double> eroded = h;
+    erodeDetail(eroded, out->size, out->size, out->originX, out->originZ, mSeed, mOptions.erosion);
+    out->change.resize(n * n);
+    for (std::size_t c = 0; c < n * n; ++c) out->change[c] = float(eroded[c] - h[c]);
+    mCache->add(bx, bz, out);
+    return out;
+}
+
+double DetailErodedHeightfield::displacement(const Block& b, double u, double v) const
+{
+    // Bilinear in the block's corners; (u, v) in world cells.
+    const double lu = std::clamp(u - double(b.originX), 0.0, double(b.size - 1));
+    const double lv = std::clamp(v - double(b.originZ), 0.0, double(b.size - 1));
+    const int i = std::min(int(lu), b.size - 2), j = std::min(int(lv), b.size - 2);
+    const double fx = lu - i, fz = lv - j;
+    const std::size_t n = std::size_t(b.size), c = std::size_t(j) * n + std::size_t(i);
+    return (b.change[c] * (1 - fx) + b.change[c + 1] * fx) * (1 - fz) +
+           (b.change[c + n] * (1 - fx) + b.change[c + n + 1] * fx) * fz;
+}
+
+double DetailErodedHeightfield::height(double x, double z) const
+{
+    double out;
+    heights(&x, &z, 1, &out);
+    return out;
+}
+
+void DetailErodedHeightfield::heights(const double* x, const double* z, std::size_t n, double* out) const
+{
+    mChild->heights(x, z, n, out);
+    const double cell = mOptions.erosion.cellSize;
+    const std::int64_t size = mOptions.blockCells;
+    const double halo = mOptions.halo;
+    // The weight of a block at distance e (cells) inside its patch's outer
+    // edge: 0 over the outer quarter of the halo, 1 from three quarters on.
+    auto ramp = [&](double e) { return smoothstep01((e - 0.25 * halo) / (0.5 * halo)); };
+    std::shared_ptr<const Block> recent[4];
+    for (std::size_t k = 0; k < n; ++k) {
+        const double u = x[k] / cell, v = z[k] / cell;
+        const std::int64_t bx0 = floorDiv(std::int64_t(std::floor(u - halo)), size);
+        const std::int64_t bx1 = floorDiv(std::int64_t(std::floor(u + halo)), size);
+        const std::int64_t bz0 = floorDiv(std::int64_t(std::floor(v - halo)), size);
+        const std::int64_t bz1 = floorDiv(std::int64_t(std::floor(v + halo)), size);
+        double sum = 0.0, weights = 0.0;
+        for (std::int64_t bz = bz0; bz <= bz1; ++bz) {
+            for (std::int64_t bx = bx0; bx <= bx1; ++bx) {
+                const double lo = double(bx * size) - halo, hi = double((bx + 1) * size) + halo;
+                const double loZ = double(bz * size) - halo, hiZ = double((bz + 1) * size) + halo;
+                const double w = ramp(std::min(u - lo, hi - u)) * ramp(std::min(v - loZ, hiZ - v));
+                if (w <= 0.0) continue;
+                // Neighbouring columns mostly share blocks: reuse the last ones.
+                std::shared_ptr<const Block> b;
+                for (const auto& r : recent) {
+                    if (r && r->originX == bx * size - mOptions.halo && r->originZ == bz * size - mOptions.halo) b = r;
+                }
+                if (!b) {
+                    b = block(bx, bz);
+                    std::rotate(recent, recent + 3, recent + 4);
+                    recent[0] = b;
+                }
+                sum += w * displacement(*b, u, v);
+                weights += w;
+            }
+        }
+        if (weights > 0.0) out[k] += sum / weights;
+    }
+}
+
+Interval DetailErodedHeightfield::heightBounds(const glm::dvec2& min, const glm::dvec2& max) const
+{
+    const Interval c = mChild->heightBounds(min, max);
+    const double d = mOptions.erosion.maxDepth;
+    return {c.lo - d, c.hi + d};
+}
+
+} // namespace strata::terrain
