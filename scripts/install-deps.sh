@@ -13,8 +13,11 @@ PACKAGES=(
   libgtest-dev libbenchmark-dev libssl-dev
   clang libclang-rt-dev llvm
   slurm-wlm munge python3 python3-yaml
+  python-matplotlib-data
   xvfb xauth
 )
+# python-matplotlib-data ships a real DEM (sample_data/jacksboro_fault_dem.npz)
+# that tests/apps/BenchLandformsCommandTest.cpp measures (docs/landform-statistics.md).
 # clang with its sanitizer and libFuzzer runtimes (libclang-rt-dev) and
 # llvm-symbolizer (llvm) build and run scripts/sanitizers.sh, which CI runs.
 # Node.js and npm run the Khronos glTF validator test (npm installs

@@ -241,10 +241,14 @@ TEST(BlockEvaluation, EveryNodeTypeGivesTheScalarBits)
     int built = 0;
     for (const NodeType* type : NodeRegistry::builtin().types()) {
         NodeArgs args(type->name, 1234);
+        // Height-graph nodes take height nodes only: hills, not the ball.
+        const bool heightGraph = type->name.rfind("height_", 0) == 0 || type->name.rfind("mask_", 0) == 0 ||
+                                 type->name.rfind("erode", 0) == 0;
+        const DensityFieldPtr second = heightGraph ? hills : ball;
         for (const NodeKey& key : type->keys) {
             switch (key.type) {
             case NodeKeyType::Child: args.set(key.name, hills); break;
-            case NodeKeyType::Children: args.set(key.name, std::vector<DensityFieldPtr>{hills, ball, hills}); break;
+            case NodeKeyType::Children: args.set(key.name, std::vector<DensityFieldPtr>{hills, second, hills}); break;
             case NodeKeyType::Image: args.set(key.name, std::shared_ptr<const HeightImage>(image)); break;
             case NodeKeyType::Seed: break;
             default:
