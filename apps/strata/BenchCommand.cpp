@@ -2,7 +2,8 @@
 // default scene and the analytic shapes under each quality preset and with
 // each knob swept on its own from `balanced`; writes DIR/report.md,
 // DIR/report.csv and DIR/pareto.png (each atomically). `strata bench mesh`
-// (BenchMeshCommand.cpp) is registered under it.
+// (BenchMeshCommand.cpp), `strata bench noise` (BenchNoiseCommand.cpp) and
+// `strata bench landforms` (BenchLandformsCommand.cpp) are registered under it.
 
 #include "Commands.h"
 #include <strata/scene/Pipeline.h>
@@ -459,16 +460,18 @@ Command registerBenchCommand(CLI::App& app)
     auto args = std::make_shared<BenchArguments>();
     CLI::App* bench = app.add_subcommand(
         "bench", "Speed against accuracy: the default scene and analytic shapes under each quality preset and each "
-                 "knob on its own; writes DIR/report.md, DIR/report.csv, DIR/pareto.png. `bench mesh`: the meshers; `bench noise`: the noise bases");
+                 "knob on its own; writes DIR/report.md, DIR/report.csv, DIR/pareto.png. `bench mesh`: the meshers; `bench noise`: the noise bases; `bench landforms`: the top surface against real land");
     bench->add_option("-o,--output", args->outputDir, "Output directory (created if missing)");
     bench->add_flag("--quick", args->quick, "A smaller scene region, images and fewer shapes (under a minute on 2 cores)");
     bench->add_flag("--tiny", args->tiny, "The test setting (seconds)")->group("");
     bench->add_option("--threads", args->threads, "Worker threads (0 = all cores)")->check(CLI::Range(0, 1024));
     const Command mesh = registerBenchMeshCommand(*bench);
     const Command noise = registerBenchNoiseCommand(*bench);
-    return {bench, [args, mesh, noise]() {
+    const Command landforms = registerBenchLandformsCommand(*bench);
+    return {bench, [args, mesh, noise, landforms]() {
                 if (mesh.subcommand->parsed()) return mesh.run();
                 if (noise.subcommand->parsed()) return noise.run();
+                if (landforms.subcommand->parsed()) return landforms.run();
                 if (args->outputDir.empty()) throw Error("bench: -o DIR is required");
                 return runBench(*args);
             }};

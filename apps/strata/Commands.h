@@ -76,5 +76,6 @@ Command registerBakeCommand(CLI::App& app);      // BakeCommand.cpp
 Command registerBenchCommand(CLI::App& app);      // BenchCommand.cpp: `bench`, with `bench mesh` under it
 Command registerBenchMeshCommand(CLI::App& bench); // BenchMeshCommand.cpp: `bench mesh`, added to `bench`
 Command registerBenchNoiseCommand(CLI::App& bench); // BenchNoiseCommand.cpp: `bench noise`, added to `bench`
+Command registerBenchLandformsCommand(CLI::App& bench); // BenchLandformsCommand.cpp: `bench landforms`, added to `bench`
 
 } // namespace strata::app

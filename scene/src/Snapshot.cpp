@@ -51,18 +51,25 @@ void checkSnapshotRequest(const SnapshotRequest& r)
     }
 }
 
-glm::dvec3 parseVec3Flag(const std::string& flag, const std::string& text)
+namespace {
+
+/// N comma-separated finite numbers, |value| <= 1e9, for a flag whose
+/// values look like `shape` ("X,Y,Z"), e.g. `example`.
+template <int N>
+glm::vec<N, double> parseNumbersFlag(const std::string& flag, const std::string& text, const char* shape,
+                                     const char* count, const char* example)
 {
     static const std::regex number(R"(\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*)");
-    glm::dvec3 v(0.0);
+    glm::vec<N, double> v(0.0);
     std::size_t start = 0;
-    for (int i = 0; i < 3; ++i) {
-        const std::size_t comma = i < 2 ? text.find(',', start) : text.size();
+    for (int i = 0; i < N; ++i) {
+        const std::size_t comma = i < N - 1 ? text.find(',', start) : text.size();
         std::smatch match;
         const std::string part = comma == std::string::npos ? std::string() : text.substr(start, comma - start);
         if (comma == std::string::npos || !std::regex_match(part, match, number) ||
-            (i == 2 && text.find(',', start) != std::string::npos)) {
-            throw Error(flag + " '" + text + "' must look like X,Y,Z (three numbers in metres, e.g. 10,40,-25)");
+            (i == N - 1 && text.find(',', start) != std::string::npos)) {
+            throw Error(flag + " '" + text + "' must look like " + shape + " (" + count + " numbers in metres, e.g. " +
+                        example + ")");
         }
         v[i] = std::strtod(match[1].str().c_str(), nullptr); // ±HUGE_VAL on overflow, caught below
         if (!std::isfinite(v[i]) || std::abs(v[i]) > 1e9) {
@@ -71,6 +78,18 @@ glm::dvec3 parseVec3Flag(const std::string& flag, const std::string& text)
         start = comma + 1;
     }
     return v;
+}
+
+} // namespace
+
+glm::dvec3 parseVec3Flag(const std::string& flag, const std::string& text)
+{
+    return parseNumbersFlag<3>(flag, text, "X,Y,Z", "three", "10,40,-25");
+}
+
+glm::dvec2 parseVec2Flag(const std::string& flag, const std::string& text)
+{
+    return parseNumbersFlag<2>(flag, text, "X,Z", "two", "10,-25");
 }
 
 std::unique_ptr<render::EglContext> openBackend(const SnapshotRequest& request, std::ostream& notices,

@@ -10,6 +10,7 @@
 #include <strata/render/EglContext.h>
 #include <strata/render/SnapshotOptions.h>
 
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 #include <filesystem>
@@ -54,6 +55,9 @@ std::optional<render::DebugView> debugViewFromName(const std::string& name);
 /// "X,Y,Z" (three finite numbers) → vector; throws strata::Error
 /// "FLAG 'TEXT' must look like X,Y,Z ..." otherwise.
 glm::dvec3 parseVec3Flag(const std::string& flag, const std::string& text);
+/// "X,Z" (two finite numbers, e.g. a horizontal position) → vector; throws
+/// strata::Error "FLAG 'TEXT' must look like X,Z ..." otherwise.
+glm::dvec2 parseVec2Flag(const std::string& flag, const std::string& text);
 
 /// The GL context for request.backend: "cpu" → null; "gl" → a context or
 /// strata::Error "--backend gl: no OpenGL context: REASON"; "auto" → a
