@@ -22,6 +22,8 @@ set(BUILD_SHARED_LIBS "${_strata_saved_shared}")
 find_package(glm CONFIG REQUIRED)
 # Google Highway: the noise kernels' SIMD, dispatched at run time (terrain).
 find_package(hwy CONFIG REQUIRED)
+# zlib: deflated members of NumPy .npz elevation files (terrain's ElevationFile).
+find_package(ZLIB REQUIRED)
 # libcrypto: SHA-256 for the bake manifest (strata::common).
 find_package(OpenSSL REQUIRED COMPONENTS Crypto)
 find_package(OpenMesh CONFIG REQUIRED)

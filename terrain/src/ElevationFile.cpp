@@ -1,7 +1,8 @@
 #include <strata/terrain/ElevationFile.h>
 
-#include <strata/Crc32.h>
 #include <strata/Error.h>
+
+#include <zlib.h>
 #include <strata/Format.h>
 
 #include <algorithm>
@@ -361,31 +362,50 @@ std::vector<ZipEntry> zipDirectory(std::string_view bytes, const std::string& na
     return entries;
 }
 
-/// The bytes of a stored (uncompressed) member; errors for anything else.
-std::string_view zipMember(std::string_view bytes, const ZipEntry& e, const std::string& name)
+/// The bytes of a member, stored (method 0) or deflated (method 8, as
+/// np.savez_compressed and some packagers write: inflated with zlib); errors
+/// for anything else, a size over 4 GiB or more than 1032 times its packed
+/// size (deflate's limit), and a failed CRC.
+std::string zipMember(std::string_view bytes, const ZipEntry& e, const std::string& name)
 {
     if (e.flags & 1) fail(name, "member '" + e.name + "' is encrypted, which is not supported");
-    if (e.method == 8) {
-        fail(name, "member '" + e.name +
-                       "' is deflate-compressed (zip method 8, as np.savez_compressed writes), which Strata does not "
-                       "read: extract it first (unzip " +
-                       name + " " + e.name + ", or python3 -m zipfile -e " + name + " DIR) and give the .npy file");
-    }
-    if (e.method != 0) {
+    if (e.method != 0 && e.method != 8) {
         fail(name, "member '" + e.name + "' uses zip compression method " + std::to_string(e.method) +
-                       ", which is not supported (only stored members, method 0)");
+                       ", which is not supported (only stored and deflated members)");
     }
-    if (e.compressedSize != e.size)
+    if (e.method == 0 && e.compressedSize != e.size)
         fail(name, "stored member '" + e.name + "' has different packed and unpacked sizes");
+    if (e.size > (std::uint64_t(1) << 32) || (e.method == 8 && e.size > 1032 * e.compressedSize + 1024))
+        fail(name, "member '" + e.name + "' claims " + std::to_string(e.size) + " bytes, more than it can hold");
     if (!fits(bytes, e.localOffset, 30) ||
         bytes.substr(std::size_t(e.localOffset), 4) != std::string_view("PK\x03\x04", 4)) {
         fail(name, "member '" + e.name + "': its local header is missing or lies outside the file");
     }
     const std::uint64_t data = e.localOffset + 30 + readLittle(bytes, std::size_t(e.localOffset) + 26, 2) +
                                readLittle(bytes, std::size_t(e.localOffset) + 28, 2);
-    if (!fits(bytes, data, e.size)) fail(name, "member '" + e.name + "' runs past the end of the file (truncated?)");
-    const std::string_view content = bytes.substr(std::size_t(data), std::size_t(e.size));
-    if (crc32(content) != e.crc) fail(name, "member '" + e.name + "' fails its CRC-32 check (corrupt file)");
+    if (!fits(bytes, data, e.compressedSize))
+        fail(name, "member '" + e.name + "' runs past the end of the file (truncated?)");
+    const std::string_view packed = bytes.substr(std::size_t(data), std::size_t(e.compressedSize));
+    std::string content;
+    if (e.method == 0) {
+        content = std::string(packed);
+    } else {
+        content.assign(std::size_t(e.size), '\0');
+        z_stream stream{};
+        if (inflateInit2(&stream, -MAX_WBITS) != Z_OK) fail(name, "zlib could not start inflating");
+        stream.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(packed.data()));
+        stream.avail_in = uInt(packed.size());
+        stream.next_out = reinterpret_cast<Bytef*>(content.data());
+        stream.avail_out = uInt(content.size());
+        const int status = inflate(&stream, Z_FINISH);
+        const std::uint64_t produced = stream.total_out;
+        inflateEnd(&stream);
+        if (status != Z_STREAM_END || produced != e.size) {
+            fail(name, "member '" + e.name + "' is not valid deflate data of " + std::to_string(e.size) +
+                           " bytes (corrupt file)");
+        }
+    }
+    if (::crc32(0L, reinterpret_cast<const Bytef*>(content.data()), uInt(content.size())) != e.crc) fail(name, "member '" + e.name + "' fails its CRC-32 check (corrupt file)");
     return content;
 }
 
@@ -400,14 +420,10 @@ ElevationGrid parseNpz(std::string_view bytes, const std::string& name)
     if (!chosen) {
         // The only 2D array; deflated members cannot be looked into.
         std::vector<const ZipEntry*> planes;
-        std::string packed, names;
+        std::string names;
         for (const ZipEntry& e : entries) {
             if (!isArray(e)) continue;
             names += (names.empty() ? "" : ", ") + e.name;
-            if (e.method != 0) {
-                packed += (packed.empty() ? "" : ", ") + e.name;
-                continue;
-            }
             const NpyHeader header = parseNpyHeader(zipMember(bytes, e, name), name + " member '" + e.name + "'");
             if (header.shape.size() == 2) planes.push_back(&e);
         }
@@ -418,11 +434,6 @@ ElevationGrid parseNpz(std::string_view bytes, const std::string& name)
                  "holds several 2D arrays (" + list + ") and none named 'elevation': save the DEM as 'elevation'");
         }
         if (planes.empty()) {
-            if (!packed.empty()) {
-                fail(name, "holds no uncompressed 2D array; the deflate-compressed members (" + packed +
-                               ") are not supported: extract them first (unzip, or python3 -m zipfile -e " + name +
-                               " DIR) and give the .npy file");
-            }
             fail(name, "holds no 2D array" +
                            (names.empty() ? std::string(" (no .npy member at all)") : " (arrays: " + names + ")"));
         }
