@@ -72,6 +72,8 @@ DetailErodedHeightfield::DetailErodedHeightfield(HeightNodePtr child, std::uint6
                                                  const DetailErodeOptions& options)
     : mChild(std::move(child)), mSeed(seed), mOptions(options), mCache(std::make_unique<Cache>())
 {
+    static std::atomic<std::uint64_t> instances{0};
+    mId = ++instances; // never reused, unlike an address
     checkDetailErosionOptions(options.erosion);
     if (options.blockCells < 8 || options.blockCells > 1024) {
         throw Error(ErrorKind::BadInput, "block = " + std::to_string(options.blockCells) + " is out of range [8, 1024]",
@@ -153,7 +155,15 @@ void DetailErodedHeightfield::heights(const double* x, const double* z, std::siz
     // The weight of a block at distance e (cells) inside its patch's outer
     // edge: 0 over the outer quarter of the halo, 1 from three quarters on.
     auto ramp = [&](double e) { return smoothstep01((e - 0.25 * halo) / (0.5 * halo)); };
-    std::shared_ptr<const Block> recent[4];
+    // Neighbouring columns, and a thread's next calls, mostly read the same
+    // blocks: the last four this thread used for this node are kept.
+    struct Recent
+    {
+        std::uint64_t node = 0;
+        std::shared_ptr<const Block> blocks[4];
+    };
+    thread_local Recent recent;
+    if (recent.node != mId) recent = Recent{mId, {}};
     for (std::size_t k = 0; k < n; ++k) {
         const double u = x[k] / cell, v = z[k] / cell;
         const std::int64_t bx0 = floorDiv(std::int64_t(std::floor(u - halo)), size);
@@ -169,13 +179,13 @@ void DetailErodedHeightfield::heights(const double* x, const double* z, std::siz
                 if (w <= 0.0) continue;
                 // Neighbouring columns mostly share blocks: reuse the last ones.
                 std::shared_ptr<const Block> b;
-                for (const auto& r : recent) {
+                for (const auto& r : recent.blocks) {
                     if (r && r->originX == bx * size - mOptions.halo && r->originZ == bz * size - mOptions.halo) b = r;
                 }
                 if (!b) {
                     b = block(bx, bz);
-                    std::rotate(recent, recent + 3, recent + 4);
-                    recent[0] = b;
+                    std::rotate(recent.blocks, recent.blocks + 3, recent.blocks + 4);
+                    recent.blocks[0] = b;
                 }
                 sum += w * displacement(*b, u, v);
                 weights += w;

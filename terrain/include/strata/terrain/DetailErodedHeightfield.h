@@ -58,6 +58,7 @@ private:
     std::uint64_t mSeed;
     DetailErodeOptions mOptions;
     std::unique_ptr<Cache> mCache;
+    std::uint64_t mId = 0; ///< this node among all built in the process (threads' recent-block caches)
 };
 
 } // namespace strata::terrain
