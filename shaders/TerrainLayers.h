@@ -6,8 +6,9 @@
 ///
 /// Per fragment:
 ///  1. each layer's *coverage* c from its rule: soft bands on altitude,
-///     slope, the mesh's baked cavity and cover ("under rock"), and a noise
-///     mask, times its opacity (layer 0, the base, covers everything);
+///     slope, the mesh's baked cavity and cover ("under rock"), its
+///     landform masks from erosion (flow, wear, deposition, water), and a
+///     noise mask, times its opacity (layer 0, the base, covers everything);
 ///  2. painter's order: a layer hides what lies under it, so layer i keeps
 ///     a_i = c_i · Π_{j>i} (1 − c_j) (the a_i sum to 1);
 ///  3. every layer with a_i > 0 is evaluated (evaluateSurface(), its own
@@ -31,14 +32,18 @@
 /// One layer's placement rule and texture mapping. A band (vec4) is
 /// (min, max, softness, enabled): weight 1 inside [min, max], smooth ramps
 /// `softness` wide outside each bound, 0 beyond; enabled = 0 switches it
-/// off (weight 1). std140: 160 bytes (offsets checked in
-/// render/src/UniformBlocks.h).
+/// off (weight 1). std140: 224 bytes (offsets checked in
+/// render/src/LayerSetup.h).
 struct LayerParams
 {
     vec4 altitude;      ///< band on the height, metres relative to the mesh origin (the host subtracts it in double)
     vec4 slope;         ///< band on the slope in degrees: 0 flat ground, 90 a wall, 180 a ceiling
     vec4 cavity;        ///< band on the vertex cavity (0 open .. 1 a deep crevice)
     vec4 cover;         ///< band on the vertex cover (0 open sky .. 1 rock overhead)
+    vec4 flow;          ///< band on the vertex flow: log10 of the drainage area in m² (landform x)
+    vec4 wear;          ///< band on the vertex wear: metres eroded (landform y)
+    vec4 deposition;    ///< band on the vertex deposition: metres of sediment (landform z)
+    vec4 water;         ///< band on the vertex water: 0 dry .. 1 river or lake (landform w)
     vec4 noise;         ///< x: frequency (1/m), y: threshold 0..1, z: softness, w: enabled
     vec4 noiseOffset;   ///< xyz: origin · frequency modulo the noise period (in double on the host)
     vec4 textureOffset; ///< xyz: fract(origin · mapScale), as FrameBlock's
@@ -122,14 +127,18 @@ STRATA_INLINE float layerNoise(vec3 p, uint seed)
 /// A layer's coverage at a fragment: opacity × every enabled band.
 /// `n` is the unit interpolated (not normal-mapped) normal, `position`
 /// metres relative to the mesh origin, `surface` the interpolated cavity
-/// and cover.
-STRATA_INLINE float layerCoverage(LayerParams l, vec3 n, vec3 position, vec2 surface)
+/// and cover, `landform` the interpolated flow, wear, deposition and water.
+STRATA_INLINE float layerCoverage(LayerParams l, vec3 n, vec3 position, vec2 surface, vec4 landform)
 {
     float c = l.opacity;
     c *= bandWeight(position.y, l.altitude);
     c *= bandWeight(degrees(acos(clamp(n.y, -1.0f, 1.0f))), l.slope);
     c *= bandWeight(surface.x, l.cavity);
     c *= bandWeight(surface.y, l.cover);
+    c *= bandWeight(landform.x, l.flow);
+    c *= bandWeight(landform.y, l.wear);
+    c *= bandWeight(landform.z, l.deposition);
+    c *= bandWeight(landform.w, l.water);
     if (l.noise.w > 0.5f && c > 0.0f) {
         vec3 q = position * l.noise.x + vec3(l.noiseOffset.x, l.noiseOffset.y, l.noiseOffset.z);
         c *= bandWeight(layerNoise(q, l.seed), vec4(l.noise.y, 1e30f, l.noise.z, 1.0f));
@@ -164,17 +173,67 @@ STRATA_INLINE SurfaceOutput accumulateSurface(SurfaceOutput sum, SurfaceOutput o
     return sum;
 }
 
+// ---------------------------------------------------------------------------
+// Landform debug views: the mesh's landform masks as colour ramps, on any
+// program (layered or not).
+
+/// A three-stop ramp at t in [0, 1] (clamped) through `a`, `b` and `c`,
+/// given as display (sRGB-encoded) values and returned linear, like
+/// debugViewColor()'s data views.
+STRATA_INLINE vec3 rampColor(float t, vec3 a, vec3 b, vec3 c)
+{
+    float u = saturate(t) * 2.0f;
+    vec3 v = u < 1.0f ? mix(a, b, u) : mix(b, c, u - 1.0f);
+    return vec3(srgbToLinear(v.x), srgbToLinear(v.y), srgbToLinear(v.z));
+}
+
+/// The colour of a landform debug view (DEBUG_VIEW_FLOW .. WATER) for the
+/// interpolated landform masks (flow, wear, deposition, water): flow 0..7
+/// (log10 m²), wear and deposition 0..20 m, water 0..1, each on its own
+/// ramp, so every view differs even where the masks are 0. Other views
+/// give black.
+STRATA_INLINE vec3 landformDebugColor(vec4 landform, int view)
+{
+    if (view == DEBUG_VIEW_FLOW) {
+        return rampColor(landform.x / 7.0f, vec3(0.05f, 0.06f, 0.16f), vec3(0.13f, 0.42f, 0.85f),
+                         vec3(0.85f, 0.95f, 1.0f));
+    }
+    if (view == DEBUG_VIEW_WEAR) {
+        return rampColor(landform.y / 20.0f, vec3(0.14f, 0.09f, 0.05f), vec3(0.80f, 0.38f, 0.10f),
+                         vec3(1.0f, 0.88f, 0.60f));
+    }
+    if (view == DEBUG_VIEW_DEPOSITION) {
+        return rampColor(landform.z / 20.0f, vec3(0.10f, 0.11f, 0.04f), vec3(0.55f, 0.55f, 0.15f),
+                         vec3(0.96f, 0.90f, 0.58f));
+    }
+    if (view == DEBUG_VIEW_WATER) {
+        return rampColor(landform.w, vec3(0.16f, 0.14f, 0.12f), vec3(0.10f, 0.45f, 0.60f), vec3(0.25f, 0.90f, 1.0f));
+    }
+    return vec3(0.0f);
+}
+
+/// The colour of any debug view at a fragment: the landform views from
+/// `landform`, the others from the material's output `o` (debugViewColor()).
+STRATA_INLINE vec3 fragmentDebugColor(SurfaceOutput o, vec4 landform, int view)
+{
+    if (view >= DEBUG_VIEW_FLOW && view <= DEBUG_VIEW_WATER) {
+        return landformDebugColor(landform, view);
+    }
+    return debugViewColor(o, view);
+}
+
 #if defined(STRATA_CPP) || defined(STRATA_LAYERED)
 
 /// Every layer at one fragment, blended. `world` holds the fragment in
 /// metres: p relative to the mesh origin, dpdx/dpdy its screen
 /// derivatives; each layer maps it with its own mapScale and offsets.
-/// `surface` is the interpolated cavity and cover. Always finite: the a_i
-/// sum to 1, so the highest key's layer has a positive weight (layer 0
-/// alone when no rule covers the fragment; the winner alone should every
-/// weight underflow).
+/// `surface` is the interpolated cavity and cover, `landform` the
+/// interpolated landform masks (flow, wear, deposition, water). Always
+/// finite: the a_i sum to 1, so the highest key's layer has a positive
+/// weight (layer 0 alone when no rule covers the fragment; the winner alone
+/// should every weight underflow).
 STRATA_FEATURE_FUNCTION SurfaceOutput evaluateLayers(STRATA_MAPS_PARAM STRATA_LAYERS_PARAM SurfaceInput world,
-                                                     vec2 surface)
+                                                     vec2 surface, vec4 landform)
 {
     // GLSL programs are built for their layer count (STRATA_LAYER_COUNT), so
     // the loops unroll to exactly that many copies of the material; C++
@@ -189,7 +248,7 @@ STRATA_FEATURE_FUNCTION SurfaceOutput evaluateLayers(STRATA_MAPS_PARAM STRATA_LA
     SurfaceOutput outputs[STRATA_MAX_LAYERS];
     float remaining = 1.0f;
     for (int i = count - 1; i >= 0; --i) {
-        float c = i == 0 ? 1.0f : layerCoverage(LAYER_SET.layers[i], world.n, world.p, surface);
+        float c = i == 0 ? 1.0f : layerCoverage(LAYER_SET.layers[i], world.n, world.p, surface, landform);
         share[i] = c * remaining;
         remaining *= 1.0f - c;
     }

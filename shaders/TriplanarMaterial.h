@@ -394,7 +394,13 @@ const int DEBUG_VIEW_HEIGHT = 5;     ///< mask B (height, or the MODS detail mas
 const int DEBUG_VIEW_SMOOTHNESS = 6; ///< smoothness (after detail) as grey
 const int DEBUG_VIEW_ALBEDO = 7;     ///< albedo (tinted, with detail), unlit
 const int DEBUG_VIEW_LAYERS = 8;     ///< the terrain layers' weights, each layer a colour (layerPaletteColor)
-const int DEBUG_VIEW_COUNT = 9;
+// The landform views show the mesh's landform masks, not the material
+// (landformDebugColor() in TerrainLayers.h).
+const int DEBUG_VIEW_FLOW = 9;        ///< flow (log10 drainage area) 0..7, dark navy to pale blue
+const int DEBUG_VIEW_WEAR = 10;       ///< wear 0..20 m, dark brown to orange to pale
+const int DEBUG_VIEW_DEPOSITION = 11; ///< deposition 0..20 m, dark olive to sand
+const int DEBUG_VIEW_WATER = 12;      ///< water 0..1, dark grey to cyan
+const int DEBUG_VIEW_COUNT = 13;
 
 /// The sRGB decoding function, for one encoded value 0..1 (inverse of
 /// linearToSrgb()).
@@ -409,8 +415,8 @@ STRATA_INLINE float srgbToLinear(float c)
 /// The colour of debug view `view` (DEBUG_VIEW_*) for a fragment: a linear
 /// display value 0..1 like shadeFragment()'s, so the sRGB encoding stores
 /// the data views' values unchanged (value v becomes byte round(255·v)),
-/// while albedo is shown as the colour it is. DEBUG_VIEW_SHADED and unknown
-/// views give black.
+/// while albedo is shown as the colour it is. DEBUG_VIEW_SHADED, the
+/// landform views and unknown views give black.
 STRATA_INLINE vec3 debugViewColor(SurfaceOutput o, int view)
 {
     vec3 v = vec3(0.0f);

@@ -8,6 +8,7 @@ in vec3 vTexturePosition; // texture space
 in vec3 vNormal;
 in vec3 vPosition;        // metres, relative to the mesh origin
 in vec2 vSurface;         // cavity, cover (layer rules)
+in vec4 vLandform;        // flow, wear, deposition, water (layer rules, landform debug views)
 
 // std140 blocks, mirrored by render/src/UniformBlocks.h (FrameBlock, binding
 // 0, is in TerrainFrame.glsl).
@@ -95,12 +96,12 @@ void main()
     world.p = vPosition;
     world.dpdx = dFdx(vPosition);
     world.dpdy = dFdy(vPosition);
-    SurfaceOutput o = evaluateLayers(world, vSurface);
+    SurfaceOutput o = evaluateLayers(world, vSurface, vLandform);
 #else
     SurfaceOutput o = evaluateSurface(s, uMaterial);
 #endif
     if (uFrame.debugView != DEBUG_VIEW_SHADED) {
-        fragColor = vec4(debugViewColor(o, uFrame.debugView), 1.0f);
+        fragColor = vec4(fragmentDebugColor(o, vLandform, uFrame.debugView), 1.0f);
         return;
     }
     // The interpolated normal (not the mapped one) biases the shadow lookup.

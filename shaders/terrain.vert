@@ -6,11 +6,13 @@
 layout(location = 0) in vec3 aPosition; // metres, relative to the mesh origin
 layout(location = 1) in vec3 aNormal;   // unit, world space
 layout(location = 2) in vec2 aSurface;  // cavity, cover (MeshView::surface; (0, 0) when the mesh has none)
+layout(location = 3) in vec4 aLandform; // flow, wear, deposition, water (MeshView::landform; 0 when the mesh has none)
 
 out vec3 vTexturePosition; // texture space: (world position) · mapScale, mod 1
 out vec3 vNormal;
 out vec3 vPosition;        // metres, relative to the mesh origin
 out vec2 vSurface;
+out vec4 vLandform;
 
 void main()
 {
@@ -18,5 +20,6 @@ void main()
     vNormal = aNormal;
     vPosition = aPosition;
     vSurface = aSurface;
+    vLandform = aLandform;
     gl_Position = uFrame.viewProjection * vec4(aPosition, 1.0f);
 }

@@ -97,7 +97,8 @@ Loaded load(const Args& args, int width, int height)
     const scene::QualitySettings quality = scene::resolveQuality(scene, std::nullopt, {});
     const scene::Scene effective = scene::applyQuality(scene, quality);
     const scene::SampledTerrain terrain = scene::sampleTerrain(effective, args.seed);
-    loaded.mesh = scene::meshTerrain(effective, quality, terrain);
+    // The landform masks whenever the terrain has them: the debug views may show them.
+    loaded.mesh = scene::meshTerrain(effective, quality, terrain, nullptr, terrain.landformMasks != nullptr);
     loaded.snapshot = scene::makeSnapshotOptions(scene, loaded.mesh, width, height);
     loaded.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
     return loaded;
@@ -126,7 +127,7 @@ void onKey(GLFWwindow* window, int key, int /*scancode*/, int action, int /*mods
     auto* input = static_cast<Input*>(glfwGetWindowUserPointer(window));
     if (key == GLFW_KEY_ESCAPE) {
         glfwSetWindowShouldClose(window, GLFW_TRUE);
-    } else if (key >= GLFW_KEY_0 && key < GLFW_KEY_0 + render::DEBUG_VIEW_COUNT) {
+    } else if (key >= GLFW_KEY_0 && key <= GLFW_KEY_9 && key < GLFW_KEY_0 + render::DEBUG_VIEW_COUNT) {
         input->draw.debugView = render::DebugView(key - GLFW_KEY_0);
     } else if (key == GLFW_KEY_F) {
         input->draw.wireframe = !input->draw.wireframe;

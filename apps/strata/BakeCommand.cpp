@@ -84,6 +84,18 @@ std::uint64_t peakResidentBytes()
     return std::uint64_t(usage.ru_maxrss) * 1024;
 }
 
+/// The erode nodes' global passes: each worker runs them once, when it
+/// loads the scene (recomputing beats reading a stored grid: see the README).
+void printLandformPasses(const Scene& scene)
+{
+    for (const LandformPass& pass : scene.landformPasses) {
+        std::cout << "  landform  " << pass.node << ": " << withThousands(pass.cells) << " cells, " << pass.steps
+                  << " steps, " << std::fixed << std::setprecision(1) << pass.seconds << " s"
+                  << (pass.cached ? " (cached)" : "") << ", about " << mebibytes(pass.peakBytes)
+                  << " at its peak; once per worker" << std::defaultfloat << std::endl;
+    }
+}
+
 int printPlan(const Scene& scene, const BakeOptions& options, const BakePlan& plan, int perWorker)
 {
     const int tiles = plan.tileCount();
@@ -93,6 +105,7 @@ int printPlan(const Scene& scene, const BakeOptions& options, const BakePlan& pl
               << (plan.counts[1] > 1 ? " × " + std::to_string(plan.counts[1]) + " slabs" : std::string()) << ", "
               << plan.lods << " levels: " << tiles << " tiles\n  workers   " << workers << " (" << perWorker
               << " tiles each, --tiles-per-worker " << perWorker << ")" << std::endl;
+    printLandformPasses(scene);
     const BakeSample sample = sampleBakeTile(scene, options, plan);
     const std::uint64_t peak = peakResidentBytes();
     // A task's memory: this process's peak with the sample tile, plus half.
@@ -204,7 +217,10 @@ Command registerBakeCommand(CLI::App& app)
                 options.maxMemoryBytes = parseMemory(args->maxMemory);
                 options.skirtDepth = args->skirtDepth;
                 options.worker = args->worker;
-                const Scene scene = args->scenePath.empty() ? defaultScene() : loadScene(args->scenePath);
+                // Erode nodes run their global pass while the scene loads: once
+                // per worker, refused first when over --max-memory (exit 2).
+                const SceneLoadOptions load{options.maxMemoryBytes};
+                const Scene scene = args->scenePath.empty() ? defaultScene() : loadScene(args->scenePath, load);
                 if (args->worker) {
                     // Check the world's size first, then the worker's slice of it.
                     const int tiles = planBake(scene, options).tileCount();
@@ -235,6 +251,7 @@ Command registerBakeCommand(CLI::App& app)
                               << " tiles of " << formatNumber(plan.tileSize) << " m, " << plan.lods << " levels, "
                               << plan.selected.size() << " selected, about "
                               << mebibytes(plan.tileMemoryBytes) << " per tile" << std::endl;
+                    printLandformPasses(scene);
                 }
                 const BakeSummary summary = scene::bake(scene, options, plan, &progress);
                 if (!args->quiet) printSummary(summary, args->worker);

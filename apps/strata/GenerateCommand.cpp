@@ -16,6 +16,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cstdio>
 #include <iomanip>
 #include <iostream>
 #include <memory>
@@ -133,7 +134,7 @@ Command registerGenerateCommand(CLI::App& app)
                 offsetRequest(options.request, offset);
                 const Scene scene = offsetScene(args->scenePath.empty()
                                                     ? defaultScene()
-                                                    : loadScene(args->scenePath),
+                                                    : loadScene(args->scenePath, {options.maxMemoryBytes}),
                                                 offset);
 
                 std::unique_ptr<tbb::global_control> threadLimit;
@@ -143,6 +144,10 @@ Command registerGenerateCommand(CLI::App& app)
                 }
                 if (!args->quiet) {
                     std::cout << "strata generate: " << scene.source << " → " << args->outputDir << "/" << std::endl;
+                    for (const LandformPass& pass : scene.landformPasses) {
+                        std::printf("  landform %8.3f s   %s: %s cells, %d steps%s\n", pass.seconds, pass.node.c_str(),
+                                    withThousands(pass.cells).c_str(), pass.steps, pass.cached ? " (cached)" : "");
+                    }
                 }
                 const GenerateResult result = scene::generate(scene, options, &progress);
                 if (!args->quiet) printSummary(result, options.outputDir);

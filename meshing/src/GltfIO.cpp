@@ -39,22 +39,26 @@ int appendView(tinygltf::Model& model, const void* bytes, std::size_t size, int 
     return int(model.bufferViews.size() - 1);
 }
 
-int appendVec3Accessor(tinygltf::Model& model, const std::vector<glm::vec3>& values, bool withBounds)
+/// Appends a float accessor of `values` (glm::vec2, vec3 or vec4; glTF
+/// `type` to match) and returns its index; `withBounds` adds min and max.
+template <typename T>
+int appendAccessor(tinygltf::Model& model, const std::vector<T>& values, int type, bool withBounds)
 {
     tinygltf::Accessor accessor;
-    accessor.bufferView = appendView(model, values.data(), values.size() * sizeof(glm::vec3),
-                                     TINYGLTF_TARGET_ARRAY_BUFFER);
+    accessor.bufferView = appendView(model, values.data(), values.size() * sizeof(T), TINYGLTF_TARGET_ARRAY_BUFFER);
     accessor.componentType = TINYGLTF_COMPONENT_TYPE_FLOAT;
     accessor.count = values.size();
-    accessor.type = TINYGLTF_TYPE_VEC3;
+    accessor.type = type;
     if (withBounds) { // required by the spec for POSITION
-        glm::vec3 lo(std::numeric_limits<float>::max()), hi(std::numeric_limits<float>::lowest());
-        for (const glm::vec3& v : values) {
+        T lo(std::numeric_limits<float>::max()), hi(std::numeric_limits<float>::lowest());
+        for (const T& v : values) {
             lo = glm::min(lo, v);
             hi = glm::max(hi, v);
         }
-        accessor.minValues = {lo.x, lo.y, lo.z};
-        accessor.maxValues = {hi.x, hi.y, hi.z};
+        for (int c = 0; c < T::length(); ++c) {
+            accessor.minValues.push_back(lo[c]);
+            accessor.maxValues.push_back(hi[c]);
+        }
     }
     model.accessors.push_back(accessor);
     return int(model.accessors.size() - 1);
@@ -151,14 +155,43 @@ void configureLoader(tinygltf::TinyGLTF& loader, bool allowExternalFiles)
                            allowExternalFiles ? static_cast<void*>(&allow) : nullptr});
 }
 
-void checkFinite(const std::vector<glm::vec3>& values, const std::string& what, const std::string& name)
+template <typename T>
+void checkFinite(const std::vector<T>& values, const std::string& what, const std::string& name)
 {
     for (std::size_t i = 0; i < values.size(); ++i) {
-        const glm::vec3& v = values[i];
-        if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z)) {
-            detail::failRead(name, 0, what + " " + std::to_string(i) + " is not finite");
+        for (int c = 0; c < T::length(); ++c) {
+            if (!std::isfinite(values[i][c])) {
+                detail::failRead(name, 0, what + " " + std::to_string(i) + " is not finite");
+            }
         }
     }
+}
+
+/// The optional per-vertex float attribute `key` of `primitive` (glTF
+/// `type`), checked finite and one per position; empty when absent.
+template <typename T>
+std::vector<T> readVertexAttribute(const tinygltf::Model& model, const tinygltf::Primitive& primitive,
+                                   const std::string& key, int type, std::size_t vertexCount, const std::string& name)
+{
+    const auto found = primitive.attributes.find(key);
+    if (found == primitive.attributes.end()) return {};
+    std::vector<T> values = readAccessor<T>(model, found->second, TINYGLTF_COMPONENT_TYPE_FLOAT, type, key, name);
+    checkFinite(values, key, name);
+    if (values.size() != vertexCount) {
+        detail::failRead(name, 0, key + " has " + std::to_string(values.size()) + " elements, POSITION " +
+                                      std::to_string(vertexCount));
+    }
+    return values;
+}
+
+/// Appends a primitive's optional attribute to the mesh's while every
+/// primitive so far had it (`all`); clears it for good once one lacks it.
+template <typename T>
+void appendWhileAll(bool& all, std::vector<T>& mesh, const std::vector<T>& part, std::size_t partVertices)
+{
+    all = all && part.size() == partVertices;
+    if (all) mesh.insert(mesh.end(), part.begin(), part.end());
+    else mesh.clear();
 }
 
 /// One triangle primitive, read and checked.
@@ -176,16 +209,10 @@ TriangleMesh primitiveMesh(const tinygltf::Model& model, const tinygltf::Primiti
     if (mesh.positions.size() > std::numeric_limits<std::uint32_t>::max()) {
         detail::failRead(name, 0, "too many vertices");
     }
-    const auto normal = primitive.attributes.find("NORMAL");
-    if (normal != primitive.attributes.end()) {
-        mesh.normals = readAccessor<glm::vec3>(model, normal->second, TINYGLTF_COMPONENT_TYPE_FLOAT,
-                                               TINYGLTF_TYPE_VEC3, "NORMAL", name);
-        checkFinite(mesh.normals, "NORMAL", name);
-        if (mesh.normals.size() != mesh.positions.size()) {
-            detail::failRead(name, 0, "NORMAL has " + std::to_string(mesh.normals.size()) + " elements, POSITION " +
-                                          std::to_string(mesh.positions.size()));
-        }
-    }
+    const std::size_t n = mesh.positions.size();
+    mesh.normals = readVertexAttribute<glm::vec3>(model, primitive, "NORMAL", TINYGLTF_TYPE_VEC3, n, name);
+    mesh.surface = readVertexAttribute<glm::vec2>(model, primitive, SURFACE_ATTRIBUTE, TINYGLTF_TYPE_VEC2, n, name);
+    mesh.landform = readVertexAttribute<glm::vec4>(model, primitive, LANDFORM_ATTRIBUTE, TINYGLTF_TYPE_VEC4, n, name);
     if (primitive.indices >= 0) {
         if (std::size_t(primitive.indices) >= model.accessors.size()) detail::failRead(name, 0, "index accessor is missing");
         const int componentType = model.accessors[std::size_t(primitive.indices)].componentType;
@@ -219,14 +246,15 @@ TriangleMesh primitiveMesh(const tinygltf::Model& model, const tinygltf::Primiti
 }
 
 /// Every triangle primitive of the first mesh, appended in order (a
-/// primitive without normals drops the normals of the whole mesh).
+/// primitive without normals, surface or landform attributes drops them
+/// from the whole mesh).
 TriangleMesh meshFromModel(const tinygltf::Model& model, const std::string& name)
 {
     if (model.meshes.empty() || model.meshes[0].primitives.empty()) {
         throw Error(ErrorKind::BadInput, "'" + name + "' holds no mesh", {.file = name});
     }
     TriangleMesh mesh;
-    bool normals = true;
+    bool normals = true, surface = true, landform = true;
     for (const tinygltf::Primitive& primitive : model.meshes[0].primitives) {
         TriangleMesh part = primitiveMesh(model, primitive, name);
         if (mesh.positions.size() + part.positions.size() > std::numeric_limits<std::uint32_t>::max()) {
@@ -235,10 +263,10 @@ TriangleMesh meshFromModel(const tinygltf::Model& model, const std::string& name
         const auto base = std::uint32_t(mesh.positions.size());
         for (std::uint32_t i : part.indices) mesh.indices.push_back(base + i);
         mesh.positions.insert(mesh.positions.end(), part.positions.begin(), part.positions.end());
-        normals = normals && part.normals.size() == part.positions.size();
-        if (normals) mesh.normals.insert(mesh.normals.end(), part.normals.begin(), part.normals.end());
+        appendWhileAll(normals, mesh.normals, part.normals, part.positions.size());
+        appendWhileAll(surface, mesh.surface, part.surface, part.positions.size());
+        appendWhileAll(landform, mesh.landform, part.landform, part.positions.size());
     }
-    if (!normals) mesh.normals.clear();
     for (const tinygltf::Node& node : model.nodes) {
         if (node.mesh == 0 && node.translation.size() == 3) {
             mesh.origin = glm::dvec3(node.translation[0], node.translation[1], node.translation[2]);
@@ -285,8 +313,18 @@ std::string encodeGlb(const std::vector<GlbPart>& parts, const glm::dvec3& origi
         if (mesh.indices.empty() || mesh.positions.empty()) continue;
         tinygltf::Primitive primitive;
         primitive.mode = TINYGLTF_MODE_TRIANGLES;
-        primitive.attributes["POSITION"] = appendVec3Accessor(model, mesh.positions, true);
-        if (!mesh.normals.empty()) primitive.attributes["NORMAL"] = appendVec3Accessor(model, mesh.normals, false);
+        const std::size_t n = mesh.positions.size();
+        primitive.attributes["POSITION"] = appendAccessor(model, mesh.positions, TINYGLTF_TYPE_VEC3, true);
+        if (mesh.normals.size() == n) {
+            primitive.attributes["NORMAL"] = appendAccessor(model, mesh.normals, TINYGLTF_TYPE_VEC3, false);
+        }
+        // Application-specific attributes: glTF requires a leading underscore.
+        if (mesh.surface.size() == n) {
+            primitive.attributes[SURFACE_ATTRIBUTE] = appendAccessor(model, mesh.surface, TINYGLTF_TYPE_VEC2, false);
+        }
+        if (mesh.landform.size() == n) {
+            primitive.attributes[LANDFORM_ATTRIBUTE] = appendAccessor(model, mesh.landform, TINYGLTF_TYPE_VEC4, false);
+        }
         tinygltf::Accessor indices;
         if (compactIndices && mesh.positions.size() <= 0xffff) {
             const std::vector<std::uint16_t> small(mesh.indices.begin(), mesh.indices.end());

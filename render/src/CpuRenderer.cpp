@@ -101,7 +101,8 @@ struct ClipVertex
     glm::vec4 clip;
     glm::vec3 position; // relative to the mesh origin
     glm::vec3 normal;
-    glm::vec2 surface; // cavity, cover
+    glm::vec2 surface;  // cavity, cover
+    glm::vec4 landform; // flow, wear, deposition, water
 };
 
 /// A screen-space triangle ready for rasterization (image space, y down).
@@ -114,6 +115,7 @@ struct Triangle
     glm::vec3 position[3];
     glm::vec3 normal[3];
     glm::vec2 surface[3];
+    glm::vec4 landform[3];
     float area2;                // twice the signed area in float pixels, > 0
     int minX, minY, maxX, maxY; // pixel bounds (inclusive), clamped to the image
 };
@@ -121,7 +123,8 @@ struct Triangle
 ClipVertex lerpVertex(const ClipVertex& a, const ClipVertex& b, float t)
 {
     return {a.clip + (b.clip - a.clip) * t, a.position + (b.position - a.position) * t,
-            a.normal + (b.normal - a.normal) * t, a.surface + (b.surface - a.surface) * t};
+            a.normal + (b.normal - a.normal) * t, a.surface + (b.surface - a.surface) * t,
+            a.landform + (b.landform - a.landform) * t};
 }
 
 /// Sutherland–Hodgman against one homogeneous plane dot(plane, clip) >= 0.
@@ -161,6 +164,7 @@ struct Interpolated
     glm::vec3 position;
     glm::vec3 normal;
     glm::vec2 surface;
+    glm::vec4 landform;
     bool valid;
 };
 
@@ -176,12 +180,13 @@ Interpolated interpolate(const Triangle& t, float px, float py)
     const float q2 = l2 * t.invW[2];
     const float sum = q0 + q1 + q2;
     if (!(sum > 1e-20f)) {
-        return {{}, {}, {}, false};
+        return {{}, {}, {}, {}, false};
     }
     const float inv = 1.0f / sum;
     return {(t.position[0] * q0 + t.position[1] * q1 + t.position[2] * q2) * inv,
             (t.normal[0] * q0 + t.normal[1] * q1 + t.normal[2] * q2) * inv,
-            (t.surface[0] * q0 + t.surface[1] * q1 + t.surface[2] * q2) * inv, true};
+            (t.surface[0] * q0 + t.surface[1] * q1 + t.surface[2] * q2) * inv,
+            (t.landform[0] * q0 + t.landform[1] * q1 + t.landform[2] * q2) * inv, true};
 }
 
 struct Frame
@@ -206,6 +211,7 @@ struct Fragment
     shading::SurfaceInput s;
     shading::SurfaceInput world;
     glm::vec2 surface;
+    glm::vec4 landform;
 };
 
 using ShadeFunction = glm::vec3 (*)(const Frame&, const CpuMaps&, const Fragment&, const shading::LightingParams&);
@@ -216,7 +222,7 @@ shading::SurfaceOutput evaluateWith(const Frame& frame, const CpuMaps& maps, con
 {
     if constexpr ((FEATURES & feature::LAYERS) != 0u) {
         if ((maps.features & feature::LAYERS) != 0u) {
-            return shading::evaluateLayers<FEATURES, CpuMaps>(maps, frame.layerSet, f.world, f.surface);
+            return shading::evaluateLayers<FEATURES, CpuMaps>(maps, frame.layerSet, f.world, f.surface, f.landform);
         }
     }
     return shading::evaluateSurface<FEATURES, CpuMaps>(maps, f.s, frame.material);
@@ -301,7 +307,8 @@ std::vector<Triangle> setupTriangles(const MeshView& mesh, const std::vector<glm
             for (int k = 0; k < 3; ++k) {
                 const std::uint32_t index = mesh.indices[t * 3 + std::size_t(k)];
                 polygon[0][k] = {clip[index], mesh.positions[index], mesh.normals[index],
-                                 mesh.surface ? mesh.surface[index] : glm::vec2(0.0f)};
+                                 mesh.surface ? mesh.surface[index] : glm::vec2(0.0f),
+                                 mesh.landform ? mesh.landform[index] : glm::vec4(0.0f)};
                 for (const glm::vec4& plane : planes) {
                     inside = inside && glm::dot(plane, clip[index]) >= 0.0f;
                 }
@@ -351,6 +358,7 @@ std::vector<Triangle> setupTriangles(const MeshView& mesh, const std::vector<glm
                     tri.position[m] = polygon[current][o].position;
                     tri.normal[m] = polygon[current][o].normal;
                     tri.surface[m] = polygon[current][o].surface;
+                    tri.landform[m] = polygon[current][o].landform;
                 }
                 tri.area2 = float(area < 0 ? -area : area) / (SUBPIXEL * SUBPIXEL);
                 const std::int64_t half = 1 << (SUBPIXEL_BITS - 1);
@@ -634,9 +642,10 @@ Image renderSnapshotCpu(const MeshView& mesh, const SnapshotOptions& options, Cp
             s.dpdx = f.world.dpdx * frame.mapScale;
             s.dpdy = f.world.dpdy * frame.mapScale;
             f.surface = self.surface;
+            f.landform = self.landform;
             if (debugView != shading::DEBUG_VIEW_SHADED) {
                 const std::uint32_t selected = maps.features;
-                c = shading::debugViewColor(evaluateWith<feature::ALL>(frame, maps, f), debugView);
+                c = shading::fragmentDebugColor(evaluateWith<feature::ALL>(frame, maps, f), f.landform, debugView);
                 maps.features = selected;
             } else {
                 // The interpolated (not the normal-mapped) normal biases the lookup.

@@ -42,6 +42,10 @@ static_assert(int(DebugView::Height) == shading::DEBUG_VIEW_HEIGHT);
 static_assert(int(DebugView::Smoothness) == shading::DEBUG_VIEW_SMOOTHNESS);
 static_assert(int(DebugView::Albedo) == shading::DEBUG_VIEW_ALBEDO);
 static_assert(int(DebugView::Layers) == shading::DEBUG_VIEW_LAYERS);
+static_assert(int(DebugView::Flow) == shading::DEBUG_VIEW_FLOW);
+static_assert(int(DebugView::Wear) == shading::DEBUG_VIEW_WEAR);
+static_assert(int(DebugView::Deposition) == shading::DEBUG_VIEW_DEPOSITION);
+static_assert(int(DebugView::Water) == shading::DEBUG_VIEW_WATER);
 static_assert(DEBUG_VIEW_COUNT == shading::DEBUG_VIEW_COUNT);
 static_assert(detail::MATERIAL_MAP_UNITS == STRATA_MAP_COUNT);
 
@@ -482,29 +486,36 @@ void GlRenderer::setMesh(const MeshView& mesh)
     }
     r.vertexBuffer = detail::createBuffer();
     r.indexBuffer = detail::createBuffer();
-    // Positions, normals, then the optional surface attributes (cavity, cover).
+    // Positions, normals, then the optional surface attributes (cavity,
+    // cover) and landform masks (flow, wear, deposition, water).
     const std::size_t arrayBytes = mesh.vertexCount * sizeof(glm::vec3);
     const std::size_t surfaceBytes = mesh.surface ? mesh.vertexCount * sizeof(glm::vec2) : 0;
-    glNamedBufferStorage(r.vertexBuffer.id(), GLsizeiptr(2 * arrayBytes + surfaceBytes), nullptr,
+    const std::size_t landformBytes = mesh.landform ? mesh.vertexCount * sizeof(glm::vec4) : 0;
+    glNamedBufferStorage(r.vertexBuffer.id(), GLsizeiptr(2 * arrayBytes + surfaceBytes + landformBytes), nullptr,
                          GL_DYNAMIC_STORAGE_BIT);
     glNamedBufferSubData(r.vertexBuffer.id(), 0, GLsizeiptr(arrayBytes), mesh.positions);
     glNamedBufferSubData(r.vertexBuffer.id(), GLintptr(arrayBytes), GLsizeiptr(arrayBytes), mesh.normals);
     glNamedBufferStorage(r.indexBuffer.id(), GLsizeiptr(mesh.indexCount * sizeof(std::uint32_t)), mesh.indices, 0);
     const GLuint vao = r.vertexArray.id();
-    glVertexArrayVertexBuffer(vao, 0, r.vertexBuffer.id(), 0, sizeof(glm::vec3));
-    glVertexArrayVertexBuffer(vao, 1, r.vertexBuffer.id(), GLintptr(arrayBytes), sizeof(glm::vec3));
     glVertexArrayElementBuffer(vao, r.indexBuffer.id());
-    for (GLuint attribute = 0; attribute < 2; ++attribute) {
-        glEnableVertexArrayAttrib(vao, attribute);
-        glVertexArrayAttribFormat(vao, attribute, 3, GL_FLOAT, GL_FALSE, 0);
-        glVertexArrayAttribBinding(vao, attribute, attribute);
-    }
-    if (mesh.surface) { // else attribute 2 is disabled and reads GL's constant (0, 0, 0, 1)
+    // Attribute k reads binding k, `components` floats per vertex from `offset`.
+    auto attribute = [&](GLuint k, GLint components, std::size_t offset) {
+        glVertexArrayVertexBuffer(vao, k, r.vertexBuffer.id(), GLintptr(offset), GLsizei(components * sizeof(float)));
+        glEnableVertexArrayAttrib(vao, k);
+        glVertexArrayAttribFormat(vao, k, components, GL_FLOAT, GL_FALSE, 0);
+        glVertexArrayAttribBinding(vao, k, k);
+    };
+    attribute(0, 3, 0);
+    attribute(1, 3, arrayBytes);
+    // Absent attributes stay disabled and read the constants draw() sets.
+    if (mesh.surface) {
         glNamedBufferSubData(r.vertexBuffer.id(), GLintptr(2 * arrayBytes), GLsizeiptr(surfaceBytes), mesh.surface);
-        glVertexArrayVertexBuffer(vao, 2, r.vertexBuffer.id(), GLintptr(2 * arrayBytes), sizeof(glm::vec2));
-        glEnableVertexArrayAttrib(vao, 2);
-        glVertexArrayAttribFormat(vao, 2, 2, GL_FLOAT, GL_FALSE, 0);
-        glVertexArrayAttribBinding(vao, 2, 2);
+        attribute(2, 2, 2 * arrayBytes);
+    }
+    if (mesh.landform) {
+        const std::size_t offset = 2 * arrayBytes + surfaceBytes;
+        glNamedBufferSubData(r.vertexBuffer.id(), GLintptr(offset), GLsizeiptr(landformBytes), mesh.landform);
+        attribute(3, 4, offset);
     }
     detail::checkGl("uploading the mesh");
     r.indexCount = GLsizei(mesh.indexCount);
@@ -670,6 +681,11 @@ void GlRenderer::draw(const Camera& camera, const Lighting& lighting, unsigned f
     if (r.indexCount > 0) {
         glUseProgram(program);
         glBindVertexArray(r.vertexArray.id());
+        // The values of disabled (absent) attributes are context state, not
+        // the vertex array's: set them each draw. GL's default (0, 0, 0, 1)
+        // would give the landform water 1.
+        glVertexAttrib4f(2, 0.0f, 0.0f, 0.0f, 0.0f);
+        glVertexAttrib4f(3, 0.0f, 0.0f, 0.0f, 0.0f);
         glBindTextures(0, GLsizei(r.units.size()), r.units.data());
         glDrawElements(GL_TRIANGLES, r.indexCount, GL_UNSIGNED_INT, nullptr);
         if (options.wireframe) {

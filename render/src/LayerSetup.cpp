@@ -35,11 +35,19 @@ shading::LayerParams layerParams(const Material& m, const LayerRule* rule, const
     l.slope = l.altitude;
     l.cavity = l.altitude;
     l.cover = l.altitude;
+    l.flow = l.altitude;
+    l.wear = l.altitude;
+    l.deposition = l.altitude;
+    l.water = l.altitude;
     if (rule) {
         l.altitude = band(rule->altitude, origin.y);
         l.slope = band(rule->slope);
         l.cavity = band(rule->cavity);
         l.cover = band(rule->cover);
+        l.flow = band(rule->flow);
+        l.wear = band(rule->wear);
+        l.deposition = band(rule->deposition);
+        l.water = band(rule->water);
         l.opacity = rule->opacity;
         l.seed = rule->noiseSeed;
         if (rule->noiseFrequency > 0.0f) {

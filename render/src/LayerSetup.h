@@ -13,14 +13,17 @@
 
 namespace strata::render::detail {
 
-static_assert(sizeof(shading::LayerParams) == 160, "LayerParams must match its std140 layout");
+static_assert(sizeof(shading::LayerParams) == 224, "LayerParams must match its std140 layout");
 static_assert(offsetof(shading::LayerParams, altitude) == 0);
-static_assert(offsetof(shading::LayerParams, noise) == 64);
-static_assert(offsetof(shading::LayerParams, detailOffset) == 112);
-static_assert(offsetof(shading::LayerParams, tileOffset) == 128);
-static_assert(offsetof(shading::LayerParams, mapScale) == 144);
-static_assert(offsetof(shading::LayerParams, features) == 152);
-static_assert(offsetof(shading::LayerParams, seed) == 156);
+static_assert(offsetof(shading::LayerParams, cover) == 48);
+static_assert(offsetof(shading::LayerParams, flow) == 64);
+static_assert(offsetof(shading::LayerParams, water) == 112);
+static_assert(offsetof(shading::LayerParams, noise) == 128);
+static_assert(offsetof(shading::LayerParams, detailOffset) == 176);
+static_assert(offsetof(shading::LayerParams, tileOffset) == 192);
+static_assert(offsetof(shading::LayerParams, mapScale) == 208);
+static_assert(offsetof(shading::LayerParams, features) == 216);
+static_assert(offsetof(shading::LayerParams, seed) == 220);
 
 /// Texture space for a mesh at `origin` (TerrainFrame.glsl's FrameBlock
 /// and each layer): the origin's whole texture repeats are dropped in
@@ -42,17 +45,17 @@ inline constexpr unsigned LAYER_BLOCK_BINDING = 5;
 /// MaterialParams is 76 bytes, its std140 form (MaterialBlock) 80.
 struct LayerSetBlock
 {
-    shading::LayerParams layers[STRATA_MAX_LAYERS]; // 0, stride 160
-    MaterialBlock materials[STRATA_MAX_LAYERS];     // 1280, stride 80
-    std::int32_t count;                             // 1920
-    float blendDepth;                               // 1924
+    shading::LayerParams layers[STRATA_MAX_LAYERS]; // 0, stride 224
+    MaterialBlock materials[STRATA_MAX_LAYERS];     // 1792, stride 80
+    std::int32_t count;                             // 2432
+    float blendDepth;                               // 2436
     float padding0;
     float padding1;
 };
-static_assert(offsetof(LayerSetBlock, materials) == 1280);
-static_assert(offsetof(LayerSetBlock, count) == 1920);
-static_assert(offsetof(LayerSetBlock, blendDepth) == 1924);
-static_assert(sizeof(LayerSetBlock) == 1936);
+static_assert(offsetof(LayerSetBlock, materials) == 1792);
+static_assert(offsetof(LayerSetBlock, count) == 2432);
+static_assert(offsetof(LayerSetBlock, blendDepth) == 2436);
+static_assert(sizeof(LayerSetBlock) == 2448);
 
 /// The layers of `material` (layer 0 its base) for a mesh at `origin`:
 /// altitudes, texture and noise offsets relative to it (in double), each

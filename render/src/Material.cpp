@@ -97,6 +97,11 @@ std::vector<std::uint32_t> allFeatureSets()
     return sets;
 }
 
+bool usesLandform(const LayerRule& rule)
+{
+    return rule.flow.enabled || rule.wear.enabled || rule.deposition.enabled || rule.water.enabled;
+}
+
 namespace {
 
 void checkBand(const std::string& what, const char* key, const LayerBand& band)
@@ -165,6 +170,10 @@ void checkMaterial(const Material& m)
         checkBand(what, "slope", r.slope);
         checkBand(what, "cavity", r.cavity);
         checkBand(what, "cover", r.cover);
+        checkBand(what, "flow", r.flow);
+        checkBand(what, "wear", r.wear);
+        checkBand(what, "deposition", r.deposition);
+        checkBand(what, "water", r.water);
         detail::checkRange(what.c_str(), "opacity", r.opacity, 0.0, 1.0);
         detail::checkRange(what.c_str(), "noiseFrequency", r.noiseFrequency, 0.0, 1e3);
         detail::checkRange(what.c_str(), "noiseThreshold", r.noiseThreshold, 0.0, 1.0);

@@ -1,4 +1,6 @@
 #include <strata/scene/Bake.h>
+#include <strata/world/LandformAttributes.h>
+#include <strata/scene/Pipeline.h>
 
 #include "BakeManifest.h"
 
@@ -85,8 +87,11 @@ BakeFile writeBakeFile(const fs::path& dir, const std::string& relative, std::st
 /// Bakes one tile: every level's mesh and (optionally) the level-0 grid;
 /// with `dir`, writes its files and then its record (so a record on disk
 /// means every file of the tile is complete).
+/// `landform` (may be null) fills each level's landform masks, which the
+/// tiles then carry (glTF _LANDFORM) for layer rules that read them.
 TileRecord bakeTile(const terrain::DensityField& field, const Scene& scene, const BakePlan& plan, bool grids,
-                    std::uint64_t maxMemoryBytes, const BakeTile& tile, const fs::path* dir)
+                    std::uint64_t maxMemoryBytes, const BakeTile& tile, const fs::path* dir,
+                    const terrain::LandformMasks* landform)
 {
     TileRecord record;
     record.index = tile.index;
@@ -102,7 +107,11 @@ TileRecord bakeTile(const terrain::DensityField& field, const Scene& scene, cons
         options.voxelSize = plan.voxelSize;
         options.level = level;
         options.skirtDepth = plan.skirtDepth;
-        const world::TileMeshData mesh = world::meshTile(field, tile.box, options);
+        world::TileMeshData mesh = world::meshTile(field, tile.box, options);
+        if (landform) {
+            mesh.surface.landform = world::computeLandformAttributes(*landform, mesh.surface);
+            mesh.skirt.landform = world::computeLandformAttributes(*landform, mesh.skirt);
+        }
         TileLevelRecord out;
         out.level = level;
         out.triangles = mesh.surface.triangleCount();
@@ -273,6 +282,9 @@ BakeSummary bake(const Scene& scene, const BakeOptions& options, const BakePlan&
     const Stopwatch clock;
     const fs::path& dir = options.outputDir;
     const std::shared_ptr<const terrain::DensityField> field = fieldForSeed(scene, options.seed);
+    // Layer rules on flow, wear, deposition or water: the tiles carry the masks.
+    const std::shared_ptr<const terrain::LandformMasks> landform =
+        needsLandform(scene) ? landformMasksForSeed(scene, options.seed) : nullptr;
 
     BakeManifest manifest = detail::manifestFor(plan, scene, options.grids);
     // Check the folder before creating anything in it.
@@ -342,7 +354,8 @@ BakeSummary bake(const Scene& scene, const BakeOptions& options, const BakePlan&
                 std::optional<TileRecord> record;
                 std::string failure;
                 try {
-                    record = bakeTile(*field, scene, plan, options.grids, options.maxMemoryBytes, tile, &dir);
+                    record = bakeTile(*field, scene, plan, options.grids, options.maxMemoryBytes, tile, &dir,
+                                      landform.get());
                 } catch (const std::exception& e) {
                     failure = "tile " + std::to_string(index) + " (" + tile.name + "): " + e.what();
                     // No half-made tile: its finished files go too.
@@ -448,6 +461,9 @@ BakeSummary finalizeBake(const fs::path& dir, PipelineObserver* observer)
 BakeSample sampleBakeTile(const Scene& scene, const BakeOptions& options, const BakePlan& plan)
 {
     const std::shared_ptr<const terrain::DensityField> field = fieldForSeed(scene, options.seed);
+    // Layer rules on flow, wear, deposition or water: the tiles carry the masks.
+    const std::shared_ptr<const terrain::LandformMasks> landform =
+        needsLandform(scene) ? landformMasksForSeed(scene, options.seed) : nullptr;
     // The middle column's slab that holds the surface: the lowest slab with
     // triangles at level 0, else slab 0.
     BakeSample sample;
@@ -456,7 +472,8 @@ BakeSample sampleBakeTile(const Scene& scene, const BakeOptions& options, const 
     for (int y = 0; y < plan.counts[1]; ++y) {
         sample.index = (y * plan.counts[2] + z) * plan.counts[0] + x;
         const TileRecord record =
-            bakeTile(*field, scene, plan, options.grids, options.maxMemoryBytes, plan.tile(sample.index), nullptr);
+            bakeTile(*field, scene, plan, options.grids, options.maxMemoryBytes, plan.tile(sample.index), nullptr,
+                     landform.get());
         sample.triangles = 0;
         for (const TileLevelRecord& level : record.levels) sample.triangles += level.triangles;
         for (const TileLevelRecord& level : record.levels)

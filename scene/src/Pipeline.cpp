@@ -1,6 +1,7 @@
 #include <strata/scene/Pipeline.h>
 
 #include <strata/scene/CaveView.h>
+#include <strata/world/LandformAttributes.h>
 
 #include <strata/AtomicFile.h>
 #include <strata/Error.h>
@@ -126,6 +127,7 @@ render::MeshView meshView(const meshing::TriangleMesh& mesh)
     view.indexCount = mesh.indices.size();
     view.origin = mesh.origin;
     if (!mesh.surface.empty() && mesh.surface.size() == mesh.positions.size()) view.surface = mesh.surface.data();
+    if (!mesh.landform.empty() && mesh.landform.size() == mesh.positions.size()) view.landform = mesh.landform.data();
     return view;
 }
 
@@ -183,6 +185,7 @@ SampledTerrain sampleTerrain(const Scene& scene, std::optional<std::uint64_t> se
     SampledTerrain out;
     out.seed = seed.value_or(scene.terrain.seed);
     out.field = fieldForSeed(scene, seed);
+    out.landformMasks = landformMasksForSeed(scene, seed);
     terrain::SampleOptions sampling;
     sampling.voxelSize = scene.voxelSize;
     sampling.halfWidth = scene.halfWidth;
@@ -208,8 +211,24 @@ meshing::GradientFunction fieldGradient(std::shared_ptr<const terrain::DensityFi
     };
 }
 
+bool needsLandform(const Scene& scene, const std::string& debugView)
+{
+    const bool rules = std::any_of(scene.material.layers.begin(), scene.material.layers.end(),
+                                   [](const LayerSettings& l) { return render::usesLandform(l.rule); });
+    const std::optional<render::DebugView> view = debugViewFromName(debugView);
+    const bool shown = view && render::isLandformView(*view);
+    if ((rules || shown) && !scene.landformMasks) {
+        throw Error(ErrorKind::BadInput,
+                    scene.source + ": " +
+                        (shown ? "the debug view '" + debugView + "'" : std::string("a layer's landform band")) +
+                        " needs the landform masks of erosion: add an `erode` node to the terrain tree",
+                    {scene.source});
+    }
+    return rules || shown;
+}
+
 meshing::TriangleMesh meshTerrain(const Scene& scene, const QualitySettings& quality, const SampledTerrain& terrain,
-                                  std::string* what)
+                                  std::string* what, bool withLandform)
 {
     // Positions relative to the region's centre (the .glb node translation),
     // so float precision holds for regions far from the world origin.
@@ -228,6 +247,15 @@ meshing::TriangleMesh meshTerrain(const Scene& scene, const QualitySettings& qua
                                           [](const LayerSettings& l) { return l.rule.cavity.enabled || l.rule.cover.enabled; });
     if (needsSurface && mesh.normals.size() == mesh.positions.size()) {
         mesh.surface = meshing::computeSurfaceAttributes(*terrain.grid, mesh);
+    }
+    // The landform masks when a rule (or the caller's debug view) reads them.
+    if (needsLandform(scene) || withLandform) {
+        if (!terrain.landformMasks) {
+            throw Error(ErrorKind::BadInput,
+                        scene.source + ": the landform masks are needed but the terrain has no `erode` node",
+                        {scene.source});
+        }
+        mesh.landform = world::computeLandformAttributes(*terrain.landformMasks, mesh);
     }
     return mesh;
 }
@@ -335,6 +363,8 @@ GenerateResult generate(const Scene& input, const GenerateOptions& options, Pipe
     if (options.snapshot) {
         checkSnapshotRequest(request); // bad flags: nothing written
     }
+    // A layer or debug view that needs erosion's masks the terrain lacks: nothing written.
+    const bool landform = needsLandform(scene, options.snapshot ? request.debugView : std::string());
 
     // The GL context first: on a machine without one, fail before the long stages.
     std::unique_ptr<render::EglContext> context;
@@ -408,7 +438,7 @@ GenerateResult generate(const Scene& input, const GenerateOptions& options, Pipe
     }
 
     log.begin("mesh");
-    const meshing::TriangleMesh mesh = meshTerrain(scene, result.quality, terrain, &result.mesher);
+    const meshing::TriangleMesh mesh = meshTerrain(scene, result.quality, terrain, &result.mesher, landform);
     result.vertices = mesh.vertexCount();
     result.triangles = mesh.triangleCount();
     log.end(withThousands(result.vertices) + " vertices, " + withThousands(result.triangles) + " triangles, " +

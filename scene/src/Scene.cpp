@@ -25,7 +25,21 @@ namespace {
 
 constexpr double HUGE_LENGTH = 1e9; // metres: the largest coordinate a scene may use
 
-void readTerrain(TableReader& root, Scene& scene)
+/// Sets the scene's field, landform source and their rebuilders from the
+/// node tree's builder (SceneTerrain.h).
+void useTerrainTree(Scene& scene, const TerrainBuilder& build)
+{
+    scene.buildField = [build](std::uint64_t seed) { return build(seed).root; };
+    const TerrainTree tree = build(scene.terrain.seed);
+    scene.field = tree.root;
+    scene.landformMasks = tree.landformMasks;
+    scene.landformPasses = tree.passes;
+    if (tree.landformMasks) {
+        scene.buildLandformMasks = [build](std::uint64_t seed) { return build(seed).landformMasks; };
+    }
+}
+
+void readTerrain(TableReader& root, Scene& scene, const SceneLoadOptions& load)
 {
     const toml::node* terrainNode = root.node("terrain");
     TableReader terrainTable = root.table("terrain");
@@ -37,18 +51,17 @@ void readTerrain(TableReader& root, Scene& scene)
                                                       "describe the heightfield and caves as nodes");
             }
         }
-        scene.buildField = readTerrainNodes(terrainNode->as_table(), scene.source,
-                                            std::filesystem::path(scene.source).parent_path(), scene.terrain.seed,
-                                            &scene.inputFiles);
-        scene.field = scene.buildField(scene.terrain.seed);
+        useTerrainTree(scene, readTerrainNodes(terrainNode->as_table(), scene.source,
+                                               std::filesystem::path(scene.source).parent_path(), scene.terrain.seed,
+                                               &scene.inputFiles, load.maxMemoryBytes));
         return;
     }
     if (!terrainTable.has("height") && !terrainTable.has("caves")) {
         // No terrain given: the default scene's node tree.
         terrainTable.finish();
         const toml::table defaults = toml::parse(defaultSceneText(), std::string_view("<default scene>"));
-        scene.buildField = readTerrainNodes(defaults["terrain"].as_table(), "<default scene>", {}, scene.terrain.seed);
-        scene.field = scene.buildField(scene.terrain.seed);
+        useTerrainTree(scene,
+                       readTerrainNodes(defaults["terrain"].as_table(), "<default scene>", {}, scene.terrain.seed));
         return;
     }
     TableReader height = terrainTable.table("height");
@@ -95,7 +108,7 @@ glm::vec3 directionFromAngles(double azimuthDegrees, double elevationDegrees)
 
 std::string_view defaultSceneText() { return DEFAULT_SCENE_TOML; }
 
-Scene parseScene(std::string_view text, const std::string& source)
+Scene parseScene(std::string_view text, const std::string& source, const SceneLoadOptions& options)
 {
     toml::table document;
     try {
@@ -130,13 +143,13 @@ Scene parseScene(std::string_view text, const std::string& source)
     scene.renormalize = sampling.boolean("renormalize", scene.renormalize);
     sampling.finish();
 
-    readTerrain(root, scene);
+    readTerrain(root, scene, options);
 
     TableReader mesh = root.table("mesh");
     scene.adaptivity = mesh.number("adaptivity", scene.adaptivity, 0.0, 1.0);
     mesh.finish();
 
-    readMaterial(root, scene.material, std::filesystem::path(source).parent_path());
+    readMaterial(root, scene.material, std::filesystem::path(source).parent_path(), scene.landformMasks != nullptr);
 
     TableReader camera = root.table("camera");
     CameraSettings& c = scene.camera;
@@ -221,7 +234,7 @@ Scene parseScene(std::string_view text, const std::string& source)
     return scene;
 }
 
-Scene loadScene(const std::filesystem::path& path)
+Scene loadScene(const std::filesystem::path& path, const SceneLoadOptions& options)
 {
     std::ifstream in(path, std::ios::binary);
     if (!in) {
@@ -229,7 +242,7 @@ Scene loadScene(const std::filesystem::path& path)
     }
     std::ostringstream text;
     text << in.rdbuf();
-    return parseScene(text.str(), path.string());
+    return parseScene(text.str(), path.string(), options);
 }
 
 Scene defaultScene() { return parseScene(defaultSceneText(), "<default scene>"); }
@@ -240,6 +253,13 @@ std::shared_ptr<const terrain::DensityField> fieldForSeed(const Scene& scene, st
         seed && *seed != scene.terrain.seed && scene.buildField ? scene.buildField(*seed) : scene.field;
     if (!field) throw Error(ErrorKind::BadInput, scene.source + ": the scene has no terrain", {scene.source});
     return field;
+}
+
+std::shared_ptr<const terrain::LandformMasks> landformMasksForSeed(const Scene& scene,
+                                                                   std::optional<std::uint64_t> seed)
+{
+    return seed && *seed != scene.terrain.seed && scene.buildLandformMasks ? scene.buildLandformMasks(*seed)
+                                                                           : scene.landformMasks;
 }
 
 } // namespace strata::scene

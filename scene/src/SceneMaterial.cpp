@@ -276,13 +276,31 @@ render::LayerBand readBand(TableReader& t, const std::string& key, double limit,
     return band;
 }
 
-render::LayerRule readLayerRule(TableReader& t)
+/// The rule of a [[layer]] table. Bands on the landform masks need
+/// `landformSource` (an `erode` node in the terrain tree).
+render::LayerRule readLayerRule(TableReader& t, bool landformSource)
 {
     render::LayerRule r;
     r.altitude = readBand(t, "altitude", 1e7, 10.0);
     r.slope = readBand(t, "slope", 180.0, 5.0);
     r.cavity = readBand(t, "cavity", 1.0, 0.1);
     r.cover = readBand(t, "cover", 1.0, 0.1);
+    r.flow = readBand(t, "flow", 20.0, 0.5);            // log10 of the drainage area in m²
+    r.wear = readBand(t, "wear", 1e4, 1.0);             // metres
+    r.deposition = readBand(t, "deposition", 1e4, 0.5); // metres
+    r.water = readBand(t, "water", 1.0, 0.1);
+    if (!landformSource) {
+        for (const char* band : {"flow", "wear", "deposition", "water"}) {
+            for (const char* bound : {"_min", "_max"}) {
+                const std::string key = std::string(band) + bound;
+                if (t.has(key)) {
+                    t.fail(nullptr, key,
+                           t.shown(key) + "needs the landform masks of erosion: add an `erode` node to the terrain " +
+                               "tree ([terrain.nodes]), or remove the " + band + " band");
+                }
+            }
+        }
+    }
     if (t.has("noise_scale")) r.noiseFrequency = float(1.0 / t.number("noise_scale", 1.0, 0.01, 1e5));
     r.noiseThreshold = float(t.number("noise_threshold", r.noiseThreshold, 0.0, 1.0));
     r.noiseSoftness = float(t.number("noise_softness", r.noiseSoftness, 0.0, 1.0));
@@ -293,7 +311,7 @@ render::LayerRule readLayerRule(TableReader& t)
 
 /// The [[layer]] array of tables, bottom to top.
 void readLayers(TableReader& root, MaterialSettings& base, const std::map<std::string, MaterialSettings>& named,
-                const std::filesystem::path& baseDir, const std::string& source)
+                const std::filesystem::path& baseDir, const std::string& source, bool landformSource)
 {
     const toml::node* node = root.node("layer");
     if (!node) return;
@@ -321,7 +339,7 @@ void readLayers(TableReader& root, MaterialSettings& base, const std::map<std::s
             layer.material.top = "none";
         }
         layer.material.name = t.string("name", use.empty() ? prefix : use);
-        layer.rule = readLayerRule(t);
+        layer.rule = readLayerRule(t, landformSource);
         readMaterialTable(t, layer.material, baseDir);
         t.finish();
         base.layers.push_back(std::move(layer));
@@ -330,7 +348,8 @@ void readLayers(TableReader& root, MaterialSettings& base, const std::map<std::s
 
 } // namespace
 
-void readMaterial(TableReader& root, MaterialSettings& settings, const std::filesystem::path& baseDir)
+void readMaterial(TableReader& root, MaterialSettings& settings, const std::filesystem::path& baseDir,
+                  bool landformSource)
 {
     // Named materials first: every one is checked, the one `use`d applies.
     TableReader materials = root.table("materials");
@@ -361,7 +380,7 @@ void readMaterial(TableReader& root, MaterialSettings& settings, const std::file
     readMaterialTable(m, settings, baseDir);
     m.finish();
     settings.layers.clear();
-    readLayers(root, settings, named, baseDir, m.source());
+    readLayers(root, settings, named, baseDir, m.source(), landformSource);
 }
 
 render::Material buildMaterial(const MaterialSettings& settings)

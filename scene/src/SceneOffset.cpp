@@ -5,9 +5,40 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <sstream>
+#include <vector>
 
 namespace strata::scene {
+
+namespace {
+
+/// Landform masks moved by `offset`, as TranslateField moves the field:
+/// masks(x, z) = source(x − offset.x, z − offset.z).
+class OffsetLandformMasks final : public terrain::LandformMasks
+{
+public:
+    OffsetLandformMasks(std::shared_ptr<const terrain::LandformMasks> source, const glm::dvec3& offset)
+        : mSource(std::move(source)), mOffset(offset)
+    {
+    }
+
+    void landformMasks(const double* x, const double* z, std::size_t n, glm::vec4* out) const override
+    {
+        std::vector<double> sx(n), sz(n);
+        for (std::size_t i = 0; i < n; ++i) {
+            sx[i] = x[i] - mOffset.x;
+            sz[i] = z[i] - mOffset.z;
+        }
+        mSource->landformMasks(sx.data(), sz.data(), n, out);
+    }
+
+private:
+    std::shared_ptr<const terrain::LandformMasks> mSource;
+    glm::dvec3 mOffset;
+};
+
+} // namespace
 
 Scene offsetScene(Scene scene, const glm::dvec3& offset)
 {
@@ -39,6 +70,15 @@ Scene offsetScene(Scene scene, const glm::dvec3& offset)
     if (scene.buildField) {
         scene.buildField = [build = scene.buildField, offset](std::uint64_t seed) -> terrain::DensityFieldPtr {
             return std::make_shared<terrain::TranslateField>(build(seed), offset);
+        };
+    }
+    if (scene.landformMasks) scene.landformMasks = std::make_shared<OffsetLandformMasks>(scene.landformMasks, offset);
+    if (scene.buildLandformMasks) {
+        scene.buildLandformMasks = [build = scene.buildLandformMasks,
+                                    offset](std::uint64_t seed) -> std::shared_ptr<const terrain::LandformMasks> {
+            std::shared_ptr<const terrain::LandformMasks> masks = build(seed);
+            if (!masks) return masks;
+            return std::make_shared<OffsetLandformMasks>(std::move(masks), offset);
         };
     }
     scene.region.min += offset;

@@ -21,7 +21,10 @@ QualityTable readQuality(TableReader& root);
 /// `baseDir` resolves relative file names. Throws strata::Error
 /// "SOURCE:LINE: material.KEY ..." for unknown keys, wrong types,
 /// out-of-range values and unknown built-in sets; also for a map file that
-/// is missing ("... no such file").
-void readMaterial(TableReader& root, MaterialSettings& settings, const std::filesystem::path& baseDir);
+/// is missing ("... no such file"), and for a layer band on the landform
+/// masks (flow, wear, deposition, water) when `landformSource` is false
+/// (the terrain has no `erode` node).
+void readMaterial(TableReader& root, MaterialSettings& settings, const std::filesystem::path& baseDir,
+                  bool landformSource);
 
 } // namespace strata::scene

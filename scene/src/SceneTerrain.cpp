@@ -1,5 +1,7 @@
 #include "SceneTerrain.h"
 
+#include <strata/terrain/ErodedHeightfield.h>
+
 #include "HeightImageFile.h"
 
 #include <strata/Error.h>
@@ -65,8 +67,8 @@ class NodeBuilder
 {
 public:
     NodeBuilder(const toml::table* nodes, const std::string& source, const std::filesystem::path& baseDirectory,
-                std::uint64_t seed, ImageCache& images)
-        : mNodes(nodes), mSource(source), mBase(baseDirectory), mSeed(seed), mImages(images)
+                std::uint64_t seed, ImageCache& images, const NodeBuildContext& context)
+        : mNodes(nodes), mSource(source), mBase(baseDirectory), mSeed(seed), mImages(images), mContext(context)
     {
     }
 
@@ -100,10 +102,23 @@ public:
         t.finish();
         mVisiting.erase(name);
         mBuilt.emplace(name, field);
+        if (auto masks = std::dynamic_pointer_cast<const LandformMasks>(field)) mLandform.emplace(name, masks);
+        if (auto eroded = std::dynamic_pointer_cast<const ErodedHeightfield>(field); eroded && !mPassOf.count(eroded.get())) {
+            mPassOf.insert(eroded.get());
+            const ErodedGrid& grid = eroded->grid();
+            mPasses.push_back({name, std::size_t(grid.width) * std::size_t(grid.height),
+                               ErodedHeightfield::peakBytes(eroded->options()), grid.seconds, eroded->cached(),
+                               grid.budget.steps});
+        }
         return field;
     }
 
     bool isBuilt(const std::string& name) const { return mBuilt.count(name) > 0; }
+
+    /// The built nodes with landform masks (erode nodes), by name.
+    const std::map<std::string, LandformMasksPtr>& landformNodes() const { return mLandform; }
+    /// The erode nodes' passes, in build order.
+    const std::vector<LandformPass>& passes() const { return mPasses; }
 
 private:
     /// Reads every key of `type` from `t` into arguments: types and ranges
@@ -118,6 +133,7 @@ private:
             seed = deriveSeed(mSeed, std::uint64_t(stream));
         }
         NodeArgs args(name, seed);
+        args.setContext(mContext);
         for (const NodeKey& key : type.keys) {
             if (key.required && !t.has(key.name)) t.fail(nullptr, key.name, "is required (" + key.description + ")");
             if (t.has(key.name)) args.markGiven(key.name);
@@ -255,8 +271,48 @@ private:
     std::uint64_t mSeed;
     ImageCache& mImages;
     std::map<std::string, DensityFieldPtr> mBuilt;
+    std::map<std::string, LandformMasksPtr> mLandform;
+    NodeBuildContext mContext;
+    std::vector<LandformPass> mPasses;
+    std::set<const void*> mPassOf;
     std::set<std::string> mVisiting;
 };
+
+/// "'a', 'b'" for messages.
+std::string quotedNames(const std::map<std::string, LandformMasksPtr>& nodes)
+{
+    std::string out;
+    for (const auto& [name, masks] : nodes) out += (out.empty() ? "'" : ", '") + name + "'";
+    return out;
+}
+
+/// The landform source of a built tree: `terrain.masks` when given (it
+/// must name one of `nodes`), else the only one of `nodes`, else null.
+LandformMasksPtr chooseLandformMasks(TableReader& terrain, const std::map<std::string, LandformMasksPtr>& nodes)
+{
+    if (terrain.has("masks")) {
+        const std::string name = terrain.string("masks", "");
+        auto found = nodes.find(name);
+        if (found == nodes.end()) {
+            terrain.fail(nullptr, "masks",
+                         "= '" + name + "' is not a node with landform masks" +
+                             (nodes.empty() ? std::string(": the tree has none (add an `erode` node)")
+                                            : " (one of " + quotedNames(nodes) + ")"));
+        }
+        return found->second;
+    }
+    // Names that lead to the same node (a `heightfield` whose `height` is an
+    // erode node is that node) are one source.
+    std::set<const terrain::LandformMasks*> distinct;
+    for (const auto& [name, masks] : nodes) distinct.insert(masks.get());
+    if (distinct.size() > 1) {
+        terrain.fail(nullptr, "masks",
+                     "is required: the tree has " + std::to_string(nodes.size()) + " nodes with landform masks (" +
+                         quotedNames(nodes) + "); name the one layer rules read, e.g. masks = '" +
+                         nodes.begin()->first + "'");
+    }
+    return nodes.empty() ? nullptr : nodes.begin()->second;
+}
 
 } // namespace
 
@@ -273,8 +329,8 @@ const std::vector<std::string>& terrainNodeTypes()
 namespace {
 
 /// Builds the tree of [terrain] in `table`; see readTerrainNodes.
-DensityFieldPtr buildTree(const toml::table* table, const std::string& source,
-                          const std::filesystem::path& baseDirectory, ImageCache& images, std::uint64_t seed)
+TerrainTree buildTree(const toml::table* table, const std::string& source, const std::filesystem::path& baseDirectory,
+                      ImageCache& images, std::uint64_t seed, const NodeBuildContext& context)
 {
     TableReader terrain(table, "terrain", source);
     if (!terrain.has("root")) {
@@ -283,8 +339,11 @@ DensityFieldPtr buildTree(const toml::table* table, const std::string& source,
     const std::string rootName = terrain.string("root", "");
     const toml::node* nodesNode = terrain.node("nodes");
     if (nodesNode && !nodesNode->is_table()) terrain.fail(nodesNode, "nodes", "must be a table of named node tables");
-    NodeBuilder nodes(nodesNode ? nodesNode->as_table() : nullptr, source, baseDirectory, seed, images);
-    DensityFieldPtr root = nodes.build(rootName, terrain, "root");
+    NodeBuilder nodes(nodesNode ? nodesNode->as_table() : nullptr, source, baseDirectory, seed, images, context);
+    TerrainTree tree;
+    tree.root = nodes.build(rootName, terrain, "root");
+    tree.landformMasks = chooseLandformMasks(terrain, nodes.landformNodes());
+    tree.passes = nodes.passes();
     terrain.finish();
     // A node that nothing uses is most likely a mistake (a misspelt name).
     if (nodesNode) {
@@ -295,26 +354,43 @@ DensityFieldPtr buildTree(const toml::table* table, const std::string& source,
             }
         }
     }
-    return root;
+    return tree;
 }
+
+/// The last tree built, by seed (a rebuild for --seed builds the erosion
+/// of an `erode` node once for the root and its masks).
+struct LastTree
+{
+    std::mutex mutex;
+    std::uint64_t seed = 0;
+    TerrainTree tree;
+};
 
 } // namespace
 
 TerrainBuilder readTerrainNodes(const toml::table* terrainTable, const std::string& source,
                                 const std::filesystem::path& baseDirectory, std::uint64_t seed,
-                                std::vector<std::filesystem::path>* inputFiles)
+                                std::vector<std::filesystem::path>* inputFiles, std::uint64_t maxMemoryBytes)
 {
+    const NodeBuildContext context{maxMemoryBytes};
     auto images = std::make_shared<ImageCache>();
     // Built once now, from the parsed document, so errors carry its lines.
-    buildTree(terrainTable, source, baseDirectory, *images, seed);
+    auto last = std::make_shared<LastTree>();
+    last->seed = seed;
+    last->tree = buildTree(terrainTable, source, baseDirectory, *images, seed, context);
     if (inputFiles)
         for (const auto& [path, image] : images->images) inputFiles->push_back(path); // a sorted map
     // Rebuilds (another seed) work on a copy of the table, which cannot fail
     // where this one did not (images are cached).
     auto table = std::make_shared<toml::table>(terrainTable ? *terrainTable : toml::table{});
     auto sourceCopy = std::make_shared<std::string>(source);
-    return [table, sourceCopy, images, baseDirectory](std::uint64_t s) -> DensityFieldPtr {
-        return buildTree(table.get(), *sourceCopy, baseDirectory, *images, s);
+    return [table, sourceCopy, images, baseDirectory, last, context](std::uint64_t s) -> TerrainTree {
+        std::lock_guard<std::mutex> lock(last->mutex);
+        if (last->seed != s) {
+            last->tree = buildTree(table.get(), *sourceCopy, baseDirectory, *images, s, context);
+            last->seed = s;
+        }
+        return last->tree;
     };
 }
 

@@ -21,6 +21,7 @@
 #include "TableReader.h"
 
 #include <strata/terrain/DensityField.h>
+#include <strata/terrain/LandformMasks.h>
 
 #include <cstdint>
 #include <filesystem>
@@ -29,28 +30,51 @@
 #include <string>
 #include <vector>
 
+#include <strata/scene/Scene.h>
+
 namespace strata::scene {
 
 using DensityFieldPtr = std::shared_ptr<const terrain::DensityField>;
+using LandformMasksPtr = std::shared_ptr<const terrain::LandformMasks>;
 
-/// Makes the terrain's root field for a seed (`strata generate --seed`
-/// rebuilds it). Each noise node's seed is derived from the scene seed and
-/// the node's `seed` key (by default a hash of the node's name).
-using TerrainBuilder = std::function<DensityFieldPtr(std::uint64_t seed)>;
+/// The node tree built for one seed.
+struct TerrainTree
+{
+    DensityFieldPtr root;
+    /// The node whose landform masks layer rules read: the tree's one node
+    /// that implements terrain::LandformMasks (an `erode` node), or the one
+    /// `[terrain] masks = "NAME"` names when it has several; null when it
+    /// has none.
+    LandformMasksPtr landformMasks;
+    /// The erode nodes' global passes, in the order they were built.
+    std::vector<LandformPass> passes;
+};
+
+/// Makes the terrain's tree for a seed (`strata generate --seed` rebuilds
+/// it). Each noise node's seed is derived from the scene seed and the
+/// node's `seed` key (by default a hash of the node's name). The last tree
+/// built is kept: asking again for its seed (the root, then the masks)
+/// builds nothing. Thread-safe.
+using TerrainBuilder = std::function<TerrainTree(std::uint64_t seed)>;
 
 /// The node type names the scene file accepts, sorted.
 const std::vector<std::string>& terrainNodeTypes();
 
-/// Reads [terrain] in its node form (`root` and [terrain.nodes.*]) and
-/// returns a builder for it. The tree is built once here with `seed`, so every
-/// error surfaces now: unknown node types, keys or child names, cycles, values
-/// out of range, NaN or infinite, missing or unreadable heightmap images.
+/// Reads [terrain] in its node form (`root`, `masks` and [terrain.nodes.*])
+/// and returns a builder for it. The tree is built once here with `seed`
+/// (and kept for that seed), so every error surfaces now: unknown node
+/// types, keys or child names, cycles, values out of range, NaN or
+/// infinite, missing or unreadable heightmap images, a `masks` that names
+/// no node with landform masks, several such nodes without `masks`.
 /// `inputFiles` (may be null) receives the image files read, sorted.
 /// Relative image paths are taken from `baseDirectory` (the scene file's
 /// folder). Throws strata::Error "SOURCE:LINE: terrain.nodes.NAME.KEY ...".
 /// `terrainTable` must be the reader of [terrain]; its keys are consumed.
+/// `maxMemoryBytes` (0: none) refuses, before any work, an erode node whose
+/// pass would need more (strata::Error BadInput at its cell_size key).
 TerrainBuilder readTerrainNodes(const toml::table* terrainTable, const std::string& source,
                                 const std::filesystem::path& baseDirectory, std::uint64_t seed,
-                                std::vector<std::filesystem::path>* inputFiles = nullptr);
+                                std::vector<std::filesystem::path>* inputFiles = nullptr,
+                                std::uint64_t maxMemoryBytes = 0);
 
 } // namespace strata::scene

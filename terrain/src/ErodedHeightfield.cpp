@@ -241,6 +241,7 @@ std::size_t ErodedHeightfield::peakBytes(const ErodeOptions& o)
 
 ErodedHeightfield::ErodedHeightfield(HeightNodePtr input, HeightNodePtr upliftMap, const ErodeOptions& o,
                                      const std::function<bool(double)>& progress)
+    : mOptions(o)
 {
     for (int a = 0; a < 2; ++a) {
         if (!(o.max[a] > o.min[a])) {

@@ -2,6 +2,7 @@
 // backends auto/gl/cpu, camera presets and flags, turntables, EXR, bad
 // values, and the default scene on GL versus the CPU renderer.
 
+#include "ErodedScene.h"
 #include "RunStrata.h"
 #include "TestDir.h"
 
@@ -266,6 +267,38 @@ TEST(SnapshotCommand, DebugViewsShowTheMaterialInsteadOfTheLitImage)
         baseColoured += std::abs(p[0] - 124) <= 1 && std::abs(p[1] - 124) <= 1 && std::abs(p[2] - 124) <= 1;
     }
     EXPECT_GT(baseColoured, int(layerView.pixels.size() / 4 / 50)) << "the surface shows the base layer's colour";
+}
+
+TEST(SnapshotCommand, LandformDebugViewsNeedAndShowAnErodeNode)
+{
+    const auto dir = strata::test::freshTestDir();
+    writeTetrahedron(dir);
+    // A terrain without an `erode` node has no landform masks to show.
+    const Result none = run("render " + (dir / "scene.toml").string() + " --backend cpu --debug-view flow -o " +
+                                (dir / "none.png").string(),
+                            dir);
+    EXPECT_NE(none.exitCode, 0);
+    EXPECT_NE(none.output.find("debug view 'flow' needs the landform masks"), std::string::npos) << none.output;
+    EXPECT_NE(none.output.find("`erode` node"), std::string::npos) << none.output;
+    EXPECT_FALSE(std::filesystem::exists(dir / "none.png"));
+
+    std::ofstream(dir / "eroded.toml") << strata::test::erodedSceneToml()
+                                       << "[material]\ntexture_size = 64\n[snapshot]\nwidth = 96\nheight = 64\n";
+    std::vector<Image> views;
+    for (const char* view : {"flow", "wear", "deposition", "water"}) {
+        const std::filesystem::path png = dir / (std::string(view) + ".png");
+        const Result r = run("render " + (dir / "eroded.toml").string() + " --backend cpu --debug-view " + view +
+                                 " -o " + png.string(),
+                             dir);
+        ASSERT_EQ(r.exitCode, 0) << r.output;
+        views.push_back(strata::render::readImage(png));
+    }
+    EXPECT_GT(standardDeviation(views[0]), 5.0) << "the flow varies over the terrain";
+    for (std::size_t i = 0; i < views.size(); ++i) {
+        for (std::size_t j = i + 1; j < views.size(); ++j) {
+            EXPECT_LT(strata::render::fractionWithin(views[i], views[j], 2), 0.9) << i << " vs " << j;
+        }
+    }
 }
 
 /// The default scene: the presets give different, non-constant images, and

@@ -1,6 +1,7 @@
 // Writes the .glb files the Khronos validator checks (RunGltfValidator.cmake):
 // each mesher, chunked and whole, far from the origin, a lone chunk, a
-// simplified mesh and an empty one. Usage: write_glb_samples DIR
+// simplified mesh, one with the terrain attributes and an empty one.
+// Usage: write_glb_samples DIR
 
 #include <strata/meshing/AnalyticShapes.h>
 #include <strata/meshing/DualContouring.h>
@@ -10,6 +11,7 @@
 #include <strata/meshing/Simplify.h>
 #include <strata/meshing/SurfaceNets.h>
 
+#include <cmath>
 #include <exception>
 #include <filesystem>
 #include <iostream>
@@ -58,6 +60,14 @@ int main(int argc, char** argv)
         simple.ratio = 0.2;
         simple.maxError = 0.05;
         writeGlb(simplify(nets, simple), dir / "torus-simplified.glb");
+
+        // Terrain attributes: _SURFACE (VEC2) and _LANDFORM (VEC4) beside the normals.
+        TriangleMesh attributed = nets;
+        for (const glm::vec3& p : attributed.positions) {
+            attributed.surface.emplace_back(0.5f + 0.5f * p.y / 8.0f, p.y > 0.0f ? 1.0f : 0.0f);
+            attributed.landform.emplace_back(std::abs(p.x), std::abs(p.z), 0.0f, p.y < 0.0f ? 1.0f : 0.0f);
+        }
+        writeGlb(attributed, dir / "torus-terrain-attributes.glb");
 
         writeGlb(TriangleMesh{}, dir / "empty.glb");
     } catch (const std::exception& e) {

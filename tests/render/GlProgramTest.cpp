@@ -18,6 +18,7 @@
 #include <iostream>
 #include <memory>
 #include <string>
+#include <utility>
 
 namespace {
 
@@ -255,6 +256,13 @@ TEST(GlProgram, TheLayerBlockMatchesItsStd140MirrorInCpp)
         const std::string layer = "uLayerSet.layers[" + std::to_string(i) + "].";
         const std::size_t base = offsetof(detail::LayerSetBlock, layers) + std::size_t(i) * sizeof(strata::shading::LayerParams);
         EXPECT_EQ(uniformOffset(p, layer + "slope"), GLint(base + offsetof(strata::shading::LayerParams, slope))) << layer;
+        for (const auto& [name, offset] : {std::pair{"flow", offsetof(strata::shading::LayerParams, flow)},
+                                           std::pair{"wear", offsetof(strata::shading::LayerParams, wear)},
+                                           std::pair{"deposition", offsetof(strata::shading::LayerParams, deposition)},
+                                           std::pair{"water", offsetof(strata::shading::LayerParams, water)},
+                                           std::pair{"noise", offsetof(strata::shading::LayerParams, noise)}}) {
+            EXPECT_EQ(uniformOffset(p, layer + name), GLint(base + offset)) << layer << name;
+        }
         EXPECT_EQ(uniformOffset(p, layer + "tileOffset"), GLint(base + offsetof(strata::shading::LayerParams, tileOffset)))
             << layer;
         EXPECT_EQ(uniformOffset(p, layer + "mapScale"), GLint(base + offsetof(strata::shading::LayerParams, mapScale)))

@@ -20,8 +20,11 @@
 
 #include <cmath>
 #include <iostream>
+#include <limits>
 #include <memory>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace {
 
@@ -122,9 +125,9 @@ struct LayerFixture
         world.viewDir = glm::vec3(0.0f, 1.0f, 0.0f);
         world.detailOffset = glm::vec3(0.0f);
     }
-    shading::SurfaceOutput evaluate(glm::vec2 surface = glm::vec2(0.0f)) const
+    shading::SurfaceOutput evaluate(glm::vec2 surface = glm::vec2(0.0f), glm::vec4 landform = glm::vec4(0.0f)) const
     {
-        return shading::evaluateLayers<feature::ALL, ConstantMaps>(maps, set, world, surface);
+        return shading::evaluateLayers<feature::ALL, ConstantMaps>(maps, set, world, surface, landform);
     }
     void cover(int i, float opacity) { set.layers[i].opacity = opacity; }
 };
@@ -225,6 +228,94 @@ TEST(TerrainLayers, RulesReadSlopeAltitudeCavityAndCover)
     EXPECT_FLOAT_EQ(f.evaluate(glm::vec2(0.6f, 1.0f)).albedo.x, f.maps.albedo[1].x);
 }
 
+TEST(TerrainLayers, RulesReadTheLandformMasks)
+{
+    LayerFixture f(2);
+    const float layer = f.maps.albedo[1].x;
+    const float base = f.maps.albedo[0].x;
+    auto shown = [&f](glm::vec4 landform) { return f.evaluate(glm::vec2(0.0f), landform).albedo.x; };
+    // Each band on its own component, the layer where it is at least
+    // `from`: flow 10^5 m² (a river), wear 2 m, deposition 0.5 m, water ½.
+    using shading::LayerParams;
+    glm::vec4 LayerParams::*bands[4] = {&LayerParams::flow, &LayerParams::wear, &LayerParams::deposition,
+                                        &LayerParams::water};
+    const float from[4] = {5.0f, 2.0f, 0.5f, 0.5f};
+    for (int k = 0; k < 4; ++k) {
+        f.set.layers[1].*bands[k] = glm::vec4(from[k], 1e30f, 0.0f, 1.0f);
+        EXPECT_FLOAT_EQ(f.evaluate().albedo.x, base) << k; // no landform reads 0
+        glm::vec4 below(0.0f), at(0.0f), others(9.0f);
+        below[k] = from[k] * 0.9f;
+        at[k] = from[k];
+        others[k] = 0.0f;
+        EXPECT_FLOAT_EQ(shown(below), base) << k;
+        EXPECT_FLOAT_EQ(shown(at), layer) << k;
+        EXPECT_FLOAT_EQ(shown(others), base) << k; // only its own component counts
+        (f.set.layers[1].*bands[k]).w = 0.0f;
+    }
+    // Every enabled band multiplies: wet (water) and worn (wear) together.
+    f.set.layers[1].water = glm::vec4(0.5f, 1.0f, 0.0f, 1.0f);
+    f.set.layers[1].wear = glm::vec4(2.0f, 1e30f, 0.0f, 1.0f);
+    EXPECT_FLOAT_EQ(shown(glm::vec4(0.0f, 0.0f, 0.0f, 1.0f)), base);
+    EXPECT_FLOAT_EQ(shown(glm::vec4(0.0f, 3.0f, 0.0f, 1.0f)), layer);
+}
+
+TEST(TerrainLayers, LandformBandsReachTheShaderAndItsChecks)
+{
+    Material m;
+    MaterialLayer river;
+    river.name = "river";
+    river.rule.flow = {true, 5.0f, 8.0f, 0.5f};
+    river.rule.water = {true, 0.2f, 1.0f, 0.1f};
+    m.layers.push_back(river);
+    EXPECT_TRUE(usesLandform(m.layers[0].rule));
+    EXPECT_FALSE(usesLandform(LayerRule{}));
+    const shading::LayerSetParams set = strata::render::detail::makeLayerSet(m, glm::dvec3(1e6), feature::ALL);
+    EXPECT_EQ(set.layers[1].flow, glm::vec4(5.0f, 8.0f, 0.5f, 1.0f)); // not shifted by the origin
+    EXPECT_EQ(set.layers[1].water, glm::vec4(0.2f, 1.0f, 0.1f, 1.0f));
+    EXPECT_EQ(set.layers[1].wear.w, 0.0f);
+    EXPECT_EQ(set.layers[0].flow.w, 0.0f);
+    EXPECT_NO_THROW(checkMaterial(m));
+    for (LayerBand LayerRule::*band : {&LayerRule::flow, &LayerRule::wear, &LayerRule::deposition, &LayerRule::water}) {
+        Material bad = m;
+        bad.layers[0].rule.*band = {true, 3.0f, 1.0f, 0.0f};
+        EXPECT_THROW(checkMaterial(bad), strata::Error);
+        bad.layers[0].rule.*band = {true, 0.0f, 1.0f, -1.0f};
+        EXPECT_THROW(checkMaterial(bad), strata::Error);
+    }
+    m.layers[0].rule.deposition = {true, 3.0f, 1.0f, 0.0f};
+    try {
+        checkMaterial(m);
+        FAIL() << "a deposition band with min > max was accepted";
+    } catch (const strata::Error& e) {
+        EXPECT_NE(std::string(e.what()).find("material layer 'river': deposition band"), std::string::npos) << e.what();
+    }
+}
+
+TEST(TerrainLayers, LandformDebugRampsSpanTheirRanges)
+{
+    shading::SurfaceOutput o{};
+    const glm::vec4 zero(0.0f);
+    const glm::vec4 high(7.0f, 20.0f, 20.0f, 1.0f);
+    for (int view : {shading::DEBUG_VIEW_FLOW, shading::DEBUG_VIEW_WEAR, shading::DEBUG_VIEW_DEPOSITION,
+                     shading::DEBUG_VIEW_WATER}) {
+        const glm::vec3 lo = shading::fragmentDebugColor(o, zero, view);
+        const glm::vec3 hi = shading::fragmentDebugColor(o, high, view);
+        EXPECT_GT(glm::length(hi - lo), 0.5f) << view;
+        // Clamped beyond the range; brighter with more.
+        EXPECT_EQ(shading::fragmentDebugColor(o, high * 3.0f, view), hi) << view;
+        EXPECT_EQ(shading::fragmentDebugColor(o, -high, view), lo) << view;
+        EXPECT_GT(hi.x + hi.y + hi.z, lo.x + lo.y + lo.z) << view;
+        // Only its own component counts.
+        glm::vec4 others = high;
+        others[view - shading::DEBUG_VIEW_FLOW] = 0.0f;
+        EXPECT_EQ(shading::fragmentDebugColor(o, others, view), lo) << view;
+    }
+    // The material's views are debugViewColor()'s.
+    o.metallic = 0.5f;
+    EXPECT_EQ(shading::fragmentDebugColor(o, high, shading::DEBUG_VIEW_METALLIC),
+              shading::debugViewColor(o, shading::DEBUG_VIEW_METALLIC));
+}
+
 TEST(TerrainLayers, ExtremeInputsStayFinite)
 {
     LayerFixture f(4);
@@ -232,13 +323,14 @@ TEST(TerrainLayers, ExtremeInputsStayFinite)
     f.cover(1, 0.5f);
     f.set.layers[2].noise = glm::vec4(1000.0f, 0.5f, 0.0f, 1.0f);
     f.set.layers[3].slope = glm::vec4(-1e30f, 1e30f, 1e6f, 1.0f);
+    f.set.layers[2].flow = glm::vec4(0.0f, 7.0f, 0.5f, 1.0f);
     const glm::vec3 normals[] = {glm::vec3(0.0f), glm::vec3(1e-30f, 0.0f, 0.0f), glm::vec3(0.0f, -1.0f, 0.0f),
                                  glm::normalize(glm::vec3(1.0f))};
     for (const glm::vec3& n : normals) {
         f.world.n = n;
         for (float y : {-1e9f, 0.0f, 1e9f}) {
             f.world.p = glm::vec3(1e7f, y, -1e7f);
-            EXPECT_TRUE(finite(f.evaluate(glm::vec2(1.0f, 1.0f)))) << y;
+            EXPECT_TRUE(finite(f.evaluate(glm::vec2(1.0f, 1.0f), glm::vec4(1e30f, -1e30f, 1e9f, 1.0f)))) << y;
         }
     }
 }
@@ -512,6 +604,137 @@ TEST(TerrainLayers, TheLayersDebugViewShowsWhereEachLayerIs)
     const Image base = renderSnapshotCpu(mesh.view(), options);
     const std::uint8_t* q = base.at(x, y);
     EXPECT_NEAR(q[0], q[2], 2);
+}
+
+/// groundWithBlock()'s landform: `block` on the block's vertices (from 24
+/// on), `ground` on the slab's.
+std::vector<glm::vec4> blockLandform(const TestMesh& mesh, glm::vec4 ground, glm::vec4 block)
+{
+    std::vector<glm::vec4> landform(mesh.positions.size(), ground);
+    for (std::size_t i = 24; i < landform.size(); ++i) landform[i] = block;
+    return landform;
+}
+
+/// The pixel where world point `p` projects (mesh origin 0).
+glm::ivec2 projectPixel(const SnapshotOptions& options, const glm::dvec3& p)
+{
+    const glm::dvec4 clip = glm::dmat4(projectionMatrix(options.camera, double(options.width) / options.height)) *
+                            glm::dmat4(viewMatrix(options.camera, glm::dvec3(0.0))) * glm::dvec4(p, 1.0);
+    return {int((clip.x / clip.w * 0.5 + 0.5) * options.width), int((0.5 - clip.y / clip.w * 0.5) * options.height)};
+}
+
+/// groundWithBlock()'s block top centre (just below, inside the face) and
+/// the ground between the block and the camera.
+std::pair<glm::ivec2, glm::ivec2> blockAndGroundPixels(const SnapshotOptions& options)
+{
+    const glm::dvec3 towards = glm::normalize(glm::dvec3(options.camera.position.x, 0.0, options.camera.position.z));
+    return {projectPixel(options, glm::dvec3(0.0, 2.5, 0.0)) + glm::ivec2(0, 2), projectPixel(options, towards * 3.0)};
+}
+
+void writeOnFailure(bool failed, const std::string& name, const Image& gl, const Image& cpu)
+{
+    if (!failed) return;
+    const auto dir = strata::test::freshTestDir();
+    writeImage(gl, dir / (name + "-gl.png"));
+    writeImage(cpu, dir / (name + "-cpu.png"));
+    std::cout << "  wrote " << dir.string() << std::endl;
+}
+
+TEST(TerrainLayers, LandformReachesTheRulesOnBothRenderers)
+{
+    // Flow 6 (a river's drainage area) on the block, 1 on the ground: the
+    // "river" layer (flow >= 5) paints the block only.
+    const TestMesh mesh = groundWithBlock();
+    const std::vector<glm::vec4> landform =
+        blockLandform(mesh, glm::vec4(1.0f, 0.0f, 0.0f, 0.0f), glm::vec4(6.0f, 0.0f, 0.0f, 0.0f));
+    strata::render::MeshView view = mesh.view();
+    SnapshotOptions options = strata::test::goldenOptions(mesh, "albedo", 320, 180);
+    const Image plain = renderSnapshotCpu(view, options);
+    MaterialLayer river;
+    river.name = "river";
+    river.material.albedoTint = glm::vec3(0.05f, 0.05f, 0.9f);
+    river.rule.flow = {true, 5.0f, std::numeric_limits<float>::infinity(), 0.5f};
+    options.material.layers.push_back(river);
+    // No landform reads 0: the layer shows nowhere.
+    const Image without = renderSnapshotCpu(view, options);
+    const Image withoutGl = renderSnapshot(context(), view, options);
+    EXPECT_GE(psnr(without, plain), 60.0);
+    EXPECT_GE(psnr(withoutGl, without), 40.0);
+    // With the surface attributes too: the landform follows them in GL's vertex buffer.
+    const std::vector<glm::vec2> surface(mesh.positions.size(), glm::vec2(0.7f, 1.0f));
+    view.surface = surface.data();
+    view.landform = landform.data();
+    const Image cpu = renderSnapshotCpu(view, options);
+    const Image gl = renderSnapshot(context(), view, options);
+    const double p = psnr(gl, cpu);
+    std::cout << "[ landform ] GL vs CPU, flow band: PSNR " << p << " dB" << std::endl;
+    EXPECT_LT(psnr(cpu, without), 30.0);
+    EXPECT_GE(p, 40.0);
+    EXPECT_GE(fractionWithin(gl, cpu, 2), 0.99);
+    writeOnFailure(p < 40.0, "landform", gl, cpu);
+    // The block is blue, the ground in front of it is not.
+    const auto [block, front] = blockAndGroundPixels(options);
+    const std::uint8_t* top = cpu.at(block.x, block.y);
+    EXPECT_GT(top[2], top[0] + 40);
+    const std::uint8_t* ground = cpu.at(front.x, front.y);
+    EXPECT_LT(ground[2], ground[0] + 40);
+    EXPECT_NEAR(int(ground[2]), int(without.at(front.x, front.y)[2]), 2);
+}
+
+TEST(TerrainLayers, AnAbsentLandformReadsZeroOnGlToo)
+{
+    // GL's constant for a disabled attribute is (0, 0, 0, 1): the renderer
+    // must set water 0 itself, or a "dry" layer (water <= 0.5) would vanish.
+    const TestMesh mesh = groundWithBlock();
+    SnapshotOptions options = strata::test::goldenOptions(mesh, "albedo", 160, 90);
+    const Image plain = renderSnapshotCpu(mesh.view(), options);
+    MaterialLayer dry;
+    dry.name = "dry";
+    dry.material.albedoTint = glm::vec3(0.9f, 0.1f, 0.05f);
+    dry.rule.water = {true, -std::numeric_limits<float>::infinity(), 0.5f, 0.0f};
+    options.material.layers.push_back(dry);
+    const Image cpu = renderSnapshotCpu(mesh.view(), options);
+    const Image gl = renderSnapshot(context(), mesh.view(), options);
+    EXPECT_LT(psnr(cpu, plain), 30.0); // the dry layer shows
+    EXPECT_GE(psnr(gl, cpu), 40.0);
+    const std::uint8_t* centre = gl.at(80, 45);
+    EXPECT_GT(centre[0], centre[2] + 40);
+}
+
+TEST(TerrainLayers, LandformDebugViewsShowTheMasksOnBothRenderers)
+{
+    const TestMesh mesh = groundWithBlock();
+    const std::vector<glm::vec4> landform =
+        blockLandform(mesh, glm::vec4(1.0f, 2.0f, 0.5f, 0.0f), glm::vec4(6.5f, 15.0f, 12.0f, 1.0f));
+    strata::render::MeshView view = mesh.view();
+    view.landform = landform.data();
+    SnapshotOptions options = layerOptions(mesh);
+    options.width = 240;
+    options.height = 135;
+    const auto [top, ground] = blockAndGroundPixels(options);
+    std::vector<Image> images;
+    for (DebugView v : {DebugView::Flow, DebugView::Wear, DebugView::Deposition, DebugView::Water}) {
+        options.debugView = v;
+        ASSERT_TRUE(isLandformView(v));
+        const Image cpu = renderSnapshotCpu(view, options);
+        const Image gl = renderSnapshot(context(), view, options);
+        const double p = psnr(gl, cpu);
+        EXPECT_GE(p, 40.0) << debugViewName(v);
+        writeOnFailure(p < 40.0, debugViewName(v), gl, cpu);
+        // More of the mask on the block: brighter there than on the ground.
+        const std::uint8_t* a = cpu.at(top.x, top.y);
+        const std::uint8_t* b = cpu.at(ground.x, ground.y);
+        EXPECT_GT(a[0] + a[1] + a[2], b[0] + b[1] + b[2] + 60) << debugViewName(v);
+        // The colour is the ramp's, whatever the material.
+        const glm::vec3 expected = shading::landformDebugColor(landform.back(), int(v));
+        EXPECT_NEAR(a[0], std::lround(shading::linearToSrgb(expected.r) * 255.0f), 3) << debugViewName(v);
+        EXPECT_NEAR(a[2], std::lround(shading::linearToSrgb(expected.b) * 255.0f), 3) << debugViewName(v);
+        images.push_back(cpu);
+    }
+    for (std::size_t i = 0; i < images.size(); ++i) {
+        for (std::size_t j = i + 1; j < images.size(); ++j) EXPECT_LT(psnr(images[i], images[j]), 30.0) << i << j;
+    }
+    EXPECT_STREQ(debugViewName(DebugView::Deposition), "deposition");
 }
 
 } // namespace

@@ -6,11 +6,14 @@
 
 #include <strata/Error.h>
 
+#include "ErodedScene.h"
 #include "SceneParseError.h"
 
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <iterator>
+#include <set>
 #include <string>
 
 using strata::scene::parseScene;
@@ -132,4 +135,98 @@ TEST(SceneLayers, MaterialQualityKnobsReachEveryLayer)
         EXPECT_TRUE(layer.material.parameters.antiTiling) << layer.material.name;
         EXPECT_EQ(layer.material.parameters.projections, 2) << layer.material.name;
     }
+}
+
+
+TEST(SceneLayers, LandformBandsNeedAnErodeNode)
+{
+    // Without a landform source, any flow, wear, deposition or water bound
+    // is an error at its key.
+    EXPECT_EQ(parseError("[[layer]]\nname = \"river\"\nflow_min = 5\n"),
+              "test.toml:3: layer[1].flow_min = 5 needs the landform masks of erosion: add an `erode` node to the "
+              "terrain tree ([terrain.nodes]), or remove the flow band");
+    for (const char* key : {"wear_max", "deposition_min", "water_min"}) {
+        const std::string message = parseError("[[layer]]\n[[layer]]\n" + std::string(key) + " = 0.5\n");
+        EXPECT_NE(message.find("test.toml:3: layer[2]." + std::string(key) + " = 0.5 needs the landform masks"),
+                  std::string::npos)
+            << message;
+        EXPECT_NE(message.find("`erode` node"), std::string::npos) << message;
+    }
+    // A softness alone enables nothing: no error, no band.
+    const Scene soft = parseScene("[[layer]]\nflow_softness = 2\n", "soft.toml");
+    EXPECT_FALSE(soft.material.layers.at(0).rule.flow.enabled);
+    EXPECT_FALSE(soft.landformMasks);
+    EXPECT_FALSE(soft.buildLandformMasks);
+}
+
+TEST(SceneLayers, LandformBandRangesNameTheirKeys)
+{
+    // Checked before the landform source: the bad value is the first error.
+    EXPECT_EQ(parseError("[[layer]]\nflow_min = 5\nflow_max = 2\n"),
+              "test.toml:3: layer[1].flow_max = 2 must be >= flow_min (5)");
+    EXPECT_EQ(parseError("[[layer]]\nwater_max = 2\n"), "test.toml:2: layer[1].water_max = 2 is out of range [-1, 1]");
+    EXPECT_EQ(parseError("[[layer]]\ndeposition_softness = -1\n"),
+              "test.toml:2: layer[1].deposition_softness = -1 is out of range [0, 10000]");
+    EXPECT_EQ(parseError("[[layer]]\nwear_min = \"deep\"\n"),
+              "test.toml:2: layer[1].wear_min = 'deep' must be a number");
+    EXPECT_EQ(parseError("[[layer]]\nflow = 5\n"), "test.toml:2: unknown key 'layer[1].flow'");
+    // Every band key is listed.
+    std::set<std::string> keys(std::begin(strata::scene::LAYER_RULE_KEYS), std::end(strata::scene::LAYER_RULE_KEYS));
+    for (const char* band : {"flow", "wear", "deposition", "water"}) {
+        for (const char* part : {"_min", "_max", "_softness"}) EXPECT_EQ(keys.count(std::string(band) + part), 1u);
+    }
+}
+
+TEST(SceneLayers, TerrainMasksMustNameANodeWithMasks)
+{
+    const std::string tree = "[terrain]\nroot = \"land\"\nmasks = \"land\"\n" + std::string(strata::test::ERODE_LAND);
+    EXPECT_EQ(parseError(tree), "test.toml:3: terrain.masks = 'land' is not a node with landform masks: the tree has "
+                                "none (add an `erode` node)");
+    // Only the node form has a tree to pick from.
+    EXPECT_EQ(parseError("[terrain]\nmasks = \"a\"\n[terrain.height]\namplitude = 3.0\n"),
+              "test.toml:2: unknown key 'terrain.masks'");
+}
+
+TEST(SceneLayers, AnErodeNodeIsTheLandformSource)
+{
+    const std::string text =
+        strata::test::erodedSceneToml() + "[[layer]]\nname = \"river\"\nflow_min = 4\nwater_min = 0.5\nwear_max = 3\n";
+    const Scene scene = parseScene(text, "eroded.toml");
+    ASSERT_TRUE(scene.landformMasks);
+    ASSERT_TRUE(scene.buildLandformMasks);
+    const strata::render::LayerRule& rule = scene.material.layers.at(0).rule;
+    EXPECT_TRUE(rule.flow.enabled);
+    EXPECT_FLOAT_EQ(rule.flow.min, 4.0f);
+    EXPECT_FLOAT_EQ(rule.flow.softness, 0.5f);
+    EXPECT_TRUE(rule.water.enabled);
+    EXPECT_FLOAT_EQ(rule.wear.max, 3.0f);
+    EXPECT_FALSE(rule.deposition.enabled);
+    // The masks are the erode node's: the root itself here.
+    EXPECT_EQ(dynamic_cast<const strata::terrain::DensityField*>(scene.landformMasks.get()), scene.field.get());
+    const double x = 3.0, z = -2.0;
+    glm::vec4 own, again;
+    scene.landformMasks->landformMasks(&x, &z, 1, &own);
+    scene.buildLandformMasks(scene.terrain.seed)->landformMasks(&x, &z, 1, &again);
+    EXPECT_EQ(own, again);
+}
+
+TEST(SceneLayers, SeveralErodeNodesNeedTerrainMasks)
+{
+    const std::string tree = "[terrain]\nroot = \"both\"\n%MASKS%[terrain.nodes.both]\ntype = \"union\"\n"
+                             "children = [\"valley\", \"gorge\"]\n" +
+                             strata::test::erodeNodeToml("valley", "land") +
+                             strata::test::erodeNodeToml("gorge", "land") + strata::test::ERODE_LAND;
+    auto withMasks = [&tree](const std::string& masks) {
+        std::string text = tree;
+        text.replace(text.find("%MASKS%"), 7, masks);
+        return text;
+    };
+    EXPECT_EQ(parseError(withMasks("")),
+              "test.toml:1: terrain.masks is required: the tree has 2 nodes with landform masks ('gorge', "
+              "'valley'); name the one layer rules read, e.g. masks = 'gorge'");
+    EXPECT_EQ(parseError(withMasks("masks = \"land\"\n")),
+              "test.toml:3: terrain.masks = 'land' is not a node with landform masks (one of 'gorge', 'valley')");
+    const Scene scene = parseScene(withMasks("masks = \"valley\"\n") + "[[layer]]\nwater_min = 0.5\n", "two.toml");
+    EXPECT_TRUE(scene.landformMasks);
+    EXPECT_TRUE(scene.material.layers.at(0).rule.water.enabled);
 }

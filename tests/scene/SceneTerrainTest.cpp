@@ -102,7 +102,83 @@ TEST(SceneTerrain, EveryNodeTypeIsReachableFromTheSceneFile)
 root = "all"
 [terrain.nodes.all]
 type = "union"
-children = ["cut", "shapes", "stepped", "moved", "image"]
+children = ["cut", "shapes", "stepped", "moved", "image", "graph"]
+[terrain.nodes.graph]
+type = "heightfield"
+height = "detail"
+[terrain.nodes.detail]
+type = "erode_detail"
+height = "eroded"
+block = 16
+droplet_steps = 8
+[terrain.nodes.eroded]
+type = "erode"
+height = "blend"
+uplift_map = "mask"
+min = [-64, -64]
+max = [64, 64]
+cell_size = 8
+years = 1e5
+time_step = 2e4
+[terrain.nodes.blend]
+type = "height_blend"
+a = "sum"
+b = "curve"
+mask = "mask"
+[terrain.nodes.sum]
+type = "height_add"
+children = ["hills", "flat"]
+[terrain.nodes.flat]
+type = "height_constant"
+value = 2
+[terrain.nodes.curve]
+type = "height_curve"
+child = "diff"
+points = [[-10, -5], [0, 0], [10, 20]]
+[terrain.nodes.diff]
+type = "height_subtract"
+children = ["hills", "flat"]
+[terrain.nodes.mask]
+type = "height_multiply"
+children = ["slopes", "curvature"]
+[terrain.nodes.slopes]
+type = "mask_slope"
+child = "warped"
+max = 1
+[terrain.nodes.curvature]
+type = "mask_curvature"
+child = "lowest"
+min = -1
+max = 1
+[terrain.nodes.lowest]
+type = "height_min"
+children = ["hills", "highest"]
+[terrain.nodes.highest]
+type = "height_max"
+children = ["scaled", "clamped"]
+[terrain.nodes.scaled]
+type = "height_scale"
+child = "hills"
+scale = 0.5
+[terrain.nodes.clamped]
+type = "height_clamp"
+child = "terraced"
+min = -5
+max = 5
+[terrain.nodes.terraced]
+type = "height_terrace"
+child = "hills"
+step = 4
+[terrain.nodes.warped]
+type = "height_warp"
+child = "band"
+amplitude = 3
+wavelength = 30
+[terrain.nodes.band]
+type = "mask_height"
+child = "hills"
+min = -5
+max = 5
 [terrain.nodes.cut]
 type = "subtract"
 children = ["land", "worms", "cheese", "spaghetti"]
@@ -321,9 +397,11 @@ TEST(SceneTerrain, TunnelsReachTheSurfaceInTheDefaultScene)
 TEST(SceneTerrain, BadNodesNameFileLineKeyAndValue)
 {
     EXPECT_EQ(parseError(oneNode("blob", "")),
-              "test.toml:4: terrain.nodes.a.type = 'blob' is not a node type (one of box, capsule, cheese, "
-              "heightfield, image_heightfield, intersect, plane, spaghetti, sphere, subtract, terrace, translate, "
-              "union, warp, worms)");
+              "test.toml:4: terrain.nodes.a.type = 'blob' is not a node type (one of box, capsule, cheese, erode, "
+              "erode_detail, height_add, height_blend, height_clamp, height_constant, height_curve, height_max, "
+              "height_min, height_multiply, height_scale, height_subtract, height_terrace, height_warp, heightfield, "
+              "image_heightfield, intersect, mask_curvature, mask_height, mask_slope, plane, spaghetti, sphere, "
+              "subtract, terrace, translate, union, warp, worms)");
     EXPECT_EQ(parseError(oneNode("union", "children = [\"b\", \"c\"]\n[terrain.nodes.b]\ntype = \"sphere\"\n")),
               "test.toml:5: terrain.nodes.a.children = 'c' names no node: add a [terrain.nodes.c] table");
     EXPECT_EQ(parseError(oneNode("warp", "child = \"a\"\n")),

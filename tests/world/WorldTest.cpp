@@ -488,5 +488,39 @@ TEST(World, ChunkMeshBytesAreUnchanged)
         EXPECT_EQ(got[i], expected[i]) << i << ": " << std::hex << got[i];
 }
 
+TEST(World, ChunkMeshesCarryTheLandformMasksWhenGiven)
+{
+    // A fake erode node: the masks are functions of the column, so every
+    // vertex can be checked against its own world position.
+    struct ColumnMasks final : terrain::LandformMasks
+    {
+        void landformMasks(const double* x, const double* z, std::size_t n, glm::vec4* out) const override
+        {
+            for (std::size_t i = 0; i < n; ++i) out[i] = glm::vec4(float(x[i]), float(z[i]), 1.0f, 0.5f);
+        }
+    };
+    WorldOptions o = smallOptions();
+    o.landform = std::make_shared<ColumnMasks>();
+    World w(std::make_shared<terrain::PlaneField>(glm::dvec3(0.0, 1.0, 0.0), 0.2), o);
+    w.setPointsOfInterest({glm::dvec3(4.0, 0.0, 4.0)});
+    w.waitIdle();
+    std::size_t checked = 0;
+    for (const world::ChunkUpdate& u : w.poll()) {
+        ASSERT_TRUE(u.mesh);
+        const meshing::TriangleMesh& mesh = u.mesh->mesh;
+        ASSERT_EQ(mesh.landform.size(), mesh.positions.size());
+        for (std::size_t i = 0; i < mesh.positions.size(); ++i, ++checked) {
+            EXPECT_EQ(mesh.landform[i].x, float(mesh.origin.x + double(mesh.positions[i].x)));
+            EXPECT_EQ(mesh.landform[i].y, float(mesh.origin.z + double(mesh.positions[i].z)));
+        }
+    }
+    EXPECT_GT(checked, 100u);
+    // Without masks the meshes carry none.
+    World plain(std::make_shared<terrain::PlaneField>(glm::dvec3(0.0, 1.0, 0.0), 0.2), smallOptions());
+    plain.setPointsOfInterest({glm::dvec3(4.0, 0.0, 4.0)});
+    plain.waitIdle();
+    for (const world::ChunkUpdate& u : plain.poll()) EXPECT_TRUE(u.mesh->mesh.landform.empty());
+}
+
 } // namespace
 } // namespace strata::test

@@ -1,5 +1,7 @@
 #include "ChunkMesher.h"
 
+#include <strata/world/LandformAttributes.h>
+
 #include <strata/meshing/DualMesh.h>
 
 #include <glm/geometric.hpp>
@@ -142,7 +144,9 @@ CoordBBox editFootprint(const MesherParams& params, const ChunkKey& key)
 ChunkMeshData meshChunk(const terrain::DensityField& field, const MesherParams& params, const ChunkKey& key,
                         const Signature& signature, const EditSnapshot& edits, SampleCache* cache)
 {
-    return Mesher(field, params, key, signature, edits, cache).run();
+    ChunkMeshData out = Mesher(field, params, key, signature, edits, cache).run();
+    if (params.landform && !out.mesh.positions.empty()) out.mesh.landform = computeLandformAttributes(*params.landform, out.mesh);
+    return out;
 }
 
 } // namespace strata::world::detail

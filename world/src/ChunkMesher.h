@@ -9,6 +9,8 @@
 #include "Lattice.h"
 #include "SampleArray.h"
 
+#include <strata/terrain/LandformMasks.h>
+
 #include <mutex>
 #include <vector>
 
@@ -18,6 +20,7 @@ struct MesherParams
 {
     double voxelSize = 0.5;
     int chunkSize = 32;
+    const terrain::LandformMasks* landform = nullptr; ///< fills the meshes' landform when set
 };
 
 /// The voxel box of edits a chunk's mesh can depend on (its sample footprint

@@ -19,7 +19,15 @@ struct GlbOptions
     std::string name;
 };
 
-/// Writes one mesh with POSITION and NORMAL (if present) float attributes and
+/// The glTF attribute names of TriangleMesh::surface (VEC2 float: cavity,
+/// cover) and TriangleMesh::landform (VEC4 float: flow, wear, deposition,
+/// water). Application-specific, so they start with an underscore, as glTF
+/// requires; viewers ignore them.
+inline constexpr const char* SURFACE_ATTRIBUTE = "_SURFACE";
+inline constexpr const char* LANDFORM_ATTRIBUTE = "_LANDFORM";
+
+/// Writes one mesh with POSITION, NORMAL, _SURFACE and _LANDFORM (each when
+/// present, one per position) float attributes and
 /// uint32 indices — no UVs, no tangents — under one node whose translation is
 /// `mesh.origin`. The primitive carries a neutral material, light grey,
 /// dielectric and rough (pbrMetallicRoughness: baseColorFactor 0.8,
@@ -40,7 +48,8 @@ struct GlbPart
 };
 
 /// The bytes of a .glb holding one mesh named `name` with a primitive per
-/// non-empty part (POSITION, NORMAL if present, indices), under one node
+/// non-empty part (POSITION; NORMAL, _SURFACE, _LANDFORM if present;
+/// indices), under one node
 /// translated to `origin` (double precision). `compactIndices`: uint16
 /// indices for parts of at most 65535 vertices, else uint32.
 /// Throws strata::Error (Internal) if tinygltf fails.
@@ -48,12 +57,12 @@ std::string encodeGlb(const std::vector<GlbPart>& parts, const glm::dvec3& origi
                       bool compactIndices = true);
 
 /// Reads every triangle primitive of the first mesh of a .glb or .gltf
-/// file, appended in order into one mesh (normals kept only when every
-/// primitive has them). Positions stay relative to the node translation, which becomes
-/// `origin`. Images are not decoded; a .glb reads no external files.
+/// file, appended in order into one mesh (normals, _SURFACE and _LANDFORM
+/// each kept only when every primitive has them). Positions stay relative
+/// to the node translation, which becomes `origin`. Images are not decoded; a .glb reads no external files.
 /// Throws strata::Error (BadInput) naming the path on failure: a missing or
 /// sparse accessor, one that overruns its buffer view or its buffer, a stride
-/// smaller than an element, a non-finite position or normal, an index out of
+/// smaller than an element, a non-finite attribute value, an index out of
 /// range, an index count that is not a multiple of 3.
 TriangleMesh readGltf(const std::filesystem::path& path);
 

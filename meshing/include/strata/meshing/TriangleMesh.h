@@ -4,6 +4,7 @@
 
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
 
 #include <cstddef>
 #include <cstdint>
@@ -24,6 +25,12 @@ struct TriangleMesh
     /// (computeSurfaceAttributes()), or empty. Mesh operations do not carry
     /// it: compute it on the final mesh.
     std::vector<glm::vec2> surface;
+    /// Optional landform masks per vertex for terrain layer rules: x flow
+    /// (log10 of the drainage area in m²), y wear (metres eroded), z
+    /// deposition (metres of sediment), w water (0 dry .. 1 river or lake),
+    /// as terrain::LandformMasks defines them; or empty. Like `surface`,
+    /// mesh operations do not carry it.
+    std::vector<glm::vec4> landform;
 
     std::size_t vertexCount() const { return positions.size(); }
     std::size_t triangleCount() const { return indices.size() / 3; }

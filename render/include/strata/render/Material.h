@@ -72,6 +72,10 @@ struct LayerRule
     LayerBand slope;    ///< degrees from horizontal of the interpolated normal: 0 flat, 90 a wall, 180 a ceiling
     LayerBand cavity;   ///< the mesh's per-vertex cavity (MeshView::surface x), 0..1
     LayerBand cover;    ///< the mesh's per-vertex cover (MeshView::surface y): 1 under rock, 0 open sky
+    LayerBand flow;     ///< the mesh's per-vertex flow (MeshView::landform x): log10 of the drainage area in m²
+    LayerBand wear;     ///< the mesh's per-vertex wear (MeshView::landform y): metres eroded
+    LayerBand deposition; ///< the mesh's per-vertex deposition (MeshView::landform z): metres of sediment
+    LayerBand water;      ///< the mesh's per-vertex water (MeshView::landform w): 0 dry .. 1 river or lake
     /// Noise mask: three octaves of value noise in [0, 1] with features
     /// about 1/noiseFrequency metres wide; the layer shows where it exceeds
     /// noiseThreshold (ramp noiseSoftness wide). Off when noiseFrequency is 0.
@@ -81,6 +85,10 @@ struct LayerRule
     std::uint32_t noiseSeed = 0;
     float opacity = 1.0f; ///< 0..1, multiplies the coverage
 };
+
+/// Whether `rule` reads the landform masks (an enabled flow, wear,
+/// deposition or water band): the mesh then needs MeshView::landform.
+bool usesLandform(const LayerRule& rule);
 
 struct MaterialLayer;
 

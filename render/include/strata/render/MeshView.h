@@ -5,6 +5,7 @@
 
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
 
 #include <cstddef>
 #include <cstdint>
@@ -19,6 +20,12 @@ struct MeshView
     /// the cover (0 open sky .. 1 rock overhead), as layer rules read them
     /// (LayerRule::cavity, cover). Null reads (0, 0).
     const glm::vec2* surface = nullptr;
+    /// Optional, per vertex: the landform masks of erosion as layer rules
+    /// read them (LayerRule::flow, wear, deposition, water): x flow (log10
+    /// of the drainage area in m²), y wear (metres eroded), z deposition
+    /// (metres of sediment), w water (0 dry .. 1 river or lake); see
+    /// terrain::LandformMasks. Null reads (0, 0, 0, 0).
+    const glm::vec4* landform = nullptr;
     std::size_t vertexCount = 0;
     const std::uint32_t* indices = nullptr; ///< counter-clockwise seen from outside
     std::size_t indexCount = 0;             ///< multiple of 3

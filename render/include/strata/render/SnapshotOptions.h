@@ -36,11 +36,19 @@ enum class DebugView
     Smoothness = 6,       ///< grey, after detail
     Albedo = 7,           ///< albedo with tint and detail, unlit
     Layers = 8,           ///< terrain layers' weights: base dark grey, then red, green, blue, yellow, cyan, magenta, white
+    // The mesh's landform masks (MeshView::landform; 0 without), each on a colour ramp:
+    Flow = 9,        ///< log10 drainage area 0..7: dark navy, blue, pale blue
+    Wear = 10,       ///< metres eroded 0..20: dark brown, orange, pale
+    Deposition = 11, ///< metres of sediment 0..20: dark olive, ochre, sand
+    Water = 12,      ///< 0 dry .. 1 river or lake: dark grey, teal, cyan
 };
-inline constexpr int DEBUG_VIEW_COUNT = 9;
+inline constexpr int DEBUG_VIEW_COUNT = 13;
+
+/// Whether `view` shows the mesh's landform masks (Flow .. Water).
+inline bool isLandformView(DebugView view) { return view >= DebugView::Flow && view <= DebugView::Water; }
 
 /// "shaded", "weights", "normals", "metallic", "occlusion", "height",
-/// "smoothness", "albedo", "layers".
+/// "smoothness", "albedo", "layers", "flow", "wear", "deposition", "water".
 const char* debugViewName(DebugView view);
 
 struct SnapshotOptions

@@ -59,7 +59,9 @@ struct SampledTerrain
 {
     std::uint64_t seed = 0;
     std::shared_ptr<const terrain::DensityField> field; ///< the root field for `seed`
-    openvdb::FloatGrid::Ptr grid;                       ///< named "terrain"
+    /// The tree's landform source for `seed` (Scene::landformMasks), or null.
+    std::shared_ptr<const terrain::LandformMasks> landformMasks;
+    openvdb::FloatGrid::Ptr grid; ///< named "terrain"
     terrain::SampleStats stats;
 };
 
@@ -78,10 +80,23 @@ meshing::GradientFunction fieldGradient(std::shared_ptr<const terrain::DensityFi
 
 /// Stage 2: the terrain mesh, as the quality settings say, with positions
 /// relative to the region's centre (mesh.origin). `what` receives a short
-/// description of the mesher. Throws strata::Error (BadInput) when the
-/// terrain has no surface inside the region.
+/// description of the mesher. The per-vertex attributes layer rules read
+/// come with it: cavity and cover (mesh.surface) when a rule has a cavity
+/// or cover band; the landform masks (mesh.landform,
+/// computeLandformAttributes()) when a rule has a flow, wear, deposition or
+/// water band, or `withLandform` (a landform debug view; needsLandform()).
+/// Throws strata::Error (BadInput) when the terrain has no surface inside
+/// the region, or when the landform is needed and the terrain has no
+/// landform source.
 meshing::TriangleMesh meshTerrain(const Scene& scene, const QualitySettings& quality, const SampledTerrain& terrain,
-                                  std::string* what = nullptr);
+                                  std::string* what = nullptr, bool withLandform = false);
+
+/// Whether a render of `scene` with debug view `debugView` (a
+/// render::debugViewName(), or empty) needs the mesh's landform masks: a
+/// layer rule reads them, or the view is a landform view (flow, wear,
+/// deposition, water). Throws strata::Error (BadInput) when it does and the
+/// scene's terrain has no landform source (an `erode` node).
+bool needsLandform(const Scene& scene, const std::string& debugView = "");
 
 /// Stage 3: writes DIR/terrain.vdb, DIR/terrain.glb (and DIR/terrain.ply),
 /// each atomically. Throws strata::Error (I/O) naming the file on failure.

@@ -7,6 +7,7 @@
 
 #include <strata/render/Material.h>
 #include <strata/render/SnapshotOptions.h>
+#include <strata/terrain/LandformMasks.h>
 #include <strata/terrain/SampleLevelSet.h>
 #include <strata/terrain/TerrainField.h>
 
@@ -31,6 +32,26 @@ struct CameraSettings
     double fov = 35.0;       ///< vertical field of view, degrees
     std::optional<glm::dvec3> position;
     std::optional<glm::dvec3> target;
+};
+
+/// An erode node's global pass as loading the scene ran it (once per
+/// process for the same input: later loads find it cached).
+struct LandformPass
+{
+    std::string node;            ///< the node's name
+    std::size_t cells = 0;       ///< grid corners
+    std::uint64_t peakBytes = 0; ///< the pass's working memory, estimated
+    double seconds = 0.0;        ///< wall time of the evolution when it ran
+    bool cached = false;         ///< this load found it already computed
+    int steps = 0;               ///< implicit time steps
+};
+
+/// What loading a scene may use.
+struct SceneLoadOptions
+{
+    /// Bytes (0: no budget): an erode node whose pass would need more is
+    /// refused before it runs, naming its cell_size (--max-memory).
+    std::uint64_t maxMemoryBytes = 0;
 };
 
 struct SnapshotSettings
@@ -59,6 +80,17 @@ struct Scene
     std::shared_ptr<const terrain::DensityField> field;
     /// Rebuilds the root field for another seed (`--seed`).
     std::function<std::shared_ptr<const terrain::DensityField>(std::uint64_t)> buildField;
+    /// The terrain tree's landform source, built with terrain.seed: the node
+    /// that knows its landform masks (an `erode` node; `[terrain] masks =
+    /// "NAME"` picks one of several), which layer rules' flow, wear,
+    /// deposition and water bands and the landform debug views read. Null
+    /// when the tree has none.
+    std::shared_ptr<const terrain::LandformMasks> landformMasks;
+    /// The erode nodes' global passes run while loading (for scene.seed).
+    std::vector<LandformPass> landformPasses;
+    /// Rebuilds it for another seed, from the same tree as buildField (the
+    /// tree is built once for both); empty when the tree has none.
+    std::function<std::shared_ptr<const terrain::LandformMasks>(std::uint64_t)> buildLandformMasks;
     terrain::Region region;
     double voxelSize = 0.5;
     int halfWidth = 3;
@@ -77,10 +109,10 @@ std::string_view defaultSceneText();
 /// Parses TOML scene text. `source` names it in error messages. Throws
 /// strata::Error "SOURCE:LINE: KEY = VALUE ..." on a syntax error, an unknown
 /// key, a wrong type or an out-of-range value.
-Scene parseScene(std::string_view text, const std::string& source);
+Scene parseScene(std::string_view text, const std::string& source, const SceneLoadOptions& options = {});
 
 /// Reads and parses a scene file. Throws strata::Error naming the file.
-Scene loadScene(const std::filesystem::path& path);
+Scene loadScene(const std::filesystem::path& path, const SceneLoadOptions& options = {});
 
 /// The embedded default scene, parsed (source "<default scene>").
 Scene defaultScene();
@@ -89,5 +121,10 @@ Scene defaultScene();
 /// equal; another seed rebuilds the node tree). Throws strata::Error
 /// (BadInput) when the scene has no terrain.
 std::shared_ptr<const terrain::DensityField> fieldForSeed(const Scene& scene, std::optional<std::uint64_t> seed);
+
+/// The scene's landform source for `seed`, as fieldForSeed() the field
+/// (another seed rebuilds it with the tree); null when the tree has none.
+std::shared_ptr<const terrain::LandformMasks> landformMasksForSeed(const Scene& scene,
+                                                                   std::optional<std::uint64_t> seed);
 
 } // namespace strata::scene

@@ -85,9 +85,11 @@ struct LayerSettings
 
 /// The rule keys of a [[layer]] table, for documentation and tests.
 inline constexpr const char* LAYER_RULE_KEYS[] = {
-    "altitude_min", "altitude_max", "altitude_softness", "slope_min",       "slope_max",       "slope_softness",
-    "cavity_min",   "cavity_max",   "cavity_softness",   "cover_min",       "cover_max",       "cover_softness",
-    "noise_scale",  "noise_threshold", "noise_softness", "noise_seed",      "opacity"};
+    "altitude_min",   "altitude_max",    "altitude_softness",   "slope_min",  "slope_max", "slope_softness",
+    "cavity_min",     "cavity_max",      "cavity_softness",     "cover_min",  "cover_max", "cover_softness",
+    "flow_min",       "flow_max",        "flow_softness",       "wear_min",   "wear_max",  "wear_softness",
+    "deposition_min", "deposition_max",  "deposition_softness", "water_min",  "water_max", "water_softness",
+    "noise_scale",    "noise_threshold", "noise_softness",      "noise_seed", "opacity"};
 
 /// Builds the material: built-in sets, then the files (loaded through
 /// OpenImageIO with the colour space of each map, channel remapping and

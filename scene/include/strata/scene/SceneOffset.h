@@ -12,6 +12,7 @@ namespace strata::scene {
 
 /// The scene moved by `offset` (world metres, finite): the root field (and
 /// the `--seed` rebuilder) is wrapped in a terrain::TranslateField, the
+/// landform source (and its rebuilder) moved the same way, the
 /// region and the scene's explicit camera position and target move with it
 /// (the orbit camera follows the moved region by itself). An offset that is
 /// a multiple of the voxel size moves the sampled lattice by whole voxels,

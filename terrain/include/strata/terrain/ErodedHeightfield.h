@@ -67,6 +67,7 @@ public:
     void landformMasks(const double* x, const double* z, std::size_t n, glm::vec4* out) const override;
 
     const ErodedGrid& grid() const { return *mGrid; }
+    const ErodeOptions& options() const { return mOptions; }
     /// Whether this node's evolution came from the cache.
     bool cached() const { return mCached; }
 
@@ -78,6 +79,7 @@ public:
 
 private:
     std::shared_ptr<const ErodedGrid> mGrid;
+    ErodeOptions mOptions;
     bool mCached = false;
 };
 

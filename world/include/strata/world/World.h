@@ -97,6 +97,7 @@
 /// but once the points stop and waitIdle() returns the meshes do not.
 
 #include <strata/terrain/DensityField.h>
+#include <strata/terrain/LandformMasks.h>
 #include <strata/world/WorldTypes.h>
 
 #include <filesystem>
@@ -137,6 +138,12 @@ struct WorldOptions
     /// 0: schedule chunks nearest first. Other values: in a pseudo-random
     /// order drawn from this seed (a testing aid: results never depend on it).
     std::uint64_t taskOrderSeed = 0;
+    /// Last, so brace-initialised options written before it keep their
+    /// meaning. Landform masks (an `erode` node: flow, wear, deposition, water) to
+    /// fill each chunk mesh's `landform` with, for terrain layer rules; null:
+    /// none. Its global pass has run when the node was built, before the
+    /// World exists.
+    std::shared_ptr<const terrain::LandformMasks> landform;
 };
 
 class World
