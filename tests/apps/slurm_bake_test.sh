@@ -87,7 +87,9 @@ done
 [[ ${state:-} == idle* ]] || fail "the node did not come up (state '${state:-none}'): $(tail -5 "$work/log/slurmctld.log" "$work/log/slurmd.log" 2>/dev/null)"
 note "slurm up: $host, $cpus CPUs, ${memory} MiB, ports $ctld_port/$slurmd_port"
 
-# A small world: 3 × 3 tiles of 16 m, two slabs, two levels.
+# A small world: 3 × 3 tiles of 16 m, two slabs, two levels; eroded land
+# (a global pass every worker runs, voxel-scale detail in fixed blocks) and
+# a layer on the flow mask, so the tiles carry the landform masks.
 scene=$work/world.toml
 cat > "$scene" <<'TOML'
 seed = 3
@@ -97,9 +99,30 @@ root = "world"
 type = "subtract"
 children = ["land", "tunnels"]
 [terrain.nodes.land]
+type = "erode_detail"
+height = "eroded"
+cell_size = 0.5
+block = 16
+droplet_steps = 8
+[terrain.nodes.eroded]
+type = "erode"
+height = "hills"
+min = [-32.0, -32.0]
+max = [32.0, 32.0]
+cell_size = 2.0
+years = 2.0e4
+time_step = 2.0e3
+uplift = 1.0e-4
+erodibility = 1.0e-4
+[terrain.nodes.hills]
 type = "heightfield"
 amplitude = 10.0
 wavelength = 25.0
+[[layer]]
+name = "rivers"
+side = "sand"
+flow_min = 2.5
+flow_softness = 0.5
 [terrain.nodes.tunnels]
 type = "worms"
 cell_size = 16.0
@@ -120,6 +143,7 @@ single=$(python3 -c "import time; print(f'{time.time() - $start:.2f}')")
 # The plan, and the example submit script with the plan's array and memory.
 "$strata" bake "$scene" "${flags[@]}" --plan --tiles-per-worker 4 | tee "$work/plan.txt"
 grep -q '^  array     0-4$' "$work/plan.txt" || fail "--plan: expected 5 workers for 18 tiles, 4 each"
+grep -q '^  landform  eroded: 1,089 cells' "$work/plan.txt" || fail "--plan: the erode node's pass is not reported"
 cd "$work"
 start=$(date +%s.%N)
 read -r bake_job final_job < <(STRATA=$strata "$source/examples/slurm/submit.sh" "$scene" "$work/slurm" 4 2 -- "${flags[@]}")
