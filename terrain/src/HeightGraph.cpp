@@ -210,14 +210,15 @@ Interval HeightAffine::heightBounds(const glm::dvec2& min, const glm::dvec2& max
 HeightCurve::HeightCurve(HeightNodePtr child, std::vector<glm::dvec2> points)
     : mChild(std::move(child)), mPoints(std::move(points))
 {
-    if (mPoints.size() < 2) throw Error("points must hold at least two [input, output] pairs");
+    auto fail = [](const std::string& what) { throw Error(ErrorKind::BadInput, "points " + what, {"", 0, "points", ""}); };
+    if (mPoints.size() < 2) fail("must hold at least two [input, output] pairs");
     for (std::size_t i = 0; i < mPoints.size(); ++i) {
         if (!std::isfinite(mPoints[i].x) || !std::isfinite(mPoints[i].y)) {
-            throw Error("points: pair " + std::to_string(i + 1) + " is not finite");
+            fail("has a pair that is not finite (pair " + std::to_string(i + 1) + ")");
         }
         if (i > 0 && !(mPoints[i].x > mPoints[i - 1].x)) {
-            throw Error("points: the inputs must increase strictly (pair " + std::to_string(i + 1) + " has input " +
-                        show(mPoints[i].x) + " after " + show(mPoints[i - 1].x) + ")");
+            fail("must have strictly increasing inputs (pair " + std::to_string(i + 1) + " has input " +
+                 show(mPoints[i].x) + " after " + show(mPoints[i - 1].x) + ")");
         }
     }
     // Fritsch–Carlson tangents: the harmonic mean of neighbouring secants,

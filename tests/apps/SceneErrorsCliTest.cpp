@@ -109,6 +109,19 @@ TEST(CliSceneErrors, OneKeyOfEachKindExitsTwoWithOneLineNamingFileLineKeyAndValu
         {"unused node", oneNode("sphere", "[terrain.nodes.b]\ntype = \"sphere\"\n"), 5, "terrain.nodes.b", ""},
         {"missing root", "[terrain.nodes.a]\ntype = \"sphere\"\n", 1, "terrain.root", ""},
         {"missing node key", oneNode("image_heightfield", ""), 3, "terrain.nodes.a.file", ""},
+        // The height graph.
+        {"3D node as a height", oneNode("height_add", "children = [\"b\", \"c\"]\n[terrain.nodes.b]\ntype = "
+                                                      "\"sphere\"\n[terrain.nodes.c]\ntype = \"height_constant\"\n"),
+         5, "terrain.nodes.a.children", ""},
+        {"curve not increasing", oneNode("height_curve", "child = \"b\"\npoints = [[0, 0], [0, 1]]\n"
+                                                         "[terrain.nodes.b]\ntype = \"height_constant\"\n"),
+         6, "terrain.nodes.a.points", ""},
+        {"empty erode domain", oneNode("erode", "height = \"b\"\nmin = [0, 0]\nmax = [0, 10]\n"
+                                                "[terrain.nodes.b]\ntype = \"height_constant\"\n"),
+         7, "terrain.nodes.a.max", ""},
+        {"noise keys beside a height", oneNode("heightfield", "height = \"b\"\namplitude = 3\n"
+                                                              "[terrain.nodes.b]\ntype = \"height_constant\"\n"),
+         6, "terrain.nodes.a.amplitude", ""},
         // Checks across keys.
         {"min not below max", "[region]\nmin = [0, 0, 0]\nmax = [1, 0, 1]\n", 3, "region.max", "0 >= 0"},
         {"key beyond another", oneNode("box", "size = [2.0, 2.0, 2.0]\nrounding = 1.5\n"), 6,
@@ -183,4 +196,26 @@ TEST(CliSceneErrors, OneKeyOfEachKindExitsTwoWithOneLineNamingFileLineKeyAndValu
         }
         EXPECT_FALSE(std::filesystem::exists(runs[i].out)) << lines[0];
     }
+}
+
+TEST(CliSceneErrors, AnErosionPassOverTheMemoryBudgetIsRefusedBeforeItRuns)
+{
+    // 8193² cells at 1 m over 8 km: gigabytes of working memory, far over
+    // 64 MiB. generate and bake --plan exit 2 at once, naming cell_size, and
+    // write nothing (the pass itself would take many minutes and gigabytes).
+    const auto dir = strata::test::freshTestDir();
+    {
+        std::ofstream(dir / "big.toml") << oneNode("erode", "height = \"b\"\nmin = [-4096, -4096]\nmax = [4096, 4096]\n"
+                                                            "cell_size = 1.0\n[terrain.nodes.b]\n"
+                                                            "type = \"height_constant\"\n");
+    }
+    for (const std::string command : {"generate " + (dir / "big.toml").string() + " -o " + (dir / "out").string() +
+                                          " -q --max-memory 64MiB",
+                                      "bake " + (dir / "big.toml").string() + " --plan --max-memory 64MiB"}) {
+        const CommandResult run = runStrata(command, dir);
+        EXPECT_EQ(run.exitCode, 2) << command << "\n" << run.output;
+        EXPECT_NE(run.output.find("terrain.nodes.a.cell_size"), std::string::npos) << run.output;
+        EXPECT_NE(run.output.find("memory budget of 64 MiB"), std::string::npos) << run.output;
+    }
+    EXPECT_FALSE(std::filesystem::exists(dir / "out"));
 }
