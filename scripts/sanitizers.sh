@@ -20,7 +20,7 @@ set -eu
 root=$(cd "$(dirname "$0")/.." && pwd)
 jobs=${JOBS:-2}
 fuzz_seconds=${FUZZ_SECONDS:-60}
-tests=${SANITIZE_TESTS:-'^(AtomicFile|OutputLock|StderrCapture|FuzzCorpus|MeshReadErrors|MeshFile|PlyIO|GltfIO|GridIO|WriteFailure|Scene|SceneErrors|SceneTerrain|SceneMaterial|SceneLayers|SurfaceAttributes|NodeRegistry)\.'}
+tests=${SANITIZE_TESTS:-'^(AtomicFile|OutputLock|StderrCapture|FuzzCorpus|MeshReadErrors|MeshFile|PlyIO|GltfIO|GridIO|WriteFailure|Scene|SceneErrors|SceneTerrain|SceneMaterial|SceneLayers|SurfaceAttributes|NodeRegistry|ElevationFile|LandformAttributes)\.'}
 san=$root/build-sanitize
 tsan=$root/build-tsan
 cxx=$(command -v clang++-15 || command -v clang++-14 || command -v clang++)
@@ -36,7 +36,7 @@ fi
 if [ "$tests" = "." ]; then
   nice -n 10 cmake --build "$san" -j "$jobs" # every test
 else
-  nice -n 10 cmake --build "$san" --target common_tests meshing_tests scene_tests fuzzers -j "$jobs"
+  nice -n 10 cmake --build "$san" --target common_tests meshing_tests scene_tests terrain_tests fuzzers -j "$jobs"
 fi
 echo "   built in $(($(now) - start)) s"
 
