@@ -6,6 +6,7 @@
 #include <strata/terrain/ErodedHeightfield.h>
 #include <strata/terrain/NodeRegistry.h>
 #include <strata/terrain/SampleLevelSet.h>
+#include <strata/terrain/SimdTarget.h>
 
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
@@ -94,6 +95,25 @@ TEST(ErodedHeightfield, AnyTilingAndThreadCountGivesTheSameBits)
             }
         }
     }
+}
+
+TEST(ErodedHeightfield, EverySimdTargetGivesTheSameEvolution)
+{
+    // The input is sampled through the block (SIMD) noise path: each target
+    // must give the same grid, so workers on different CPUs agree.
+    ErodeOptions o = smallDomain();
+    o.evolution.years = 1.4e5; // a key of its own (no cached grid)
+    std::vector<double> first;
+    for (const std::string& target : availableSimdTargets()) {
+        useSimdTarget(target);
+        o.riverArea += 1.0; // a new cache key per target: each evolves afresh
+        const ErodedHeightfield field(hills(), nullptr, o);
+        EXPECT_FALSE(field.cached()) << target;
+        if (first.empty()) first = field.grid().heights;
+        else EXPECT_EQ(field.grid().heights, first) << target;
+    }
+    useSimdTarget("");
+    EXPECT_FALSE(first.empty());
 }
 
 TEST(ErodedHeightfield, EvolvesOncePerProcessAndErodesValleys)
