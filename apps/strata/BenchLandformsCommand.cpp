@@ -195,8 +195,8 @@ Command registerBenchLandformsCommand(CLI::App& bench)
     landforms->add_option("--region-max", args->regionMax,
                           "Crop: the highest x,z corner to sample, metres (default: the scene's [region])");
     landforms->add_option("--dem", args->dem,
-                          "Measure this DEM instead of a scene: NumPy .npy, .npz (uncompressed members) or an ESRI "
-                          "ASCII grid .asc");
+                          "Measure this DEM instead of a scene: NumPy .npy, .npz (stored or deflated members) or an "
+                          "ESRI ASCII grid .asc");
     landforms
         ->add_option("--dem-cell", args->demCell,
                      "The DEM's cell size in metres: needed for .npy and .npz (they hold none); overrides an "

@@ -6,13 +6,11 @@
 ///  - NumPy .npy (versions 1 to 3): a 2D array of little-endian int16,
 ///    int32, float32 or float64 ('<i2', '<i4', '<f4', '<f8'), C or Fortran
 ///    order;
-///  - NumPy .npz, a zip of .npy members, when the member read is stored
-///    uncompressed (zip method 0, what np.savez writes; zip64 included): the
-///    member named `elevation.npy`, else the only member holding a 2D
-///    array. Deflated members (np.savez_compressed, and the matplotlib
-///    sample DEM) are not supported: the error says so and how to extract
-///    the member (`unzip FILE elevation.npy`, or `python3 -m zipfile -e
-///    FILE DIR`) to read it as a .npy;
+///  - NumPy .npz, a zip of .npy members, stored (zip method 0, what
+///    np.savez writes) or deflated (method 8: np.savez_compressed and the
+///    matplotlib sample DEM; inflated with zlib), zip64 included: the member
+///    named `elevation.npy`, else the only member holding a 2D array; its
+///    CRC-32 is checked;
 ///  - ESRI ASCII grid (.asc): a header of `ncols`, `nrows`, `xllcorner` or
 ///    `xllcenter`, `yllcorner` or `yllcenter`, `cellsize` (or equal `dx` and
 ///    `dy`) and the optional `NODATA_value` (keys in any order and case), then
