@@ -9,11 +9,11 @@
 # FUZZ_SEED fixes libFuzzer's seed (scripts/sanitizers.sh, for CI, uses 1:
 # the same inputs on every run of the same code, so a CI run replays what
 # was checked before it landed); unset, each run explores anew.
-#   scripts/fuzz.sh [SECONDS] [NAME ...]     NAME: glb ply obj stl off scene vdb heightmap
+#   scripts/fuzz.sh [SECONDS] [NAME ...]     NAME: glb ply obj stl off scene vdb heightmap elevation
 set -eu
 seconds=${1:-60}
 [ $# -gt 0 ] && shift
-names=${*:-glb ply obj stl off scene vdb heightmap}
+names=${*:-glb ply obj stl off scene vdb heightmap elevation}
 root=$(cd "$(dirname "$0")/.." && pwd)
 build=${STRATA_FUZZ_BUILD:-$root/build-sanitize}
 cxx=${CXX_FUZZ:-$(command -v clang++-15 || command -v clang++-14 || command -v clang++)}
