@@ -1,6 +1,6 @@
 // `strata nodes`: every density node type a scene can use, with its keys,
 // straight from the node registry (strata::terrain::NodeRegistry).
-// `--markdown` prints the README's node table, which a test keeps in step.
+// `--markdown` prints the node table of docs/nodes.md, which a test keeps in step.
 
 #include "Commands.h"
 
@@ -82,7 +82,7 @@ Command registerNodesCommand(CLI::App& app)
     CLI::App* nodes = app.add_subcommand(
         "nodes", "List every density node type a scene's [terrain.nodes.NAME] table can use, with its keys: type, "
                  "default, unit, range and what it does");
-    nodes->add_flag("--markdown", *markdown, "Print the README's node table (Markdown) instead");
+    nodes->add_flag("--markdown", *markdown, "Print the node table of docs/nodes.md (Markdown) instead");
     return {nodes, [markdown]() {
                 if (*markdown) {
                     printMarkdown(std::cout);
