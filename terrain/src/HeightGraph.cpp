@@ -172,10 +172,18 @@ Interval HeightBlend::heightBounds(const glm::dvec2& min, const glm::dvec2& max)
     return {std::min(a.lo, b.lo), std::max(a.hi, b.hi)};
 }
 
+// --- heights mapped one by one ---------------------------------------------
+
+void MappedHeight::heights(const double* x, const double* z, std::size_t n, double* out) const
+{
+    mChild->heights(x, z, n, out);
+    for (std::size_t i = 0; i < n; ++i) out[i] = map(out[i]);
+}
+
 // --- scale, offset and clamp ---------------------------------------------------
 
 HeightAffine::HeightAffine(HeightNodePtr child, const HeightAffineOptions& options)
-    : mChild(std::move(child)), mOptions(options)
+    : MappedHeight(std::move(child)), mOptions(options)
 {
     if (!std::isfinite(options.scale)) throw Error("scale = " + show(options.scale) + " must be a finite number");
     if (!std::isfinite(options.offset)) throw Error("offset = " + show(options.offset) + " must be a finite number");
@@ -190,14 +198,6 @@ double HeightAffine::map(double h) const
     return std::clamp(h * mOptions.scale + mOptions.offset, mOptions.min, mOptions.max);
 }
 
-double HeightAffine::height(double x, double z) const { return map(mChild->height(x, z)); }
-
-void HeightAffine::heights(const double* x, const double* z, std::size_t n, double* out) const
-{
-    mChild->heights(x, z, n, out);
-    for (std::size_t i = 0; i < n; ++i) out[i] = map(out[i]);
-}
-
 Interval HeightAffine::heightBounds(const glm::dvec2& min, const glm::dvec2& max) const
 {
     const Interval c = mChild->heightBounds(min, max);
@@ -208,7 +208,7 @@ Interval HeightAffine::heightBounds(const glm::dvec2& min, const glm::dvec2& max
 // --- curve ------------------------------------------------------------------
 
 HeightCurve::HeightCurve(HeightNodePtr child, std::vector<glm::dvec2> points)
-    : mChild(std::move(child)), mPoints(std::move(points))
+    : MappedHeight(std::move(child)), mPoints(std::move(points))
 {
     auto fail = [](const std::string& what) { throw Error(ErrorKind::BadInput, "points " + what, {"", 0, "points", ""}); };
     if (mPoints.size() < 2) fail("must hold at least two [input, output] pairs");
@@ -267,14 +267,6 @@ double HeightCurve::map(double h) const
            (-2.0 * t3 + 3.0 * t2) * mPoints[i + 1].y + (t3 - t2) * dx * mTangents[i + 1];
 }
 
-double HeightCurve::height(double x, double z) const { return map(mChild->height(x, z)); }
-
-void HeightCurve::heights(const double* x, const double* z, std::size_t n, double* out) const
-{
-    mChild->heights(x, z, n, out);
-    for (std::size_t i = 0; i < n; ++i) out[i] = map(out[i]);
-}
-
 Interval HeightCurve::heightBounds(const glm::dvec2& min, const glm::dvec2& max) const
 {
     // Each piece stays between its two points, so over [lo, hi] the curve
@@ -301,7 +293,7 @@ Interval HeightCurve::heightBounds(const glm::dvec2& min, const glm::dvec2& max)
 // --- terrace ----------------------------------------------------------------
 
 HeightTerrace::HeightTerrace(HeightNodePtr child, double step, double sharpness)
-    : mChild(std::move(child)), mStep(step), mSharpness(sharpness)
+    : MappedHeight(std::move(child)), mStep(step), mSharpness(sharpness)
 {
     if (!(std::isfinite(step) && step > 0.0)) throw Error("step = " + show(step) + " must be a finite number > 0");
     if (!(std::isfinite(sharpness) && sharpness >= 1.0 && sharpness <= 64.0)) {
@@ -311,25 +303,17 @@ HeightTerrace::HeightTerrace(HeightNodePtr child, double step, double sharpness)
     setSlopeBound(sharpness * mChild->slopeBound());
 }
 
-double HeightTerrace::terrace(double h) const
+double HeightTerrace::map(double h) const
 {
     const double s = h / mStep, k = std::floor(s);
     return mStep * (k + std::pow(s - k, mSharpness));
-}
-
-double HeightTerrace::height(double x, double z) const { return terrace(mChild->height(x, z)); }
-
-void HeightTerrace::heights(const double* x, const double* z, std::size_t n, double* out) const
-{
-    mChild->heights(x, z, n, out);
-    for (std::size_t i = 0; i < n; ++i) out[i] = terrace(out[i]);
 }
 
 Interval HeightTerrace::heightBounds(const glm::dvec2& min, const glm::dvec2& max) const
 {
     // The profile is increasing; 1e-12 relative slack covers floor and pow.
     const Interval c = mChild->heightBounds(min, max);
-    const double lo = terrace(c.lo), hi = terrace(c.hi);
+    const double lo = map(c.lo), hi = map(c.hi);
     const double slack = 1e-12 * (std::abs(lo) + std::abs(hi) + mStep);
     return {lo - slack, hi + slack};
 }

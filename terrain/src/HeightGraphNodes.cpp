@@ -196,12 +196,9 @@ void registerHeightGraphNodes(NodeRegistry& registry)
         o.riverArea = a.number("river_area");
         // Refused before any work when the pass would not fit the budget.
         const std::uint64_t budget = a.context().maxMemoryBytes;
+        // (A domain over MAX_CELLS is refused by the node itself, naming cell_size.)
         const std::size_t cells = ErodedHeightfield::cellCount(o);
-        if (cells > ErodedHeightfield::MAX_CELLS) {
-            a.fail("cell_size", "= " + formatNumber(o.evolution.cellSize) + " makes " + std::to_string(cells) +
-                                    " cells over the domain, more than the 8193 x 8193 an erode node may have");
-        }
-        if (budget > 0 && ErodedHeightfield::peakBytes(o) > budget) {
+        if (budget > 0 && cells <= ErodedHeightfield::MAX_CELLS && ErodedHeightfield::peakBytes(o) > budget) {
             a.fail("cell_size", "= " + formatNumber(o.evolution.cellSize) + ": the erosion pass over " +
                                     std::to_string(cells) + " cells needs about " +
                                     std::to_string(ErodedHeightfield::peakBytes(o) >> 20) +

@@ -78,6 +78,21 @@ private:
     HeightNodePtr mA, mB, mMask;
 };
 
+/// A height node that maps its child's heights one by one, h = map(child):
+/// the column loop is shared; each subclass gives map() and its bounds.
+class MappedHeight : public HeightfieldBase
+{
+public:
+    double height(double x, double z) const final { return map(mChild->height(x, z)); }
+    void heights(const double* x, const double* z, std::size_t n, double* out) const final;
+    /// The map from the child's height to this node's, metres.
+    virtual double map(double h) const = 0;
+
+protected:
+    explicit MappedHeight(HeightNodePtr child) : mChild(std::move(child)) {}
+    HeightNodePtr mChild;
+};
+
 /// h = clamp(child · scale + offset, min, max).
 struct HeightAffineOptions
 {
@@ -86,17 +101,14 @@ struct HeightAffineOptions
     double min = -HUGE_VAL, max = HUGE_VAL; ///< metres, min <= max
 };
 
-class HeightAffine final : public HeightfieldBase
+class HeightAffine final : public MappedHeight
 {
 public:
     HeightAffine(HeightNodePtr child, const HeightAffineOptions& options);
-    double height(double x, double z) const override;
-    void heights(const double* x, const double* z, std::size_t n, double* out) const override;
+    double map(double h) const override;
     Interval heightBounds(const glm::dvec2& min, const glm::dvec2& max) const override;
 
 private:
-    double map(double h) const;
-    HeightNodePtr mChild;
     HeightAffineOptions mOptions;
 };
 
@@ -104,36 +116,31 @@ private:
 /// PCHIP) through the points (input height, output height), inputs strictly
 /// increasing; it never overshoots its points, and extends flat beyond the
 /// first and last point.
-class HeightCurve final : public HeightfieldBase
+class HeightCurve final : public MappedHeight
 {
 public:
     /// Throws strata::Error "points ..." for fewer than 2 points, inputs not
     /// strictly increasing or non-finite values.
     HeightCurve(HeightNodePtr child, std::vector<glm::dvec2> points);
-    double height(double x, double z) const override;
-    void heights(const double* x, const double* z, std::size_t n, double* out) const override;
+    double map(double h) const override;
     Interval heightBounds(const glm::dvec2& min, const glm::dvec2& max) const override;
-    double map(double h) const;
 
 private:
-    HeightNodePtr mChild;
     std::vector<glm::dvec2> mPoints;
     std::vector<double> mTangents;
 };
 
 /// Terraces of height `step`: h = step·(k + f^sharpness), k = ⌊child/step⌋,
 /// f the fraction (the 3D terrace node's profile, on heights).
-class HeightTerrace final : public HeightfieldBase
+class HeightTerrace final : public MappedHeight
 {
 public:
     HeightTerrace(HeightNodePtr child, double step, double sharpness);
-    double height(double x, double z) const override;
-    void heights(const double* x, const double* z, std::size_t n, double* out) const override;
+    /// step·(k + f^sharpness).
+    double map(double h) const override;
     Interval heightBounds(const glm::dvec2& min, const glm::dvec2& max) const override;
 
 private:
-    double terrace(double h) const;
-    HeightNodePtr mChild;
     double mStep, mSharpness;
 };
 
