@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: The Strata authors
+# SPDX-License-Identifier: MIT
+
 # cmake -DINPUT=file -DOUTPUT=header -DNAME=IDENTIFIER -P EmbedText.cmake
 # Writes a header declaring `inline constexpr std::string_view NAME` holding
 # the file's text, so a program carries its default data without asset files.

@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: The Strata authors
+# SPDX-License-Identifier: MIT
+
 # Finds every third-party package Strata uses. Shared by the build tree and,
 # through StrataConfig.cmake, by projects that find_package(Strata).
 # Debian 12 quirks are handled where they bite (comments below).

@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: The Strata authors
+# SPDX-License-Identifier: MIT
+
 # Install rules and the package configuration for find_package(Strata).
 include(CMakePackageConfigHelpers)
 

@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 // libFuzzer target for the DEM reader of `strata bench landforms --dem`
 // (strata::terrain::parseElevationFile: NumPy .npy, .npz stored or deflated,
 // ESRI ASCII grid), on the bytes as they are. It may return a grid or throw

@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 #pragma once
 // The fuzz input as a file, for readers that take a path: rewritten for each
 // input at one path per process (in /dev/shm when it exists, else TMPDIR or

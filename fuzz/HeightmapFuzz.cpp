@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 // libFuzzer target for the heightmap loader of the scene's image_heightfield
 // node (strata::scene::readHeightImageFile, OpenImageIO underneath). The
 // loader opens a file with its extension's reader only, so the bytes are

@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 #pragma once
 // The file extension an image's first bytes ask for: the heightmap fuzzer
 // writes each input under it (the loader opens a file with its extension's

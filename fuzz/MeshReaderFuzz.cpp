@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 // libFuzzer target for one mesh reader, picked at build time by
 // STRATA_FUZZ_FORMAT (".ply", ".obj", ".off", ".stl" or ".glb").
 // A reader may accept the bytes or throw strata::Error; anything else (a

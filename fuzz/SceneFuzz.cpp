@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 // libFuzzer target for the scene parser (strata::scene::parseScene on TOML
 // text). It may return a scene or throw strata::Error; anything else (a
 // crash, a sanitizer report, another exception, a scene without a field) is

@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 // libFuzzer target for the .vdb reader that `strata mesh` and `strata info`
 // use (strata::meshing::readLevelSet), on the bytes written to a file.
 // It may return a usable level set or throw strata::Error; anything else (a

@@ -1,4 +1,8 @@
 #!/bin/sh
+
+# SPDX-FileCopyrightText: The Strata authors
+# SPDX-License-Identifier: MIT
+
 # Builds the fuzzers (clang, libFuzzer, ASan + UBSan; -DSTRATA_FUZZ=ON) in
 # build-sanitize/ and runs each for SECONDS (default 60) on a copy of its
 # seed corpus in fuzz/corpus/<name>/. New crash inputs land in

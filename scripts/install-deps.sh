@@ -1,4 +1,8 @@
 #!/usr/bin/env bash
+
+# SPDX-FileCopyrightText: The Strata authors
+# SPDX-License-Identifier: MIT
+
 # Installs the Debian 12 packages Strata needs to build, test and run.
 # Idempotent: apt-get runs only when something is missing.
 set -euo pipefail

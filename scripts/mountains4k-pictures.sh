@@ -1,4 +1,8 @@
 #!/usr/bin/env bash
+
+# SPDX-FileCopyrightText: The Strata authors
+# SPDX-License-Identifier: MIT
+
 # The README's pictures of examples/worlds/mountains4k.toml, at 4 m voxels
 # over the whole 4 km: the showcase without its caves and its 1 m erosion
 # detail (both are voxel-scale features: sample them at 1 m, by baking).

@@ -1,4 +1,8 @@
 #!/bin/sh
+
+# SPDX-FileCopyrightText: The Strata authors
+# SPDX-License-Identifier: MIT
+
 # Sanitizers and fuzzers, bounded in time (2 cores, a cold ccache):
 #  1. ASan + UBSan (clang) in build-sanitize/: the same build also makes the
 #     fuzzers (-DSTRATA_FUZZ=ON instruments all of Strata). Runs the tests

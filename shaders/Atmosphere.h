@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 /// \file
 /// The sky and aerial perspective, in the common subset of GLSL 4.50 and
 /// C++20 (the editing rules are TriplanarShading.h's, whose functions it

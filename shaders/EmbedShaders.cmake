@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: The Strata authors
+# SPDX-License-Identifier: MIT
+
 # Writes a C++ header holding Strata's GLSL programs as raw string literals.
 # Run as a script:
 #   cmake -DOUTPUT=<header> -DSOURCE_DIR=<shaders dir> -P EmbedShaders.cmake

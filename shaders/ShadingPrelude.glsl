@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 // GLSL prelude of the shared shading headers: what GLSL lacks for code that
 // must also compile as C++ (see ShadingPrelude.h for the C++ side).
 // Embedded right after "#version 450 core" in every Strata shader.

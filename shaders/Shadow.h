@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 /// \file
 /// Sun shadows: the shadow-map lookup with normal-offset bias and a fixed
 /// 4×4-texel PCF kernel, written ONCE in the common subset of GLSL 4.50 and

@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 // The per-frame uniform block shared by the terrain vertex and fragment
 // stages. std140, mirrored by strata::render::detail::FrameBlock
 // (render/src/UniformBlocks.h, which checks every offset); binding points:

@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 /// \file
 /// Terrain layers: up to STRATA_MAX_LAYERS triplanar materials (rock, grass,
 /// sand, snow...) painted over one another by placement rules and combined

@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 /// \file
 /// The triplanar material, evaluated per fragment, in the common subset of
 /// GLSL 4.50 and C++20 (see TriplanarShading.h for the editing rules). It is

@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 /// \file
 /// Triplanar mapping and lighting math, written ONCE in the common subset of
 /// GLSL 4.50 and C++20 with GLM, and compiled as both (README.md, "Rendering":

@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 // One triangle covering the viewport (no vertex buffer: gl_VertexID 0..2).
 // Used by the sky pass (sky.frag) and by the shading probe
 // (tests/render/ShadingProbeTest.cpp), where every pixel of the float

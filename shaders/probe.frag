@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 // Shading probe (tests/render/ShadingProbeTest.cpp): evaluates the shared
 // material (TriplanarMaterial.h, feature set STRATA_FEATURES, defined by the
 // caller after the #version line) at sample points given as data instead of

@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 // The sky pass (Atmosphere.h): drawn over the whole viewport before the
 // terrain when the atmosphere is on, instead of clearing to a flat colour.
 // Each pixel's view ray comes from its centre in device coordinates, as on

@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 // Terrain fragment shader: the triplanar material of TriplanarMaterial.h for
 // the feature set STRATA_FEATURES (defined by the renderer), lit by the
 // minimalist Cook–Torrance BRDF, hemisphere ambient, seen through the

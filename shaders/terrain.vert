@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 // Terrain vertex shader. Positions are world metres relative to the mesh
 // origin; the view matrix is relative to the same origin (computed in double
 // on the CPU), so large worlds keep their precision. Uniforms: FrameBlock

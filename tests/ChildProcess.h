@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 #pragma once
 // Runs a piece of a test in a forked child process, for what must not happen
 // in the test process itself: a file size limit, a fatal signal.

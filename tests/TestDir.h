@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 #pragma once
 // A fresh, empty directory per test, under STRATA_TEST_TMP (set by ctest) or
 // the system temp directory.

@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 // strata-view — the interactive viewer: loads a scene, generates its mesh,
 // and shows it through GlfwContext + GlRenderer with orbit and fly cameras,
 // debug views, wireframe and per-feature toggles; reloads the scene when

@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 // `strata bake`: the command-line front of strata/scene/Bake.h.
 
 #include "Commands.h"

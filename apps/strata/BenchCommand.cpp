@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 // `strata bench -o DIR [--quick]`: speed against accuracy, measured. Runs the
 // default scene and the analytic shapes under each quality preset and with
 // each knob swept on its own from `balanced`; writes DIR/report.md,

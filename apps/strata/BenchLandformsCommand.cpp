@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 // `strata bench landforms [SCENE.toml] [--dem FILE]`: how much a terrain's
 // top surface looks like real land. The scene is loaded (its node tree built,
 // which is when an `erode` node evolves: the "global pass"), its top surface

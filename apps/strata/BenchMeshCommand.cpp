@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 // `strata bench mesh -o DIR`: the meshers measured on analytic shapes
 // (accuracy, normals, watertightness, time) and the chunk mesher's
 // single-core throughput next to volumeToMesh; writes DIR/mesh-bench.md and

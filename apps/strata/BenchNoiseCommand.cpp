@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 // `strata bench noise`: points per second per core of each noise basis and
 // its 5-octave fBm, scalar path against block path (the measurement is
 // terrain::measureNoiseThroughput; this file parses flags and prints).

@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 // `strata generate`: the command-line front of strata/scene/Pipeline.h.
 
 #include "Commands.h"

@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 // `strata info FILE`: what a .vdb or a mesh file holds.
 
 #include "Commands.h"

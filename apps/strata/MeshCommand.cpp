@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 // `strata mesh`: a level set .vdb to a mesh file, with any of the three
 // meshers, normals, projection and simplification.
 

@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 // `strata nodes`: every density node type a scene can use, with its keys,
 // straight from the node registry (strata::terrain::NodeRegistry).
 // `--markdown` prints the node table of docs/nodes.md, which a test keeps in step.

@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 // `strata render`: one image (or a turntable) of a scene's terrain, or of a
 // mesh file, with the scene's material, camera and lighting, through OpenGL
 // (auto, gl) or the CPU reference renderer (cpu; auto without EGL).

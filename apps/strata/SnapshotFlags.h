@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 #pragma once
 // The snapshot flags of `strata generate` and `strata render` (see
 // Snapshot.h), registered the same way on both.

@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 // strata — the terrain generator command line. Each subcommand lives in its
 // own *Command.cpp file (see Commands.h); this file parses and dispatches.
 

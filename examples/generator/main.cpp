@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 // The smallest use of Strata as a library: a terrain with caves, sampled into
 // an OpenVDB level set, meshed, and saved as binary glTF.
 //

@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 // Loads a scene file (or the embedded default scene) through strata::scene,
 // samples and meshes a column of 32³ chunks of it as a voxel game would, then runs
 // the whole terrain through the same stages as `strata generate` and writes

@@ -1,4 +1,8 @@
 #!/bin/bash
+
+# SPDX-FileCopyrightText: The Strata authors
+# SPDX-License-Identifier: MIT
+
 # Submits a Strata world bake to Slurm: a job array of workers (at most
 # THROTTLE at a time) and a finalize job that runs when all of them
 # succeeded. Prints the two job ids.

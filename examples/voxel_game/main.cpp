@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 // A voxel game's frame loop on strata::world::World: a player walks across
 // procedural hills, digging a tunnel that descends under the ground as it
 // goes; the world streams chunks around the player on its own threads, and

@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 #pragma once
 // Internal: the chunk infrastructure shared by surfaceNets() and
 // dualContouring(). One translation unit (DualMesher.cpp) holds the OpenVDB

@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 #pragma once
 // Internal: the ErrorPlace of a file, for the mesh readers and writers.
 

@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 #pragma once
 // Internal: what the mesh readers share: reading a whole file with checks,
 // splitting text into lines and tokens, parsing numbers strictly, and

@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 #pragma once
 // Internal: TriangleMesh to OpenMesh, shared by the OpenMesh file writers.
 

@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 #pragma once
 // Internal: vertices at the same position, shared by the mesh checks
 // (MeshMetrics) and removeSmallComponents.

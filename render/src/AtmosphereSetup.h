@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 #pragma once
 // Internal: the public Atmosphere as the shared header's AtmosphereParams for
 // one frame (shaders/Atmosphere.h), shared by the GL and the CPU renderer so

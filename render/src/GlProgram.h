@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 #pragma once
 // Internal: RAII owners of GL object names, GL error checks, and the one
 // compile/link path of every GLSL program (errors name the shader file and

@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 #include <strata/render/GlfwContext.h>
 
 #include <strata/Error.h>

@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 #pragma once
 // Internal: a layered Material as the shared header's LayerSetParams for one
 // mesh origin (shaders/TerrainLayers.h), shared by the GL and the CPU

@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 #pragma once
 // Internal: the nine map slots of a material (MAP_* in TriplanarMaterial.h),
 // with neutral stand-ins for absent maps and the side maps standing in for

@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 #pragma once
 // Opening an image file with one OpenImageIO reader, chosen by the caller
 // (checkImageFileStructure() names the reader of the file's extension).

@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 #pragma once
 // Internal: the range check of the renderers' parameter structs (Material,
 // Atmosphere), one message format for all of them.

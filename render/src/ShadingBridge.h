@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 #pragma once
 // Internal: the public Material/Lighting as the shared header's parameter
 // structs (strata::shading::MaterialParams, LightingParams).

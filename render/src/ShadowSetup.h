@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 #pragma once
 // Internal: the sun's shadow-map projection fitted to a mesh, shared by the
 // GL and the CPU renderer so that both look up the same map (shaders/Shadow.h).

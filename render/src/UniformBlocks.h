@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 #pragma once
 // Internal: C++ mirrors of the terrain program's std140 uniform blocks
 // (shaders/TerrainFrame.glsl and terrain.frag), with every offset checked

@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 #include <strata/scene/Bake.h>
 #include <strata/world/LandformAttributes.h>
 #include <strata/scene/Pipeline.h>

@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 #pragma once
 // Internal: the bake's manifest.json as a value, to and from JSON, and the
 // 3D Tiles tileset built from it.

@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 // A whole-world snapshot from a bake's tiles: per tile the coarsest level
 // whose geometric error (the tile's own measured error) fits the screen (the
 // 3D Tiles screen-space error rule), merged into one mesh and rendered like

@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 #pragma once
 /// \file
 /// Reads a heightmap image (PNG, EXR, TIFF, ... through OpenImageIO) into a

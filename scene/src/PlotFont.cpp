@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 // A tiny built-in bitmap font for the plots of `strata bench` (ParetoPlot.cpp):
 // printable ASCII (32..126) in 8×14 cells, 4-bit coverage per pixel (one hex
 // digit, rows top to bottom, baseline at row 11). Rasterised once from

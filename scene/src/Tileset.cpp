@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 // The bake's OGC 3D Tiles 1.1 tileset. A quadtree over the tile columns
 // (x, z): inner nodes have no content and group their children; each tile
 // (each slab of a column) ends in a chain, one node per level of detail from

@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 #include <strata/terrain/DetailErodedHeightfield.h>
 
 #include "ShowValue.h"

@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 // The height graph's node types (HeightGraph.h, ErodedHeightfield.h) as a
 // scene names them.
 

@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 #pragma once
 // Each node source registers its node types, beside their classes; the
 // builtin registry (NodeRegistry.cpp) calls every one of these.

@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 // Block evaluation of the noise bases and their fractal sums, in three
 // passes per octave:
 //   1. split every point into its lattice cell and its fraction (SIMD);

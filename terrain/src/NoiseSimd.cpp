@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 // The vector halves of block noise evaluation (see NoiseSimd.h), compiled
 // once per instruction set by Highway's foreach_target and dispatched at run
 // time. Each kernel below is its scalar twin in NoiseKernels.h written in

@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 #include <strata/terrain/NoiseThroughput.h>
 #include <strata/terrain/SimdTarget.h>
 

@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 #pragma once
 // A double as error messages print it (shortest stream form), shared by the
 // nodes that check their options.

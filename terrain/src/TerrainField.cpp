@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 #include <strata/terrain/TerrainField.h>
 
 #include "BlockColumns.h"

@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 // Worm caves' distance at a block of points, one point per SIMD lane (see
 // WormSimd.h). The twin of WormCaves::distanceAmong() and
 // roundConeDistance() in Caves.cpp: keep the two in step (BlockEvaluationTest

@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 // `strata bench -o DIR` end to end on the hidden --tiny setting: the three
 // files, the CSV's columns, a row for each preset and each swept knob, and a
 // plot that is an image with something drawn on it.

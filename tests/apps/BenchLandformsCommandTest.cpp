@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 // `strata bench landforms`: a heightfield scene written here (every statistic
 // and goal printed, the same numbers on 1 and 2 threads, the crop flags), a
 // DEM written here (.asc), the real DEM Debian's python-matplotlib-data ships

@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 // The strata executable end to end, as a user runs it.
 
 #include "RunStrata.h"

@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 #pragma once
 // A small terrain with an `erode` node (a 64 m domain at 2 m cells: quick),
 // shared by the tests of the landform masks (scene_tests and app_tests).

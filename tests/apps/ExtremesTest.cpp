@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 // The pipeline at the extremes: the scene moved far from the world origin
 // (`strata generate --offset`), the same scene scaled from millimetre to
 // kilometre voxels, and NaN, infinite, negative and out-of-range values in

@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: The Strata authors
+# SPDX-License-Identifier: MIT
+
 # Installs the build tree into a scratch prefix, builds an example against it
 # with find_package(Strata), and runs the example. By default the generator
 # example; another one with -DEXAMPLE_PROGRAM=<target> -DEXAMPLE_ARGS=<a;b>

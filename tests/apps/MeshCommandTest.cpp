@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 // `strata mesh`, `strata info` and `strata bench mesh` end to end.
 
 #include "RunStrata.h"

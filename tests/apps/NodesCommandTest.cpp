@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 // `strata nodes`: the node registry printed, and the node table of
 // docs/nodes.md generated from it (this test fails when the two disagree).
 

@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 // `strata render` and `strata generate --backend cpu`, end to end.
 
 #include "RunStrata.h"

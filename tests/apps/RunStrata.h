@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 #pragma once
 // Runs the strata executable (STRATA_EXECUTABLE, set by CMake) as a user
 // would, capturing its exit code and everything it printed.

@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 // Bad scene values through the real CLI: one key of each kind of check that
 // the scene library makes in-process (tests/scene: SceneTest, SceneTerrainTest,
 // QualityTest, PipelineTest), each in its own scene file given to

@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 // Snapshot flags of `strata generate` and `strata render`, end to end:
 // backends auto/gl/cpu, camera presets and flags, turntables, EXR, bad
 // values, and the default scene on GL versus the CPU renderer.

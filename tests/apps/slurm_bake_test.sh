@@ -1,4 +1,8 @@
 #!/bin/bash
+
+# SPDX-FileCopyrightText: The Strata authors
+# SPDX-License-Identifier: MIT
+
 # A real scheduler in the tests: starts a single-node Slurm cluster on this
 # machine (munge with a fresh key, slurmctld and slurmd as child processes,
 # a generated slurm.conf for localhost), submits examples/slurm/submit.sh for

@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 // Landform figures: the erode node's global pass over the showcase's 4 km
 // domain (examples/worlds/mountains4k.toml) at 8 m (513²) and 4 m (1025²)
 // cells, and its parts (flow routing, drainage area, the statistics).

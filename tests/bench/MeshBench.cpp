@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 // Chunk mesher throughput on one core, next to volumeToMesh on the same grid
 // (Google Benchmark; prints numbers, asserts nothing). Counters:
 // triangles per second and nanoseconds per voxel (per cell of the 32^3

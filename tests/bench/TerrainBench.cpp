@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 // Terrain figures: noise throughput per type, the default scene's field and
 // its sampling at 1 and 2 threads, evaluated/active, bytes per active voxel,
 // and | |∇φ| − 1 | before and after renormalisation. Numbers only; nothing

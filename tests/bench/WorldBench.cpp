@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 // The streaming world's figures (a program that prints numbers and asserts
 // nothing): time from an edit to its re-meshed chunks, chunks generated per
 // second under a moving point of interest, memory per resident chunk, and

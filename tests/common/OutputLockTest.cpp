@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 // One run at a time per output folder (strata/OutputLock.h).
 
 #include "TestDir.h"

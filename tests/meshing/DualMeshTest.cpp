@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 // The shared dual mesher (DualMesh.h) behind surfaceNets(), dualContouring()
 // and the World's chunk meshes: golden hashes of its outputs, so a change of
 // a single bit shows, and the manifold welding of dual contouring.

@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 // The fuzzers' seed corpora (and any crash reproducer added to them) as
 // regression inputs: each file either parses or throws strata::Error.
 #include <strata/Error.h>

@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 #include <strata/Error.h>
 #include <strata/meshing/AnalyticShapes.h>
 #include <strata/meshing/GridToMesh.h>

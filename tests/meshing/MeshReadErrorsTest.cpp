@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 // One test per reader defect of issue 17: each malformed file must give a
 // BadInput strata::Error naming the file (and the element), never a hang, a
 // crash, an allocation failure or a silently shortened mesh.

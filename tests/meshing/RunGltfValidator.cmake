@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: The Strata authors
+# SPDX-License-Identifier: MIT
+
 # Runs the Khronos glTF validator on the .glb files a command writes.
 #   cmake -DNODE=... -DNPM=... -DMODULES=<dir for node_modules> -DSCRIPT=validate_gltf.js
 #         -DWRITER=<program writing the files> -DWRITER_ARGS=<;-list> -DFILES=<;-list> -P RunGltfValidator.cmake

@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 // Every mesh and grid writer under a file size limit (a full disk, as far as
 // the writer can tell): the write must fail with an I/O error naming the
 // file, the file that was there must be byte-identical afterwards, and no

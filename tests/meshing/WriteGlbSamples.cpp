@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 // Writes the .glb files the Khronos validator checks (RunGltfValidator.cmake):
 // each mesher, chunked and whole, far from the origin, a lone chunk, a
 // simplified mesh, one with the terrain attributes and an empty one.

@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 // Validates .glb/.gltf files with the Khronos glTF validator (npm package
 // `gltf-validator`). Usage: node validate_gltf.js FILE_OR_FOLDER... (a folder:
 // every .glb under it, sorted).

@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 // Anti-tiling (stochastic tiling, shaders/TriplanarShading.h and
 // TriplanarMaterial.h): the taps' weights, continuity, anchoring to the world
 // through the rebasing, that repeats stop repeating, and GL against the CPU.

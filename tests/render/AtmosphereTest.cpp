@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 // The sky and aerial perspective of shaders/Atmosphere.h, compiled as C++
 // through the shading prelude, and the host side that fills its parameters
 // (render/src/AtmosphereSetup.h): fog against a numerical integral, the sky

@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 // Multisampling on the CPU reference renderer: its sample positions against
 // the ones the GL driver reports, edges that take intermediate values with
 // several samples (and none with one), and GL with MSAA against the CPU

@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 // The CPU reference renderer: rasterization rules, determinism, agreement
 // with the GL renderer, and golden images.
 //

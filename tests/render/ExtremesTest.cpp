@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 // Rendering at the extremes, on both renderers (GL through EGL on llvmpipe,
 // and the CPU reference): meshes far from the world origin, triplanar
 // texturing rebased on a tile-aligned origin, blend and normal settings at

@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 // The GLSL compile path: errors name the shader file and line and quote the
 // line; the std140 uniform blocks as the driver lays them out match the C++
 // mirrors in render/src/UniformBlocks.h. Runs on EGL (llvmpipe in CI).

@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 // Headless rendering through EGL. These tests must run (CI has Mesa's
 // llvmpipe): a machine where no context can be created fails them.
 

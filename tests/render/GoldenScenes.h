@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 #pragma once
 // The golden scenes of the render tests (CpuRendererTest.cpp, RenderParityTest.cpp):
 // a sphere and a cube with the circuitry material under several feature sets.

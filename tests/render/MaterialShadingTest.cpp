@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 // The material math of the shared GLSL/C++ header (TriplanarShading.h,
 // TriplanarMaterial.h), each formula at its definition and its extremes.
 

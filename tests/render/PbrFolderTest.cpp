@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 // PBR texture folders: classification of the common CC0 naming schemes,
 // MOHS packing, normal conventions, downsampling and the errors.
 

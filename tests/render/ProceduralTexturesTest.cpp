@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 #include <strata/Error.h>
 #include <strata/render/Image.h>
 #include <strata/render/ProceduralTextures.h>

@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 // Render benchmark (not a test: no timing assertions anywhere), on the
 // ~200k-triangle heightfield with cliffs and the built-in texture sets (512²):
 //  1. start-up of the GL path, split: EGL context creation, mesh and texture

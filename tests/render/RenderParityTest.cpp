@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 // GL versus the CPU reference renderer, whole images: the golden scenes at
 // 640×360 (MSAA off on GL, since the CPU takes one sample per pixel) must
 // reach PSNR >= 40 dB with >= 99% of the pixels within 2/255 on every

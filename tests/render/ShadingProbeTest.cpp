@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 // The shading probe: the shared material header evaluated by GL (shaders/
 // probe.frag, through the same GLSL the terrain program embeds) at a few
 // thousand sample points given as data — texture-space position, normal, UV

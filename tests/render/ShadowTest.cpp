@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 // Sun shadows (shaders/Shadow.h, render/src/ShadowSetup.h): the lookup and
 // PCF math on a synthetic map, the fitted projection, and both renderers on
 // scenes whose shadows are known.

@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 // Terrain layers (shaders/TerrainLayers.h): the rule and blend math as C++,
 // the layer maps' texture-array sizing, the material checks, and GL against
 // the CPU reference with layers of different feature sets, also 8.4e6 m

@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 #pragma once
 // The EGL context of the GL tests: a test fails (never skips) without one,
 // since CI has EGL on llvmpipe.

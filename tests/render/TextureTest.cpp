@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 // Texture maps: mip chains, channel remapping, loading, packing, and the CPU
 // sampler against hand-computed GL filtering.
 

@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 // The shared GLSL/C++ shading header, compiled as C++ through its prelude.
 
 #include "ShadingPrelude.h"

@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 // The viewer's orbit and fly cameras (apps/strata-view/ViewerCamera.h).
 
 #include "ViewerCamera.h"

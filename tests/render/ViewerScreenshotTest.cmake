@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: The Strata authors
+# SPDX-License-Identifier: MIT
+
 # ctest script: strata-view opens a window under Xvfb, renders frames and
 # writes a non-constant screenshot of the size asked for; --help works and a
 # bad scene path is exit code 2.

@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 // strata::scene::bake(): tiles are pure functions of the scene and their
 // index, a level's tiles weld with boundary only on the region's border,
 // cross-level seams are covered by skirts, the tileset is valid 3D Tiles

@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 // The `cave` camera preset on synthetic level sets: an enclosed cavity, the
 // same cavity with a tunnel to the region's side, and solid rock.
 

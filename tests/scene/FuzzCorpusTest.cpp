@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 // The scene and heightmap fuzzers' seed corpora (fuzz/corpus/scene/,
 // fuzz/corpus/heightmap/) and any crash reproducer added to them, replayed
 // as regression inputs: each file is accepted or refused with

@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 // The landform masks per mesh vertex (strata/world/LandformAttributes.h) and
 // how the pipeline carries them from the terrain's landform source to the
 // layer rules and debug views, with a known stand-in for an `erode` node.

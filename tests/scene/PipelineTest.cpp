@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 // The generate pipeline as library stages (strata/scene/Pipeline.h): the
 // stages called one by one give the same bytes as generate(); observers hear
 // every stage and can interrupt; errors carry their kind and place.

@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 // Quality presets and knobs (apps/strata/Quality.h): the preset table,
 // precedence, scene-file and flag errors, and `strata generate` applying each
 // knob end to end.

@@ -1,3 +1,6 @@
+# SPDX-FileCopyrightText: The Strata authors
+# SPDX-License-Identifier: MIT
+
 # Loads a baked 3D Tiles tileset in a real client run headless by node: the TilesRenderer
 # of the npm package 3d-tiles-renderer on three.js (see tiles_client.mjs).
 #   cmake -DNODE=... -DNPM=... -DMODULES=<dir for node_modules> -DSCRIPT=tiles_client.mjs

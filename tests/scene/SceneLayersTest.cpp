@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 // The [[layer]] tables and `pbr` folders of the scene file (SceneMaterial.cpp).
 
 #include <strata/scene/Scene.h>

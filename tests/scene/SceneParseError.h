@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 #pragma once
 // The scene tests' helper: the message of the strata::Error that parsing a
 // scene text throws (a test failure when it parses).

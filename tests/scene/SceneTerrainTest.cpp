@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 // The [terrain] node tree of the scene file (scene/src/SceneTerrain.h).
 
 #include <strata/scene/Scene.h>

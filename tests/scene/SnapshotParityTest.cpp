@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 // The default scene as `strata generate` renders it (640×360, the scene's 4×
 // MSAA, its atmosphere, llvmpipe with its default settings: no driver
 // variables), on GL through EGL against the CPU reference renderer with the

@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 // Loads a `strata bake` folder in a real 3D Tiles client run headless in Node:
 // the TilesRenderer of the npm package 3d-tiles-renderer (NASA-AMMOS/3DTilesRendererJS)
 // on three.js, fed by a local http server, driven by a PerspectiveCamera at a few

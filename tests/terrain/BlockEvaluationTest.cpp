@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 // Block evaluation (DensityField::densities, FractalNoise::evaluate) against
 // the scalar reference, bit for bit: every noise basis and fractal, every
 // node type of the registry with its default keys, on voxel blocks at the

@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 #pragma once
 // The default scene's density tree built by hand with the scene's values
 // (apps/strata/default_scene.toml): fBm hills, optionally terraced, warped

@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 // The erode_detail node: rills and talus within their bounds, flats left
 // alone, the same bits for any tiling and thread count, continuous across
 // block borders, the extremes and errors naming their key.

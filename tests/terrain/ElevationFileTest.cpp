@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 // DEM files the test writes itself: NumPy .npy (each type, versions 1 to 3,
 // C and Fortran order, non-finite values), .npz (stored members, zip64 as
 // np.savez writes them, the member chosen), ESRI ASCII grids (corner and

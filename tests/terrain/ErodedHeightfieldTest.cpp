@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 // The erode node: the same terrain for any crop, tiling and thread count,
 // one evolution per process, smooth read-back, masks, the extremes and
 // errors naming their key.

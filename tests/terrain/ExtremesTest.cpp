@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 // Noise and density far from the origin: finite and in range at 1e9 m (and
 // at the octave frequencies that puts beyond 2^62 lattice cells), and a
 // level set sampled at 1e9 m with no NaN or infinity in it.

@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 // Flow routing: the priority-flood + epsilon fill (a closed basin fills to its
 // spill height within a few ulps, surfaces without depressions are left as
 // they are), steepest-descent receivers strictly lower on the filled surface,

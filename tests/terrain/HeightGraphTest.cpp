@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 // The height graph's nodes: their values, and the promises every height
 // node makes to the sampler (slope bound, interval bounds, block heights
 // with the same bits).

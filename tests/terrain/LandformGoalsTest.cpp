@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 // The project's landform goals: each checked against its range, ends
 // included, NaN never met; the table shows every goal.
 

@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 // Landform statistics on surfaces whose answers are known: a tilted plane
 // (no depressions, no flats), a flat (all flat, and the epsilon fill's ulps
 // are no depression), a bowl with a notch (its depressions counted, deepest

@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 #include <strata/Error.h>
 #include <strata/terrain/Caves.h>
 #include <strata/terrain/Csg.h>

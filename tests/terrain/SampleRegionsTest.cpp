@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 // Sampling node trees: box by box, far from the origin, under a memory
 // budget, renormalised.
 

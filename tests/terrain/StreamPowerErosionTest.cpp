@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 // Landscape evolution: the sediment budget, the analytic steady state,
 // flats, lakes, determinism and the extremes.
 

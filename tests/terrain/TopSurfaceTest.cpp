@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 // The top surface of fields whose answer is known: a noise heightfield (its
 // height()), a sphere (its upper cap, nothing outside its disc), a heightfield
 // with a cave carved under the surface (the upper surface kept) and with a

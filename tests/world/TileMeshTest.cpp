@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 // world::meshTile(): tiles clipped exactly to their boxes weld into one
 // closed surface, skirts hang from faces with a neighbour, and bad boxes
 // are refused.

@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 // Deliberate data races in Strata-named functions, built only under
 // ThreadSanitizer (STRATA_TSAN). scripts/sanitizers.sh runs each with the
 // world tests' suppressions and requires a report: it proves that TSan is

@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 // Edits of strata::world::World: which chunks they mark, undo by the inverse
 // edit, persistence across eviction and in .vdb files.
 

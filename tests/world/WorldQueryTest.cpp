@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 // Queries of strata::world::World that never wait for meshes: ray casts,
 // density, solid boxes.
 

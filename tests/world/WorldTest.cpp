@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 // Streaming, LOD seams, eviction and determinism of strata::world::World.
 
 #include "WorldTestUtil.h"

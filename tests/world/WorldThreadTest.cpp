@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 // The members World documents as thread-safe, called from several threads at
 // once (run this test under ThreadSanitizer: see README, "World library").
 

@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 #include "ChunkMesher.h"
 
 #include <strata/world/LandformAttributes.h>

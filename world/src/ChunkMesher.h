@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 #pragma once
 // Internal: gathers one chunk's samples (field, edits, cache) and meshes them
 // with meshing::dualMesh() (dual contouring on the octree of

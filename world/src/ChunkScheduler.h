@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 #pragma once
 // Internal: runs the World's chunk tasks. Picks the dirty resident chunks
 // nearest the points of interest (or in a seeded random order, for tests),

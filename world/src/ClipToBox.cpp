@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 #include "ClipToBox.h"
 
 #include <glm/geometric.hpp>

@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 #pragma once
 // Internal: clips an indexed triangle mesh to a closed axis-aligned box so
 // that two boxes sharing a face cut their shared triangles identically.

@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 #pragma once
 // Internal: the sparse edit grid (edited densities at voxel resolution) and
 // the read-only snapshots chunk tasks sample from.

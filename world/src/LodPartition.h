@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 #pragma once
 // Internal: which chunks are resident, at which level, for a set of points of
 // interest (the octree partition of World.h), and each chunk's signature.

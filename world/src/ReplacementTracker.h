@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 #pragma once
 // Internal: the World's resident chunks and their replacement bookkeeping.
 // Which chunks are resident (the LOD partition, applied by rebuild()), which

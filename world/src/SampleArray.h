@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 #pragma once
 // Internal: a box of lattice samples filled lazily in 8³ blocks, pruned by
 // the field's distance bound, evaluated a block at a time.

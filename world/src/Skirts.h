@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 #pragma once
 // Internal: skirts that hang from a tile's border into the rock (see
 // TileMesh.h, "Seams").

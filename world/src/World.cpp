@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 #include <strata/world/World.h>
 
 #include <strata/Finite.h>

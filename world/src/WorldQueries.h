@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 #pragma once
 // Internal: the World's queries on the edited density field (the lattice
 // samples interpolated trilinearly), independent of the resident chunks:

@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 #pragma once
 /// \file
 /// SHA-256 digests (OpenSSL's libcrypto) as lowercase hex, for manifests

@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 #pragma once
 /// \file
 /// Level set to triangle mesh through OpenVDB's volumeToMesh.

@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 #pragma once
 /// \file
 /// Mesh files by extension: .glb (tinygltf, origin as a node translation),

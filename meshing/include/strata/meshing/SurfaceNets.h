@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 #pragma once
 /// \file
 /// Naive surface nets on leaf-aligned chunks (see ChunkMesh.h): one vertex

@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 #pragma once
 /// \file
 /// PBR texture folders as CC0 libraries ship them (ambientCG, Poly Haven,

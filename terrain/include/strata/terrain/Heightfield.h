@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 #pragma once
 /// \file
 /// Heightfields y = h(x, z) as density fields: from fractal noise or from an

@@ -1,3 +1,6 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
 #pragma once
 /// \file
 /// Landscape evolution on a regular grid: uplift, stream-power incision
