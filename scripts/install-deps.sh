@@ -19,7 +19,9 @@ PACKAGES=(
   slurm-wlm munge python3 python3-yaml
   python-matplotlib-data
   xvfb xauth
+  reuse
 )
+# reuse runs `reuse lint` (ctest's ReuseLint): every file states its licence.
 # python-matplotlib-data ships a real DEM (sample_data/jacksboro_fault_dem.npz)
 # that tests/apps/BenchLandformsCommandTest.cpp measures (docs/landform-statistics.md).
 # clang with its sanitizer and libFuzzer runtimes (libclang-rt-dev) and
