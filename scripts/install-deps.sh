@@ -11,7 +11,7 @@ PACKAGES=(
   build-essential cmake ninja-build ccache pkg-config
   libopenvdb-dev libboost-iostreams-dev libtbb-dev
   libopenmesh-dev libglm-dev libhwy-dev libmeshoptimizer-dev libtinygltf-dev
-  libopenimageio-dev openimageio-tools
+  libopenimageio-dev openimageio-tools libpng-dev
   libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri libepoxy-dev libglfw3-dev
   libcli11-dev libtomlplusplus-dev nlohmann-json3-dev libfmt-dev
   libgtest-dev libbenchmark-dev libssl-dev
@@ -26,8 +26,9 @@ PACKAGES=(
 # that tests/apps/BenchLandformsCommandTest.cpp measures (docs/landform-statistics.md).
 # clang with its sanitizer and libFuzzer runtimes (libclang-rt-dev) and
 # llvm-symbolizer (llvm) build and run scripts/sanitizers.sh, which CI runs.
-# Node.js and npm run the Khronos glTF validator test (npm installs
-# gltf-validator into the build tree). A machine may already have them from
+# Node.js and npm run the Khronos glTF validator and 3D Tiles client tests
+# (`npm ci` installs the versions tests/npm/package-lock.json pins into the
+# build tree). A machine may already have them from
 # another source (e.g. a nodejs package that bundles npm, where Debian's npm
 # package would conflict): only ask Debian when the commands are missing.
 if ! command -v node >/dev/null 2>&1; then PACKAGES+=(nodejs); fi

@@ -6,8 +6,10 @@
 #         -DWRITER=<program writing the files> -DWRITER_ARGS=<;-list> -DFILES=<;-list> -P RunGltfValidator.cmake
 # Optional: a second command WRITER2/WRITER2_ARGS run after the first, and
 # EXPECT2, a regular expression its output must match.
-# The validator is installed once into MODULES with npm (needs the network the
-# first time); every failure says what to do.
+# The validator is installed into MODULES by `npm ci` from the committed
+# lockfile tests/npm/package-lock.json (tests/npm/NpmCi.cmake; needs the
+# network the first time and after the lockfile changes); every failure says
+# what to do.
 foreach(var NODE NPM MODULES SCRIPT FILES)
   if(NOT DEFINED ${var} OR "${${var}}" STREQUAL "")
     message(FATAL_ERROR "RunGltfValidator: ${var} is not set")
@@ -18,15 +20,10 @@ if(NOT EXISTS "${NODE}")
                       "(scripts/install-deps.sh does) and re-run cmake")
 endif()
 
+include("${CMAKE_CURRENT_LIST_DIR}/../npm/NpmCi.cmake")
+strata_npm_ci("${NPM}" "${MODULES}")
 if(NOT EXISTS "${MODULES}/node_modules/gltf-validator/package.json")
-  file(MAKE_DIRECTORY "${MODULES}")
-  execute_process(
-    COMMAND "${NPM}" install --no-audit --no-fund --loglevel=error --prefix "${MODULES}" gltf-validator
-    RESULT_VARIABLE npm_result OUTPUT_VARIABLE npm_output ERROR_VARIABLE npm_output TIMEOUT 300)
-  if(NOT npm_result EQUAL 0 OR NOT EXISTS "${MODULES}/node_modules/gltf-validator/package.json")
-    message(FATAL_ERROR "cannot install the npm package gltf-validator into ${MODULES} (no network?). "
-                        "Run once with network: ${NPM} install --prefix ${MODULES} gltf-validator\n${npm_output}")
-  endif()
+  message(FATAL_ERROR "npm ci did not install gltf-validator into ${MODULES}: is it in tests/npm/package.json?")
 endif()
 
 if(DEFINED WRITER AND NOT "${WRITER}" STREQUAL "")

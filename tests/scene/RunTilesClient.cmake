@@ -8,10 +8,9 @@
 #         -DWRITER=<program baking it> -DWRITER_ARGS=<;-list, writing into BAKE_DIR>
 #         [-DCLIENT_ARGS=<;-list, e.g. --strict>] -P RunTilesClient.cmake
 # Without WRITER, BAKE_DIR is loaded as it is (and kept).
-# The client is installed once into MODULES with npm (needs the network the first time);
-# every failure says what to do.
-set(TILES_RENDERER_VERSION 0.5.3)
-set(THREE_VERSION 0.187.0)
+# The client is installed into MODULES by `npm ci` from the committed lockfile
+# tests/npm/package-lock.json (tests/npm/NpmCi.cmake; needs the network the first
+# time and after the lockfile changes); every failure says what to do.
 
 foreach(var NODE NPM MODULES SCRIPT BAKE_DIR)
   if(NOT DEFINED ${var} OR "${${var}}" STREQUAL "")
@@ -23,32 +22,19 @@ if(NOT EXISTS "${NODE}")
                       "(scripts/install-deps.sh does) and re-run cmake")
 endif()
 
-# Installs (or re-pins) the npm packages unless MODULES holds the pinned versions.
-set(wanted "")
-foreach(pkg_ver "3d-tiles-renderer@${TILES_RENDERER_VERSION}" "three@${THREE_VERSION}")
-  string(REGEX MATCH "^(.+)@([^@]+)$" unused "${pkg_ver}")
-  set(pkg_json "${MODULES}/node_modules/${CMAKE_MATCH_1}/package.json")
-  set(have "")
-  if(EXISTS "${pkg_json}")
-    file(READ "${pkg_json}" pkg_text)
-    string(JSON have ERROR_VARIABLE json_error GET "${pkg_text}" version)
+include("${CMAKE_CURRENT_LIST_DIR}/../npm/NpmCi.cmake")
+strata_npm_ci("${NPM}" "${MODULES}")
+# The versions the lockfile pins, for the messages below.
+foreach(pkg 3d-tiles-renderer three)
+  set(pkg_json "${MODULES}/node_modules/${pkg}/package.json")
+  if(NOT EXISTS "${pkg_json}")
+    message(FATAL_ERROR "npm ci did not install ${pkg} into ${MODULES}: is it in tests/npm/package.json?")
   endif()
-  if(NOT have STREQUAL CMAKE_MATCH_2)
-    list(APPEND wanted "${pkg_ver}")
-  endif()
+  file(READ "${pkg_json}" pkg_text)
+  string(JSON version_${pkg} GET "${pkg_text}" version)
 endforeach()
-if(wanted)
-  file(MAKE_DIRECTORY "${MODULES}")
-  execute_process(
-    COMMAND "${NPM}" install --no-audit --no-fund --save-exact --loglevel=error --prefix "${MODULES}" ${wanted}
-    RESULT_VARIABLE npm_result OUTPUT_VARIABLE npm_output ERROR_VARIABLE npm_output TIMEOUT 300)
-  if(NOT npm_result EQUAL 0 OR NOT EXISTS "${MODULES}/node_modules/3d-tiles-renderer/package.json"
-     OR NOT EXISTS "${MODULES}/node_modules/three/package.json")
-    string(REPLACE ";" " " wanted_text "${wanted}")
-    message(FATAL_ERROR "cannot install the npm packages ${wanted_text} into ${MODULES} (no network?). "
-                        "Run once with network: ${NPM} install --save-exact --prefix ${MODULES} ${wanted_text}\n${npm_output}")
-  endif()
-endif()
+set(TILES_RENDERER_VERSION ${version_3d-tiles-renderer})
+set(THREE_VERSION ${version_three})
 
 if(DEFINED WRITER AND NOT "${WRITER}" STREQUAL "")
   file(REMOVE_RECURSE "${BAKE_DIR}")
