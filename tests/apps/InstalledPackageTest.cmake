@@ -23,6 +23,18 @@ foreach(path include/strata/Error.h include/strata/terrain/TerrainField.h includ
     message(FATAL_ERROR "install is missing ${path}")
   endif()
 endforeach()
+# The licence, the third-party notices and every licence text (issue 31).
+foreach(path LICENSE THIRD_PARTY.md LICENSES/MIT.txt LICENSES/GPL-2.0-only.txt LICENSES/GPL-2.0-or-later.txt
+        LICENSES/LicenseRef-UFOAI-public-domain.txt)
+  if(NOT EXISTS ${prefix}/share/doc/strata/${path})
+    message(FATAL_ERROR "install is missing share/doc/strata/${path}")
+  endif()
+endforeach()
+file(READ ${prefix}/share/doc/strata/LICENSE licence)
+string(FIND "${licence}" "Copyright (c) The Strata authors" at)
+if(NOT licence MATCHES "^MIT License\n" OR at EQUAL -1)
+  message(FATAL_ERROR "share/doc/strata/LICENSE is not Strata's MIT licence:\n${licence}")
+endif()
 
 run(${CMAKE_COMMAND} -S ${EXAMPLE_DIR} -B ${WORK_DIR}/build -G ${GENERATOR}
     -DCMAKE_BUILD_TYPE=Release -DCMAKE_PREFIX_PATH=${prefix})
