@@ -25,6 +25,7 @@ int main(int argc, char** argv)
         registerNodesCommand(app),
         registerRenderCommand(app),
         registerBakeCommand(app),
+        registerExportTerrainCommand(app),
         registerMeshCommand(app),
         registerInfoCommand(app),
         registerBenchCommand(app),

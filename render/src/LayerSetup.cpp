@@ -26,13 +26,21 @@ glm::vec4 band(const LayerBand& b, double shift = 0.0)
 shading::LayerParams layerParams(const Material& m, const LayerRule* rule, const glm::dvec3& origin,
                                  std::uint32_t features)
 {
-    shading::LayerParams l{};
+    shading::LayerParams l = ruleParams(rule, origin);
     const TextureRebase rebase = rebaseTextures(m.mapScale, m.detailScale, origin);
     l.textureOffset = glm::vec4(rebase.textureOffset, 0.0f);
     l.detailOffset = glm::vec4(rebase.detailOffset, 0.0f);
     l.tileOffset = glm::vec4(rebase.tileOffset, 0.0f);
     l.mapScale = m.mapScale;
     l.features = features;
+    return l;
+}
+
+} // namespace
+
+shading::LayerParams ruleParams(const LayerRule* rule, const glm::dvec3& origin)
+{
+    shading::LayerParams l{};
     l.opacity = 1.0f;
     l.altitude = band(LayerBand{});
     l.slope = l.altitude;
@@ -62,8 +70,6 @@ shading::LayerParams layerParams(const Material& m, const LayerRule* rule, const
     }
     return l;
 }
-
-} // namespace
 
 TextureRebase rebaseTextures(float mapScale, float detailScale, const glm::dvec3& origin)
 {

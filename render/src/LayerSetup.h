@@ -60,6 +60,11 @@ static_assert(offsetof(LayerSetBlock, count) == 2432);
 static_assert(offsetof(LayerSetBlock, blendDepth) == 2436);
 static_assert(sizeof(LayerSetBlock) == 2448);
 
+/// The placement part of a layer's parameters (bands, opacity, noise mask)
+/// for a mesh at `origin`; layer 0 (`rule` null) covers everything.
+/// Texture fields are left zero.
+shading::LayerParams ruleParams(const LayerRule* rule, const glm::dvec3& origin);
+
 /// The layers of `material` (layer 0 its base) for a mesh at `origin`:
 /// altitudes, texture and noise offsets relative to it (in double), each
 /// layer's feature set with the bits outside `mask` off. Unbounded band

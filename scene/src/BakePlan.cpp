@@ -4,6 +4,7 @@
 #include <strata/scene/Bake.h>
 
 #include "BakeManifest.h"
+#include "TileSelection.h"
 
 #include <strata/Error.h>
 #include <strata/Format.h>
@@ -28,9 +29,14 @@ constexpr int DEFAULT_TILE_VOXELS = 256;
 
 std::int64_t floorDiv(std::int64_t a, std::int64_t b) { return a >= 0 ? a / b : -((-a + b - 1) / b); }
 
+
+} // namespace
+
+namespace detail {
+
 /// Parses "all" or comma-separated indices and ranges "A-B" into ascending
 /// indices below `count`, without repeats.
-std::vector<int> parseSelection(const std::string& text, int count)
+std::vector<int> parseTileSelection(const std::string& text, int count)
 {
     std::vector<int> out;
     if (text == "all") {
@@ -65,7 +71,7 @@ std::vector<int> parseSelection(const std::string& text, int count)
     return out;
 }
 
-} // namespace
+} // namespace detail
 
 namespace detail {
 
@@ -158,7 +164,7 @@ BakePlan planBake(const Scene& scene, const BakeOptions& options)
         plan.counts[a] = int(n);
     }
     plan.skirtDepth = options.skirtDepth > 0.0 ? options.skirtDepth : 2.0 * double(coarse) * scene.voxelSize;
-    plan.selected = parseSelection(options.tiles, plan.tileCount());
+    plan.selected = detail::parseTileSelection(options.tiles, plan.tileCount());
 
     // Per tile: the level-0 sample array (the largest), and the grid's
     // narrow band estimated as a sheet through the tile (4 bytes a voxel,

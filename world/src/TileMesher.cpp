@@ -6,6 +6,7 @@
 #include "ClipToBox.h"
 #include "SampleArray.h"
 #include "Skirts.h"
+#include "TileSurface.h"
 
 #include <strata/Error.h>
 #include <strata/meshing/DualMesh.h>
@@ -19,9 +20,6 @@ namespace strata::world {
 
 namespace {
 
-/// Positions are multiples of 1/QUANTUM cell: with at most 1025 cells from
-/// the box minimum that is 23 bits, exact in float.
-constexpr double QUANTUM = 4096.0;
 constexpr int MAX_CELLS = 1024;
 
 std::array<int, 3> tileCells(const TileBox& box, int level)
@@ -49,7 +47,45 @@ void checkTile(const TileBox& box, const TileMeshOptions& options)
     }
 }
 
-meshing::TriangleMesh toTriangleMesh(const detail::ClipMesh& mesh, double cellMetres, const glm::dvec3& origin)
+} // namespace
+
+std::size_t tileSampleBytes(const TileBox& box, int level)
+{
+    const std::array<int, 3> cells = tileCells(box, level);
+    return detail::SampleArray::bytesFor({cells[0] + 4, cells[1] + 4, cells[2] + 4});
+}
+
+namespace detail {
+
+ClipMesh meshSampledBox(const SampleArray& samples, const std::array<int, 3>& cells)
+{
+    const std::array<int, 3>& dims = samples.dims();
+    meshing::DualSamples input;
+    input.values = samples.data();
+    input.cells = {cells[0] + 1, cells[1] + 1, cells[2] + 1};
+    input.size = dims;
+    input.stride = {1, dims[0], std::ptrdiff_t(dims[0]) * dims[1]};
+    input.apron = 2;
+    meshing::DualMeshSettings settings;
+    settings.gradients = meshing::DualGradient::Cell;
+    settings.quantum = TILE_QUANTUM;
+    meshing::DualMeshResult result = meshing::dualMesh(input, settings);
+
+    ClipMesh mesh;
+    mesh.positions = std::move(result.positions);
+    mesh.normals.reserve(result.gradients.size());
+    for (const glm::dvec3& g : result.gradients) {
+        const double len = glm::length(g);
+        mesh.normals.push_back(len > 0.0 ? g / len : glm::dvec3(0.0, 1.0, 0.0));
+    }
+    mesh.indices = std::move(result.indices);
+    const glm::dvec3 lo(0.0);
+    const glm::dvec3 hi{double(cells[0]), double(cells[1]), double(cells[2])};
+    clipToBox(mesh, lo, hi, TILE_QUANTUM);
+    return mesh;
+}
+
+meshing::TriangleMesh toTriangleMesh(const ClipMesh& mesh, double cellMetres, const glm::dvec3& origin)
 {
     meshing::TriangleMesh out;
     out.origin = origin;
@@ -64,13 +100,7 @@ meshing::TriangleMesh toTriangleMesh(const detail::ClipMesh& mesh, double cellMe
     return out;
 }
 
-} // namespace
-
-std::size_t tileSampleBytes(const TileBox& box, int level)
-{
-    const std::array<int, 3> cells = tileCells(box, level);
-    return detail::SampleArray::bytesFor({cells[0] + 4, cells[1] + 4, cells[2] + 4});
-}
+} // namespace detail
 
 TileMeshData meshTile(const terrain::DensityField& field, const TileBox& box, const TileMeshOptions& options)
 {
@@ -90,32 +120,13 @@ TileMeshData meshTile(const terrain::DensityField& field, const TileBox& box, co
     samples.init(&field, nullptr, options.voxelSize, sampleOrigin, step, dims, step);
     samples.fillAll();
 
-    meshing::DualSamples input;
-    input.values = samples.data();
-    input.cells = {cells[0] + 1, cells[1] + 1, cells[2] + 1};
-    input.size = dims;
-    input.stride = {1, dims[0], std::ptrdiff_t(dims[0]) * dims[1]};
-    input.apron = 2;
-    meshing::DualMeshSettings settings;
-    settings.gradients = meshing::DualGradient::Cell;
-    settings.quantum = QUANTUM;
-    meshing::DualMeshResult result = meshing::dualMesh(input, settings);
-
-    detail::ClipMesh mesh;
-    mesh.positions = std::move(result.positions);
-    mesh.normals.reserve(result.gradients.size());
-    for (const glm::dvec3& g : result.gradients) {
-        const double len = glm::length(g);
-        mesh.normals.push_back(len > 0.0 ? g / len : glm::dvec3(0.0, 1.0, 0.0));
-    }
-    mesh.indices = std::move(result.indices);
-    const glm::dvec3 lo(0.0);
+    const detail::ClipMesh mesh = detail::meshSampledBox(samples, cells);
     const glm::dvec3 hi{double(cells[0]), double(cells[1]), double(cells[2])};
-    detail::clipToBox(mesh, lo, hi, QUANTUM);
-    const detail::ClipMesh skirt = detail::makeSkirts(mesh, lo, hi, box.neighbourFaces, options.skirtDepth / cellMetres);
+    const detail::ClipMesh skirt =
+        detail::makeSkirts(mesh, glm::dvec3(0.0), hi, box.neighbourFaces, options.skirtDepth / cellMetres);
 
-    out.surface = toTriangleMesh(mesh, cellMetres, origin);
-    out.skirt = toTriangleMesh(skirt, cellMetres, origin);
+    out.surface = detail::toTriangleMesh(mesh, cellMetres, origin);
+    out.skirt = detail::toTriangleMesh(skirt, cellMetres, origin);
     return out;
 }
 

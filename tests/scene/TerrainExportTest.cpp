@@ -1,0 +1,330 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
+// strata::scene::exportTerrain (TerrainExport.h): the engines' files read
+// back with OpenImageIO and checked against the level set.
+
+#include <strata/Error.h>
+#include <strata/meshing/GltfIO.h>
+#include <strata/render/DataImage.h>
+#include <strata/scene/Scene.h>
+#include <strata/scene/TerrainExport.h>
+#include <strata/world/TerrainTile.h>
+
+#include "TestDir.h"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <cstring>
+#include <fstream>
+#include <sstream>
+
+using namespace strata;
+using namespace strata::scene;
+namespace fs = std::filesystem;
+
+namespace {
+
+/// Hills with a cave breaking through, two layers (steep rock, high snow).
+const char* HILLS = R"(
+seed = 3
+[terrain]
+root = "world"
+[terrain.nodes.world]
+type = "subtract"
+children = ["land", "cave"]
+[terrain.nodes.land]
+type = "heightfield"
+amplitude = 30.0
+wavelength = 40.0
+octaves = 3
+[terrain.nodes.cave]
+type = "sphere"
+center = [10.0, -3.0, 12.0]
+radius = 5.0
+[region]
+min = [0.0, -16.0, 0.0]
+max = [32.0, 16.0, 32.0]
+[sampling]
+voxel_size = 0.5
+[[layer]]
+name = "cliff"
+slope_min = 35
+slope_softness = 10
+[[layer]]
+name = "snow"
+altitude_min = 3
+altitude_softness = 2
+)";
+
+Scene hillsScene() { return parseScene(HILLS, "hills.toml"); }
+
+std::string readBytes(const fs::path& path)
+{
+    std::ifstream in(path, std::ios::binary);
+    std::ostringstream out;
+    out << in.rdbuf();
+    return out.str();
+}
+
+nlohmann::json readJson(const fs::path& path) { return nlohmann::json::parse(readBytes(path)); }
+
+std::uint16_t at16(const render::DataImage& image, int x, int y)
+{
+    std::uint16_t v;
+    std::memcpy(&v, image.bytes.data() + (std::size_t(y) * image.width + x) * 2, 2);
+    return v;
+}
+
+/// Little-endian 16-bit samples of a .raw/.r16 file, n × n.
+std::vector<std::uint16_t> readRaw16(const fs::path& path, int n)
+{
+    const std::string bytes = readBytes(path);
+    EXPECT_EQ(bytes.size(), std::size_t(n) * n * 2) << path;
+    std::vector<std::uint16_t> out(bytes.size() / 2);
+    for (std::size_t i = 0; i < out.size(); ++i)
+        out[i] = std::uint16_t(std::uint8_t(bytes[2 * i]) | (std::uint8_t(bytes[2 * i + 1]) << 8));
+    return out;
+}
+
+TerrainExportOptions optionsFor(TerrainEngine engine, const fs::path& dir)
+{
+    TerrainExportOptions o;
+    o.engine = engine;
+    o.outputDir = dir;
+    o.tileSize = 16.0; // 32 voxels: a 2 × 2 world
+    return o;
+}
+
+/// The lattice tile the export reads for tile (x, z) of `plan`.
+world::TerrainTile latticeTile(const Scene& scene, const TerrainExportPlan& plan, int x, int z)
+{
+    world::TileBox box;
+    box.min = {plan.minVoxel[0] + x * plan.tileVoxels, plan.minVoxel[1], plan.minVoxel[2] + z * plan.tileVoxels};
+    box.size = {plan.tileVoxels, plan.heightVoxels, plan.tileVoxels};
+    return world::extractTerrainTile(*scene.field, box, {plan.voxelSize});
+}
+
+} // namespace
+
+TEST(TerrainExport, LegalSizesPerEngine)
+{
+    for (int n : {33, 65, 129, 257, 513, 1025, 2049, 4097}) EXPECT_TRUE(legalTerrainResolution(TerrainEngine::Unity, n)) << n;
+    for (int n : {17, 256, 258, 8193}) EXPECT_FALSE(legalTerrainResolution(TerrainEngine::Unity, n)) << n;
+    for (int n : {253, 505, 1009, 2017, 4033, 8129, 256, 64})
+        EXPECT_TRUE(legalTerrainResolution(TerrainEngine::Unreal, n)) << n;
+    for (int n : {257, 513, 1025, 300}) EXPECT_FALSE(legalTerrainResolution(TerrainEngine::Unreal, n)) << n;
+    EXPECT_TRUE(legalTerrainResolution(TerrainEngine::Godot, 33));
+    EXPECT_FALSE(legalTerrainResolution(TerrainEngine::Raw, 1));
+}
+
+TEST(TerrainExport, UnityRawHeightsMatchTheLevelSetAndNeighboursShareEdges)
+{
+    const Scene scene = hillsScene();
+    const fs::path dir = test::freshTestDir();
+    TerrainExportOptions options = optionsFor(TerrainEngine::Unity, dir);
+    options.threads = 2;
+    const TerrainExportPlan plan = planTerrainExport(scene, options);
+    ASSERT_EQ(plan.tilesX, 2);
+    ASSERT_EQ(plan.tilesZ, 2);
+    ASSERT_EQ(plan.resolution, 33) << "32 voxels + 1: Unity's 2^5 + 1";
+    EXPECT_EQ(plan.spacing, 0.5);
+    // 32 m in 65535 steps is a hair over 2^-11 m: the step is 2^-10 m.
+    EXPECT_EQ(plan.heightStep, std::ldexp(1.0, -10));
+    const TerrainExportSummary summary = exportTerrain(scene, options, plan);
+    EXPECT_EQ(summary.tiles, 4);
+    EXPECT_GT(summary.holeCells, 0u) << "the cave breaks through";
+    EXPECT_GT(summary.meshTriangles, 0u);
+
+    const int n = plan.resolution;
+    std::vector<std::vector<std::uint16_t>> raw(4);
+    for (int z = 0; z < 2; ++z)
+        for (int x = 0; x < 2; ++x) {
+            raw[z * 2 + x] = readRaw16(dir / "heightmaps" / (plan.tileName(x, z) + ".raw"), n);
+            // Within one quantisation step of the level set's top surface.
+            // Unity's columns run from the tile's largest x down.
+            const world::TerrainTile tile = latticeTile(scene, plan, x, z);
+            for (int r = 0; r < n; ++r)
+                for (int c = 0; c < n; ++c) {
+                    const double h = plan.base + raw[z * 2 + x][std::size_t(r) * n + c] * plan.heightStep;
+                    ASSERT_NEAR(h, tile.height(n - 1 - c, r), plan.heightStep) << x << "," << z << " " << c << "," << r;
+                }
+        }
+    // Strata x = 16 m is tile (0, z)'s largest x (its first column, Unity x
+    // = −16 m) and tile (1, z)'s smallest (its last column, Unity x = −16 m
+    // too); rows are shared along z.
+    for (int r = 0; r < n; ++r) EXPECT_EQ(raw[0][std::size_t(r) * n], raw[1][std::size_t(r) * n + n - 1]) << r;
+    for (int c = 0; c < n; ++c) EXPECT_EQ(raw[0][std::size_t(n - 1) * n + c], raw[2][std::size_t(c)]) << c;
+
+    // Splat maps: three layers in one RGBA map, each sample summing to 255.
+    const render::DataImage splat = render::readDataImage(dir / "splat" / (plan.tileName(0, 0) + "_0.png"));
+    ASSERT_EQ(splat.width, n);
+    ASSERT_EQ(splat.channels, 4);
+    int cliff = 0, snow = 0;
+    for (std::size_t s = 0; s < std::size_t(n) * n; ++s) {
+        const std::uint8_t* w = &splat.bytes[s * 4];
+        ASSERT_EQ(int(w[0]) + w[1] + w[2] + w[3], 255);
+        EXPECT_EQ(w[3], 0) << "no fourth layer";
+        cliff += w[1] > 128;
+        snow += w[2] > 128;
+    }
+    EXPECT_GT(cliff + snow, 0) << "the rules paint somewhere";
+
+    // Holes: one pixel per heightmap cell; the mesh fills them.
+    const render::DataImage holes = render::readDataImage(dir / "holes" / (plan.tileName(0, 0) + ".png"));
+    EXPECT_EQ(holes.width, n - 1);
+    EXPECT_EQ(holes.height, n - 1);
+
+    const nlohmann::json manifest = readJson(dir / "terrain.json");
+    EXPECT_EQ(manifest["engine"], "unity");
+    EXPECT_EQ(manifest["import"]["heightmap_resolution"], n);
+    EXPECT_DOUBLE_EQ(manifest["import"]["terrain_size"]["y"].get<double>(), 65535.0 * plan.heightStep);
+    ASSERT_EQ(manifest["tiles"].size(), 4u);
+    EXPECT_DOUBLE_EQ(manifest["tiles"][0]["position"]["x"].get<double>(), -16.0) << "Unity x = −Strata x";
+}
+
+TEST(TerrainExport, UnrealWeightLayersSumTo255AndScalesAreExact)
+{
+    const Scene scene = hillsScene();
+    const fs::path dir = test::freshTestDir();
+    TerrainExportOptions options = optionsFor(TerrainEngine::Unreal, dir);
+    options.tileSize = 0.0; // Unreal's default: 252 voxels, one tile here
+    options.resolution = 64; // 63 quads: legal, resampled from the lattice
+    const TerrainExportPlan plan = planTerrainExport(scene, options);
+    EXPECT_EQ(plan.tileVoxels, 252);
+    EXPECT_EQ(plan.tilesX, 1);
+    exportTerrain(scene, options, plan);
+    const std::string name = plan.tileName(0, 0);
+    EXPECT_EQ(name, "terrain_x0_y0");
+    const render::DataImage height = render::readDataImage(dir / "heightmaps" / (name + ".png"));
+    EXPECT_EQ(height.width, 64);
+    EXPECT_EQ(height.type, render::SampleType::UInt16);
+    std::vector<render::DataImage> layers;
+    for (const std::string& layer : plan.layers)
+        layers.push_back(render::readDataImage(dir / "weights" / layer / (name + ".png")));
+    ASSERT_EQ(layers.size(), 3u);
+    EXPECT_EQ(plan.layers[1], "cliff");
+    for (std::size_t s = 0; s < std::size_t(64) * 64; ++s) {
+        int sum = 0;
+        for (const render::DataImage& layer : layers) sum += layer.bytes[s];
+        ASSERT_EQ(sum, 255) << s;
+    }
+    // Unreal: z_cm = location.z + (value − 32768) · scale.z / 128.
+    const nlohmann::json import = readJson(dir / "terrain.json")["import"];
+    const double zScale = import["scale_cm"]["z"].get<double>(), locationZ = import["location_cm"]["z"].get<double>();
+    EXPECT_DOUBLE_EQ(zScale / 128.0, plan.heightStep * 100.0) << "one unit is exactly one height step";
+    for (int y = 0; y < 64; y += 9)
+        for (int x = 0; x < 64; x += 9) {
+            const std::uint16_t v = at16(height, x, y);
+            EXPECT_NEAR((locationZ + (double(v) - 32768.0) * zScale / 128.0) / 100.0, plan.base + v * plan.heightStep,
+                        1e-9);
+        }
+    EXPECT_DOUBLE_EQ(import["scale_cm"]["x"].get<double>(), 100.0 * 126.0 / 63.0);
+}
+
+TEST(TerrainExport, GodotFloatHeightsAreTheLatticeHeights)
+{
+    const Scene scene = hillsScene();
+    const fs::path dir = test::freshTestDir();
+    TerrainExportOptions options = optionsFor(TerrainEngine::Godot, dir);
+    options.tiles = "3";
+    options.meshes = false;
+    const TerrainExportPlan plan = planTerrainExport(scene, options);
+    exportTerrain(scene, options, plan);
+    const render::DataImage exr = render::readDataImage(dir / "heightmaps" / (plan.tileName(1, 1) + ".exr"));
+    ASSERT_EQ(exr.type, render::SampleType::Float32);
+    const world::TerrainTile tile = latticeTile(scene, plan, 1, 1);
+    const auto* h = reinterpret_cast<const float*>(exr.bytes.data());
+    for (int r = 0; r < exr.height; ++r)
+        for (int c = 0; c < exr.width; ++c) ASSERT_EQ(h[std::size_t(r) * exr.width + c], float(tile.height(c, r)));
+    EXPECT_FALSE(fs::exists(dir / "heightmaps" / (plan.tileName(0, 0) + ".exr"))) << "only tile 3 was selected";
+    EXPECT_FALSE(fs::exists(dir / "meshes")) << "--no-meshes";
+}
+
+TEST(TerrainExport, TheSameBytesOnAnyThreadCount)
+{
+    const Scene scene = hillsScene();
+    const fs::path a = test::freshTestDir() / "a", b = test::freshTestDir() / "b";
+    TerrainExportOptions options = optionsFor(TerrainEngine::Raw, a);
+    options.threads = 1;
+    exportTerrain(scene, options, planTerrainExport(scene, options));
+    options.outputDir = b;
+    options.threads = 3;
+    exportTerrain(scene, options, planTerrainExport(scene, options));
+    for (const auto& entry : fs::recursive_directory_iterator(a)) {
+        if (!entry.is_regular_file()) continue;
+        const fs::path relative = fs::relative(entry.path(), a);
+        if (relative.filename().string().front() == '.') continue; // the lock file
+        EXPECT_EQ(readBytes(entry.path()), readBytes(b / relative)) << relative;
+    }
+    EXPECT_TRUE(fs::exists(a / "meshes" / "0_0.glb"));
+    // The mesh reads back, in the tile's frame.
+    const meshing::TriangleMesh mesh = meshing::readGltf(a / "meshes" / "0_0.glb");
+    EXPECT_GT(mesh.indices.size(), 0u);
+}
+
+TEST(TerrainExport, FlatWorldAndFarFromTheOrigin)
+{
+    const std::string text = R"(
+[terrain]
+root = "ground"
+[terrain.nodes.ground]
+type = "plane"
+offset = 1.25
+[region]
+min = [10000000.0, -4.0, 10000000.0]
+max = [10000016.0, 4.0, 10000016.0]
+[sampling]
+voxel_size = 0.5
+)";
+    const Scene scene = parseScene(text, "flat.toml");
+    const fs::path dir = test::freshTestDir();
+    TerrainExportOptions options = optionsFor(TerrainEngine::Raw, dir);
+    const TerrainExportPlan plan = planTerrainExport(scene, options);
+    const TerrainExportSummary summary = exportTerrain(scene, options, plan);
+    EXPECT_EQ(summary.holeCells, 0u);
+    EXPECT_EQ(summary.meshTriangles, 0u) << "a flat world is all heightfield";
+    const std::vector<std::uint16_t> raw = readRaw16(dir / "heightmaps" / "0_0.r16", plan.resolution);
+    for (std::uint16_t v : raw) EXPECT_NEAR(plan.base + v * plan.heightStep, 1.25, plan.heightStep);
+    EXPECT_FALSE(fs::exists(dir / "meshes" / "0_0.glb"));
+    const nlohmann::json tile = readJson(dir / "terrain.json")["tiles"][0];
+    EXPECT_EQ(tile["min_x"].get<double>(), 10000000.0);
+}
+
+TEST(TerrainExport, BadSettingsAreRefusedWithTheNumbers)
+{
+    const Scene scene = hillsScene();
+    const fs::path dir = test::freshTestDir();
+    const auto message = [&](TerrainExportOptions o) {
+        try {
+            planTerrainExport(scene, o);
+        } catch (const Error& e) {
+            EXPECT_EQ(e.kind(), ErrorKind::BadInput) << e.what();
+            return std::string(e.what());
+        }
+        return std::string("(no error)");
+    };
+    TerrainExportOptions o = optionsFor(TerrainEngine::Unity, dir);
+    o.resolution = 100;
+    EXPECT_NE(message(o).find("--resolution 100"), std::string::npos) << message(o);
+    o = optionsFor(TerrainEngine::Raw, dir);
+    o.heightStep = 1e-4; // 32 m / 1e-4 = 320000 steps
+    const std::string tall = message(o);
+    EXPECT_NE(tall.find("--height-step"), std::string::npos) << tall;
+    EXPECT_NE(tall.find("320000"), std::string::npos) << tall;
+    EXPECT_NE(tall.find("0.000488"), std::string::npos) << tall << " (the smallest step that fits)";
+    o = optionsFor(TerrainEngine::Raw, dir);
+    o.tileSize = 16.25;
+    EXPECT_NE(message(o).find("--tile-size"), std::string::npos) << message(o);
+    o = optionsFor(TerrainEngine::Raw, dir);
+    o.tiles = "9";
+    EXPECT_NE(message(o).find("4 tiles"), std::string::npos) << message(o);
+    EXPECT_THROW(parseTerrainEngine("cryengine"), Error);
+    try {
+        parseTerrainEngine("cryengine");
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("unreal, unity, godot or raw"), std::string::npos);
+    }
+    EXPECT_FALSE(fs::exists(dir / "terrain.json")) << "planning writes nothing";
+}
