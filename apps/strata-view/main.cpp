@@ -195,10 +195,10 @@ std::string title(const Input& input, const render::GlRenderer& renderer, double
 int run(const Args& args)
 {
     if (!args.screenshot.empty() && args.frames < 1) {
-        throw Error("--screenshot needs --frames N (N >= 1)");
+        throw Error(ErrorKind::BadInput, "--screenshot needs --frames N (N >= 1)");
     }
     if (args.width < 1 || args.height < 1 || args.width > 16384 || args.height > 16384) {
-        throw Error("--size " + std::to_string(args.width) + "x" + std::to_string(args.height) + " outside 1..16384");
+        throw Error(ErrorKind::BadInput, "--size " + std::to_string(args.width) + "x" + std::to_string(args.height) + " outside 1..16384");
     }
     // The scene first (errors before a window opens), then the window.
     Loaded loaded = load(args, args.width, args.height);

@@ -194,7 +194,7 @@ Command registerBakeCommand(CLI::App& app)
     return {bake, [args]() {
                 if (args->finalize) {
                     if (args->scenePath.empty() || !std::filesystem::is_directory(args->scenePath))
-                        throw Error("--finalize takes the bake folder: strata bake DIR --finalize");
+                        throw Error(ErrorKind::BadInput, "--finalize takes the bake folder: strata bake DIR --finalize");
                     TerminalProgress progress(std::cout, stdoutIsTerminal(), args->quiet);
                     const BakeSummary summary = finalizeBake(args->scenePath, &progress);
                     if (!args->quiet) {
@@ -203,11 +203,11 @@ Command registerBakeCommand(CLI::App& app)
                     }
                     return 0;
                 }
-                if (!args->plan && args->outputDir.empty()) throw Error("--output is required (strata bake SCENE -o DIR)");
+                if (!args->plan && args->outputDir.empty()) throw Error(ErrorKind::BadInput, "--output is required (strata bake SCENE -o DIR)");
                 // From here on the first Ctrl-C is a clean stop (exit 130).
                 TerminalProgress progress(std::cout, stdoutIsTerminal(), args->quiet);
                 if (!args->scenePath.empty() && std::filesystem::is_directory(args->scenePath))
-                    throw Error("'" + args->scenePath + "' is a folder: give a scene file (or --finalize a bake folder)");
+                    throw Error(ErrorKind::BadInput, "'" + args->scenePath + "' is a folder: give a scene file (or --finalize a bake folder)");
                 BakeOptions options;
                 options.outputDir = args->outputDir;
                 options.tileSize = args->tileSize;

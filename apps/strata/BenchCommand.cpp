@@ -187,7 +187,7 @@ void writeText(const std::filesystem::path& path, const std::string& text)
     writeAtomically(path, [&](const std::filesystem::path& temporary) {
         std::ofstream out(temporary, std::ios::binary);
         out << text;
-        if (!out.flush()) throw Error("cannot write '" + path.string() + "'");
+        if (!out.flush()) throw Error(ErrorKind::Io, "cannot write '" + path.string() + "'", {path.string()});
     });
 }
 
@@ -232,7 +232,7 @@ int runBench(const BenchArguments& args)
     std::error_code ec;
     std::filesystem::create_directories(dir, ec);
     if (ec || !std::filesystem::is_directory(dir)) {
-        throw Error("cannot create output directory '" + dir.string() + "': " + ec.message());
+        throw Error(ErrorKind::Io, "cannot create output directory '" + dir.string() + "': " + ec.message(), {dir.string()});
     }
     std::unique_ptr<tbb::global_control> threadLimit;
     if (args.threads > 0) {
@@ -298,7 +298,7 @@ int runBench(const BenchArguments& args)
         if (!camera) camera = snapshot.camera; // the accurate mesh frames every render
         snapshot.camera = *camera;
         const bool useGl = renderer.gl && quality.backend != "cpu";
-        if (quality.backend == "gl" && !renderer.gl) throw Error("bench: backend gl without an OpenGL context");
+        if (quality.backend == "gl" && !renderer.gl) throw Error(ErrorKind::Gl, "bench: backend gl without an OpenGL context");
         const render::Image image = renderTimed(renderer, meshView(mesh), snapshot, useGl, row);
         if (reference.pixels.empty()) reference = image;
         if (config.name == "balanced") balancedImage = image;
@@ -475,7 +475,7 @@ Command registerBenchCommand(CLI::App& app)
                 if (mesh.subcommand->parsed()) return mesh.run();
                 if (noise.subcommand->parsed()) return noise.run();
                 if (landforms.subcommand->parsed()) return landforms.run();
-                if (args->outputDir.empty()) throw Error("bench: -o DIR is required");
+                if (args->outputDir.empty()) throw Error(ErrorKind::BadInput, "bench: -o DIR is required");
                 return runBench(*args);
             }};
 }

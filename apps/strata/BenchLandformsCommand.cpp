@@ -130,7 +130,7 @@ int runScene(const LandformArguments& args, const std::string& threads, Terminal
         region.max.z = cropMax->y;
     }
     if (!(region.min.x < region.max.x) || !(region.min.z < region.max.z)) {
-        throw Error("the region's x,z corners must satisfy min < max on both axes (x " +
+        throw Error(ErrorKind::BadInput, "the region's x,z corners must satisfy min < max on both axes (x " +
                     range(region.min.x, region.max.x) + ", z " + range(region.min.z, region.max.z) +
                     "): check --region-min and --region-max");
     }
@@ -163,11 +163,11 @@ int runLandforms(const LandformArguments& args, const CLI::App& command)
     if (!args.dem.empty()) {
         if (!args.scenePath.empty() || !args.regionMin.empty() || !args.regionMax.empty() ||
             command.count("--cell") > 0) {
-            throw Error("--dem measures a DEM file: give no scene, --cell, --region-min or --region-max with it "
+            throw Error(ErrorKind::BadInput, "--dem measures a DEM file: give no scene, --cell, --region-min or --region-max with it "
                         "(--dem-cell sets the DEM's cell size)");
         }
     } else if (args.demCell) {
-        throw Error("--dem-cell is the cell size of a --dem file: give --dem FILE, or --cell for a scene");
+        throw Error(ErrorKind::BadInput, "--dem-cell is the cell size of a --dem file: give --dem FILE, or --cell for a scene");
     }
     std::unique_ptr<tbb::global_control> threadLimit;
     if (args.threads > 0) {

@@ -300,7 +300,7 @@ int runBench(const BenchArguments& args)
         writeAtomically(path, [&](const std::filesystem::path& temporary) {
             std::ofstream out(temporary, std::ios::binary);
             out << text;
-            if (!out.flush()) throw Error("cannot write '" + path.string() + "'");
+            if (!out.flush()) throw Error(ErrorKind::Io, "cannot write '" + path.string() + "'", {path.string()});
         });
     };
     write(dir / "mesh-bench.md", md.str());

@@ -117,7 +117,7 @@ Command registerGenerateCommand(CLI::App& app)
                 options.preset = args->preset;
                 if (args->preset && std::find(presetNames().begin(), presetNames().end(), *args->preset) ==
                                         presetNames().end()) { // an unknown preset: exit 2, nothing written
-                    throw Error("--preset '" + *args->preset + "' is not a preset (use fast, balanced or accurate)");
+                    throw Error(ErrorKind::BadInput, "--preset '" + *args->preset + "' is not a preset (use fast, balanced or accurate)");
                 }
                 for (const std::string& text : args->quality) addQualityFlag(text, options.quality);
                 // --backend is the backend knob's flag: it wins over [quality] and the preset.

@@ -100,7 +100,7 @@ Command registerInfoCommand(CLI::App& app)
     info->add_option("file", *file, "The file to describe")->required();
     return {info, [file]() {
                 const std::filesystem::path path(*file);
-                if (!std::filesystem::exists(path)) throw Error("'" + path.string() + "' does not exist");
+                if (!std::filesystem::exists(path)) throw Error(ErrorKind::BadInput, "'" + path.string() + "' does not exist");
                 if (path.extension() == ".vdb") describeVdb(path, std::cout);
                 else describeMesh(path, std::cout);
                 return 0;

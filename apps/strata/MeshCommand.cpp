@@ -62,7 +62,7 @@ int runMesh(const MeshArguments& args)
 {
     const bool volume = args.mesher == "volume";
     if (args.adaptivity && !volume) {
-        throw Error("--adaptivity applies to --mesher volume only (got --mesher " + args.mesher + ")");
+        throw Error(ErrorKind::BadInput, "--adaptivity applies to --mesher volume only (got --mesher " + args.mesher + ")");
     }
     const std::map<std::string, meshing::NormalMethod> normalMethods = {
         {"grid", meshing::NormalMethod::Grid}, {"mesh", meshing::NormalMethod::Face}, {"none", meshing::NormalMethod::None}};

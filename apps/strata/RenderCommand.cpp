@@ -56,7 +56,7 @@ int renderWorld(const RenderArguments& args, SnapshotRequest request, const std:
                                       std::pair{args.seed.has_value(), "--seed"}, std::pair{request.turntable > 0, "--turntable"},
                                       std::pair{request.view == "cave", "--view cave"},
                                       std::pair{!request.debugView.empty(), "--debug-view"}})
-        if (given) throw Error(std::string(flag) + " cannot be used when rendering a bake folder ('" + args.scenePath + "')");
+        if (given) throw Error(ErrorKind::BadInput, std::string(flag) + " cannot be used when rendering a bake folder ('" + args.scenePath + "')");
     const Scene scene = loadBakedScene(args.scenePath);
     const QualitySettings quality = resolveQuality(scene, std::nullopt, {});
     const Scene shading = applyQuality(scene, quality);
@@ -145,12 +145,12 @@ Command registerRenderCommand(CLI::App& app)
                 std::string ext = output.extension().string();
                 for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
                 if (!request.format.empty() && ext != "." + request.format) {
-                    throw Error("--snapshot-format '" + request.format + "' does not match the output name '" +
+                    throw Error(ErrorKind::BadInput, "--snapshot-format '" + request.format + "' does not match the output name '" +
                                 args->output + "' (use a ." + request.format + " name)");
                 }
                 if (std::filesystem::is_directory(args->scenePath)) return renderWorld(*args, request, output);
                 if (request.view == "cave" && !args->meshPath.empty()) {
-                    throw Error("--view cave needs the scene's terrain grid: it cannot be used with --mesh '" +
+                    throw Error(ErrorKind::BadInput, "--view cave needs the scene's terrain grid: it cannot be used with --mesh '" +
                                 args->meshPath + "'");
                 }
                 const Scene scene = offsetScene(args->scenePath.empty()

@@ -80,7 +80,7 @@ struct SnapshotFlags
         r.fov = fov;
         r.turntable = turntable;
         if (turntableOption && turntableOption->count() > 0 && !(turntable >= 1 && turntable <= 3600)) {
-            throw Error("--turntable '" + std::to_string(turntable) + "' must be a frame count in [1, 3600]");
+            throw Error(ErrorKind::BadInput, "--turntable '" + std::to_string(turntable) + "' must be a frame count in [1, 3600]");
         }
         r.format = format;
         r.debugView = debugView;

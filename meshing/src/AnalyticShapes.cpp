@@ -89,7 +89,7 @@ AnalyticShape analyticGyroid(double period, double thickness, double clip)
 openvdb::FloatGrid::Ptr levelSetFromShape(const AnalyticShape& shape, double voxelSize, double halfWidth)
 {
     if (!(voxelSize > 0.0) || !(halfWidth >= 1.0)) {
-        throw Error("levelSetFromShape: voxel size must be positive and the half width at least 1 voxel");
+        throw Error(ErrorKind::BadInput, "levelSetFromShape: voxel size must be positive and the half width at least 1 voxel");
     }
     openvdb::initialize();
     const float background = float(halfWidth * voxelSize);

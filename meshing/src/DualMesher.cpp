@@ -268,23 +268,23 @@ void validate(const DualSettings& settings)
 {
     const ChunkMeshOptions& o = settings.options;
     if (!std::isfinite(o.isovalue)) {
-        throw Error("meshing: isovalue = " + std::to_string(o.isovalue) + " must be finite");
+        throw Error(ErrorKind::BadInput, "meshing: isovalue = " + std::to_string(o.isovalue) + " must be finite");
     }
     if (o.chunkSize != 0 && (o.chunkSize < 8 || o.chunkSize > 512 || o.chunkSize % 8 != 0)) {
-        throw Error("meshing: chunk size " + std::to_string(o.chunkSize) +
+        throw Error(ErrorKind::BadInput, "meshing: chunk size " + std::to_string(o.chunkSize) +
                     " must be 0 (one chunk) or a multiple of 8 in [8, 512]");
     }
     if (!std::isfinite(o.origin.x) || !std::isfinite(o.origin.y) || !std::isfinite(o.origin.z)) {
-        throw Error("meshing: origin must be finite");
+        throw Error(ErrorKind::BadInput, "meshing: origin must be finite");
     }
     if (o.normals == NormalMethod::Gradient && !o.gradient) {
-        throw Error("meshing: normals = gradient needs a gradient function");
+        throw Error(ErrorKind::BadInput, "meshing: normals = gradient needs a gradient function");
     }
     if (o.projectionSteps < 0 || o.projectionSteps > 16) {
-        throw Error("meshing: projection steps " + std::to_string(o.projectionSteps) + " must be in [0, 16]");
+        throw Error(ErrorKind::BadInput, "meshing: projection steps " + std::to_string(o.projectionSteps) + " must be in [0, 16]");
     }
     if (!(settings.singularThreshold > 0.0 && settings.singularThreshold < 1.0)) {
-        throw Error("meshing: QEF singular threshold " + std::to_string(settings.singularThreshold) +
+        throw Error(ErrorKind::BadInput, "meshing: QEF singular threshold " + std::to_string(settings.singularThreshold) +
                     " must be in (0, 1)");
     }
 }
@@ -292,7 +292,7 @@ void validate(const DualSettings& settings)
 static void requireLinear(const openvdb::FloatGrid& grid)
 {
     if (!grid.transform().isLinear()) {
-        throw Error("meshing: grid '" + grid.getName() + "' needs a linear transform (got '" +
+        throw Error(ErrorKind::BadInput, "meshing: grid '" + grid.getName() + "' needs a linear transform (got '" +
                     grid.transform().mapType() + "')");
     }
 }
@@ -303,7 +303,7 @@ ChunkMesh meshChunk(const openvdb::FloatGrid& grid, const Coord& chunkMin, const
     const int n = settings.options.chunkSize == 0 ? 32 : settings.options.chunkSize;
     for (int a = 0; a < 3; ++a) {
         if (chunkMin[a] % n != 0) {
-            throw Error("meshing: chunk minimum (" + std::to_string(chunkMin.x()) + ", " +
+            throw Error(ErrorKind::BadInput, "meshing: chunk minimum (" + std::to_string(chunkMin.x()) + ", " +
                         std::to_string(chunkMin.y()) + ", " + std::to_string(chunkMin.z()) +
                         ") is not a multiple of the chunk size " + std::to_string(n));
         }
@@ -412,7 +412,7 @@ TriangleMesh meshChunks(const openvdb::FloatGrid& grid, const DualSettings& sett
 std::vector<Coord> listChunks(const openvdb::FloatGrid& grid, int chunkSize)
 {
     if (chunkSize < 8 || chunkSize > 512 || chunkSize % 8 != 0) {
-        throw Error("meshing: chunk size " + std::to_string(chunkSize) + " must be a multiple of 8 in [8, 512]");
+        throw Error(ErrorKind::BadInput, "meshing: chunk size " + std::to_string(chunkSize) + " must be a multiple of 8 in [8, 512]");
     }
     return chunksOf(grid, chunkSize);
 }

@@ -185,10 +185,10 @@ VdbFile readVdbFile(const std::filesystem::path& path)
     const std::string where = "VDB file '" + path.string() + "'";
     std::error_code ec;
     if (!std::filesystem::exists(path, ec)) {
-        throw Error(where + " does not exist");
+        throw Error(ErrorKind::BadInput, where + " does not exist");
     }
     if (!std::filesystem::is_regular_file(path, ec)) {
-        throw Error(where + " is not a file");
+        throw Error(ErrorKind::BadInput, where + " is not a file");
     }
     // Lengths, counts and offsets that OpenVDB would trust, checked first.
     detail::preflightVdbFile(path);
@@ -207,9 +207,9 @@ VdbFile readVdbFile(const std::filesystem::path& path)
     } catch (const Error&) {
         throw; // the preflight's, naming the byte
     } catch (const std::ios_base::failure&) {
-        throw Error(where + " is truncated or corrupt: it ends before its last grid does");
+        throw Error(ErrorKind::BadInput, where + " is truncated or corrupt: it ends before its last grid does");
     } catch (const std::exception& e) {
-        throw Error(where + " is not a readable OpenVDB file: " + e.what());
+        throw Error(ErrorKind::BadInput, where + " is not a readable OpenVDB file: " + e.what());
     }
     if (!file.grids) file.grids = std::make_shared<openvdb::GridPtrVec>();
     return file;
@@ -222,26 +222,26 @@ openvdb::FloatGrid::Ptr readLevelSet(const std::filesystem::path& path)
     const openvdb::GridPtrVecPtr& grids = file.grids;
     if (!grids || grids->empty()) {
         if (!file.unread.empty()) {
-            throw Error(where + " holds no float grid (found '" + file.unread.front().type + "', not read)");
+            throw Error(ErrorKind::BadInput, where + " holds no float grid (found '" + file.unread.front().type + "', not read)");
         }
-        throw Error(where + " holds no grid");
+        throw Error(ErrorKind::BadInput, where + " holds no grid");
     }
     openvdb::FloatGrid::Ptr grid;
     for (const openvdb::GridBase::Ptr& base : *grids) {
         if ((grid = openvdb::gridPtrCast<openvdb::FloatGrid>(base))) break;
     }
     if (!grid) {
-        throw Error(where + " holds no float grid (found '" + grids->front()->type() + "')");
+        throw Error(ErrorKind::BadInput, where + " holds no float grid (found '" + grids->front()->type() + "')");
     }
     if (grid->getGridClass() != openvdb::GRID_LEVEL_SET) {
-        throw Error(where + ": grid '" + grid->getName() + "' is not a level set (class '" +
+        throw Error(ErrorKind::BadInput, where + ": grid '" + grid->getName() + "' is not a level set (class '" +
                     openvdb::GridBase::gridClassToString(grid->getGridClass()) + "')");
     }
     if (!grid->hasUniformVoxels() || !grid->transform().isLinear()) {
-        throw Error(where + ": grid '" + grid->getName() + "' needs a linear transform with cubic voxels");
+        throw Error(ErrorKind::BadInput, where + ": grid '" + grid->getName() + "' needs a linear transform with cubic voxels");
     }
     if (grid->activeVoxelCount() == 0) {
-        throw Error(where + ": grid '" + grid->getName() + "' is empty (no active voxels)");
+        throw Error(ErrorKind::BadInput, where + ": grid '" + grid->getName() + "' is empty (no active voxels)");
     }
     return grid;
 }

@@ -137,7 +137,7 @@ const char* toString(NormalMethod method)
 
 void computeGradientNormals(const GradientFunction& gradient, TriangleMesh& mesh)
 {
-    if (!gradient) throw Error("meshing: gradient normals need a gradient function");
+    if (!gradient) throw Error(ErrorKind::BadInput, "meshing: gradient normals need a gradient function");
     mesh.normals.assign(mesh.positions.size(), glm::vec3(0.0f));
     std::vector<unsigned char> degenerate(mesh.positions.size(), 0);
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, mesh.positions.size(), 4096),

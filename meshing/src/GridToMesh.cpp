@@ -26,16 +26,16 @@ double distance2(const openvdb::Vec3s& a, const openvdb::Vec3s& b)
 TriangleMesh gridToMesh(const openvdb::FloatGrid& grid, const GridToMeshOptions& options)
 {
     if (!std::isfinite(options.isovalue)) {
-        throw Error("meshing: isovalue = " + std::to_string(options.isovalue) + " must be finite");
+        throw Error(ErrorKind::BadInput, "meshing: isovalue = " + std::to_string(options.isovalue) + " must be finite");
     }
     if (!(options.adaptivity >= 0.0 && options.adaptivity <= 1.0)) {
-        throw Error("meshing: adaptivity = " + std::to_string(options.adaptivity) + " must be in [0, 1]");
+        throw Error(ErrorKind::BadInput, "meshing: adaptivity = " + std::to_string(options.adaptivity) + " must be in [0, 1]");
     }
     if (!std::isfinite(options.origin.x) || !std::isfinite(options.origin.y) || !std::isfinite(options.origin.z)) {
-        throw Error("meshing: origin must be finite");
+        throw Error(ErrorKind::BadInput, "meshing: origin must be finite");
     }
     if (options.computeNormals && options.normals == NormalMethod::Gradient && !options.gradient) {
-        throw Error("meshing: normals = gradient needs a gradient function");
+        throw Error(ErrorKind::BadInput, "meshing: normals = gradient needs a gradient function");
     }
 
     std::vector<openvdb::Vec3s> points;

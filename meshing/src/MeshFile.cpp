@@ -379,7 +379,7 @@ TriangleMesh readMesh(const std::filesystem::path& path)
 {
     const std::string ext = lowerExtension(path);
     if (ext == ".glb" || ext == ".gltf") {
-        if (!std::filesystem::exists(path)) throw Error("mesh file '" + path.string() + "' does not exist");
+        if (!std::filesystem::exists(path)) throw Error(ErrorKind::BadInput, "mesh file '" + path.string() + "' does not exist");
         return readGltf(path);
     }
     if (ext != ".ply" && ext != ".obj" && ext != ".off" && ext != ".stl") {

@@ -18,10 +18,10 @@ namespace strata::meshing {
 void projectToSurface(const openvdb::FloatGrid& grid, TriangleMesh& mesh, const ProjectOptions& options)
 {
     if (options.steps < 0 || options.steps > 16) {
-        throw Error("projection: steps " + std::to_string(options.steps) + " must be in [0, 16]");
+        throw Error(ErrorKind::BadInput, "projection: steps " + std::to_string(options.steps) + " must be in [0, 16]");
     }
     if (!std::isfinite(options.isovalue) || !(options.maxMoveVoxels >= 0.0)) {
-        throw Error("projection: isovalue must be finite and the largest move non-negative");
+        throw Error(ErrorKind::BadInput, "projection: isovalue must be finite and the largest move non-negative");
     }
     using Accessor = openvdb::FloatGrid::ConstAccessor;
     using Sampler = openvdb::tools::GridSampler<Accessor, openvdb::tools::BoxSampler>;

@@ -110,10 +110,10 @@ const char* toString(Simplifier method)
 TriangleMesh simplify(const TriangleMesh& mesh, const SimplifyOptions& options)
 {
     if (!(options.ratio > 0.0 && options.ratio <= 1.0)) {
-        throw Error("simplify: ratio " + std::to_string(options.ratio) + " must be in (0, 1]");
+        throw Error(ErrorKind::BadInput, "simplify: ratio " + std::to_string(options.ratio) + " must be in (0, 1]");
     }
     if (!(options.maxError >= 0.0) || !std::isfinite(options.maxError)) {
-        throw Error("simplify: maximum error must be finite and non-negative");
+        throw Error(ErrorKind::BadInput, "simplify: maximum error must be finite and non-negative");
     }
     if (mesh.indices.empty() || options.ratio == 1.0) return compact(mesh, mesh.indices);
     const std::size_t target = std::size_t(std::llround(options.ratio * double(mesh.triangleCount())));

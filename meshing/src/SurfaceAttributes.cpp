@@ -18,10 +18,10 @@ std::vector<glm::vec2> computeSurfaceAttributes(const openvdb::FloatGrid& grid, 
                                                 const SurfaceAttributeOptions& options)
 {
     if (mesh.normals.size() != mesh.positions.size()) {
-        throw Error("surface attributes: the mesh needs one normal per vertex");
+        throw Error(ErrorKind::BadInput, "surface attributes: the mesh needs one normal per vertex");
     }
     if (grid.getGridClass() != openvdb::GRID_LEVEL_SET) {
-        throw Error("surface attributes: grid '" + grid.getName() + "' is not a level set");
+        throw Error(ErrorKind::BadInput, "surface attributes: grid '" + grid.getName() + "' is not a level set");
     }
     using Accessor = openvdb::FloatGrid::ConstAccessor;
     using Sampler = openvdb::tools::GridSampler<Accessor, openvdb::tools::BoxSampler>;

@@ -138,9 +138,9 @@ SurfaceError measureSurfaceError(const TriangleMesh& mesh, const DistanceFunctio
                                  const SurfaceErrorOptions& options)
 {
     if (!(options.voxelSize > 0.0) || !std::isfinite(options.voxelSize)) {
-        throw Error("surface error: voxel size must be positive");
+        throw Error(ErrorKind::BadInput, "surface error: voxel size must be positive");
     }
-    if (!distance) throw Error("surface error: no distance function");
+    if (!distance) throw Error(ErrorKind::BadInput, "surface error: no distance function");
     const double voxel = options.voxelSize;
 
     // Per-sample values first (parallel), then summed in order: deterministic.
@@ -222,8 +222,8 @@ SurfaceError measureSurfaceError(const TriangleMesh& mesh, const DistanceFunctio
 std::vector<glm::dvec3> sampleSurface(const DistanceFunction& distance, const GradientFunction& gradient,
                                       const glm::dvec3& min, const glm::dvec3& max, double spacing)
 {
-    if (!distance || !gradient) throw Error("sampleSurface: needs a distance and a gradient function");
-    if (!(spacing > 0.0)) throw Error("sampleSurface: spacing must be positive");
+    if (!distance || !gradient) throw Error(ErrorKind::BadInput, "sampleSurface: needs a distance and a gradient function");
+    if (!(spacing > 0.0)) throw Error(ErrorKind::BadInput, "sampleSurface: spacing must be positive");
     const glm::ivec3 n = glm::ivec3(glm::ceil((max - min) / spacing)) + 1;
     std::vector<std::vector<glm::dvec3>> slabs(std::size_t(std::max(n.x, 0)));
     tbb::parallel_for(0, std::max(n.x, 0), [&](int x) {

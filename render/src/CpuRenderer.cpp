@@ -517,7 +517,7 @@ Image renderSnapshotCpu(const MeshView& mesh, const SnapshotOptions& options, Cp
     checkSnapshotOptions(options);
     for (std::size_t i = 0; i < mesh.indexCount; ++i) {
         if (mesh.indices[i] >= mesh.vertexCount) {
-            throw Error("snapshot: mesh index " + std::to_string(i) + " is " + std::to_string(mesh.indices[i]) +
+            throw Error(ErrorKind::BadInput, "snapshot: mesh index " + std::to_string(i) + " is " + std::to_string(mesh.indices[i]) +
                         ", beyond the " + std::to_string(mesh.vertexCount) + " vertices");
         }
     }

@@ -80,11 +80,11 @@ void checkLibrariesLoadable()
     };
     if (!loadable("libEGL.so.1")) {
         const char* reason = ::dlerror();
-        throw Error(std::string("no EGL: cannot load libEGL.so.1 (") + (reason ? reason : "not found") +
+        throw Error(ErrorKind::Gl, std::string("no EGL: cannot load libEGL.so.1 (") + (reason ? reason : "not found") +
                     "); install libegl1 and libegl-mesa0, or a GPU driver with EGL");
     }
     if (!loadable("libOpenGL.so.0") && !loadable("libGL.so.1")) {
-        throw Error("no OpenGL: cannot load libOpenGL.so.0 or libGL.so.1; install libopengl0 and libgl1-mesa-dri, "
+        throw Error(ErrorKind::Gl, "no OpenGL: cannot load libOpenGL.so.0 or libGL.so.1; install libopengl0 and libgl1-mesa-dri, "
                     "or a GPU driver");
     }
 }
@@ -291,7 +291,7 @@ std::unique_ptr<EglContext> EglContext::create()
     }
     message += "); ";
     message += INSTALL_HINT;
-    throw Error(message);
+    throw Error(ErrorKind::Gl, message);
 }
 
 EglContext::~EglContext() = default;

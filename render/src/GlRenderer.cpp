@@ -161,13 +161,13 @@ struct StateGuard
 void checkCamera(const Camera& c)
 {
     if (!(c.nearPlane > 0.0 && c.farPlane > c.nearPlane)) {
-        throw Error("render: camera needs 0 < near < far");
+        throw Error(ErrorKind::BadInput, "render: camera needs 0 < near < far");
     }
     if (!(c.fovYDegrees > 0.0 && c.fovYDegrees < 180.0)) {
-        throw Error("render: camera fovYDegrees outside (0, 180)");
+        throw Error(ErrorKind::BadInput, "render: camera fovYDegrees outside (0, 180)");
     }
     if (!(glm::length(c.target - c.position) > 0.0)) {
-        throw Error("render: camera position equals its target");
+        throw Error(ErrorKind::BadInput, "render: camera position equals its target");
     }
 }
 
@@ -337,7 +337,7 @@ struct GlRenderer::Impl
             return;
         }
         if (sp.resolution > maxTextureSize) {
-            throw Error("render: shadow resolution " + std::to_string(sp.resolution) +
+            throw Error(ErrorKind::BadInput, "render: shadow resolution " + std::to_string(sp.resolution) +
                         " exceeds this OpenGL's texture limit of " + std::to_string(maxTextureSize));
         }
         if (!shadowProgram) {
@@ -416,7 +416,7 @@ struct GlRenderer::Impl
     void ensureMaterial()
     {
         if (!haveMaterial) {
-            throw Error("render: no material set (call GlRenderer::setMaterial first)");
+            throw Error(ErrorKind::BadInput, "render: no material set (call GlRenderer::setMaterial first)");
         }
     }
 };
@@ -466,11 +466,11 @@ void GlRenderer::setMesh(const MeshView& mesh)
     assert(mesh.vertexCount == 0 || (mesh.positions && mesh.normals));
     assert(mesh.indexCount == 0 || mesh.indices);
     if (mesh.indexCount > std::size_t(std::numeric_limits<GLsizei>::max())) {
-        throw Error("render: mesh has too many indices for one draw (" + std::to_string(mesh.indexCount) + ")");
+        throw Error(ErrorKind::BadInput, "render: mesh has too many indices for one draw (" + std::to_string(mesh.indexCount) + ")");
     }
     for (std::size_t i = 0; i < mesh.indexCount; ++i) {
         if (mesh.indices[i] >= mesh.vertexCount) {
-            throw Error("snapshot: mesh index " + std::to_string(i) + " is " + std::to_string(mesh.indices[i]) +
+            throw Error(ErrorKind::BadInput, "snapshot: mesh index " + std::to_string(i) + " is " + std::to_string(mesh.indices[i]) +
                         ", beyond the " + std::to_string(mesh.vertexCount) + " vertices");
         }
     }
@@ -529,7 +529,7 @@ void GlRenderer::setMaterial(const Material& material, float anisotropy, Texture
     Impl& r = *mImpl;
     checkMaterial(material);
     if (!(anisotropy >= 1.0f && anisotropy <= 16.0f)) {
-        throw Error("render: anisotropy " + std::to_string(anisotropy) + " outside 1..16");
+        throw Error(ErrorKind::BadInput, "render: anisotropy " + std::to_string(anisotropy) + " outside 1..16");
     }
     const detail::LayerMaps maps = detail::resolveLayerMaps(material);
     r.context.makeCurrent();
@@ -537,7 +537,7 @@ void GlRenderer::setMaterial(const Material& material, float anisotropy, Texture
     for (const std::vector<TexturePtr>& slot : maps.slots) {
         const TexturePtr& texture = slot.front();
         if (texture->width() > r.maxTextureSize || texture->height() > r.maxTextureSize) {
-            throw Error("render: texture " + std::to_string(texture->width()) + "x" +
+            throw Error(ErrorKind::BadInput, "render: texture " + std::to_string(texture->width()) + "x" +
                         std::to_string(texture->height()) + " exceeds this OpenGL's limit of " +
                         std::to_string(r.maxTextureSize));
         }
@@ -602,14 +602,14 @@ void GlRenderer::draw(const Camera& camera, const Lighting& lighting, unsigned f
     r.ensureMaterial();
     checkCamera(camera);
     if (width < 1 || height < 1) {
-        throw Error("render: viewport " + std::to_string(width) + "x" + std::to_string(height) + " is empty");
+        throw Error(ErrorKind::BadInput, "render: viewport " + std::to_string(width) + "x" + std::to_string(height) + " is empty");
     }
     if (int(options.debugView) < 0 || int(options.debugView) >= DEBUG_VIEW_COUNT) {
-        throw Error("render: debug view " + std::to_string(int(options.debugView)) + " outside 0.." +
+        throw Error(ErrorKind::BadInput, "render: debug view " + std::to_string(int(options.debugView)) + " outside 0.." +
                     std::to_string(DEBUG_VIEW_COUNT - 1));
     }
     if (lighting.extraLights.size() > 3) {
-        throw Error("render: at most 3 extra lights");
+        throw Error(ErrorKind::BadInput, "render: at most 3 extra lights");
     }
     r.context.makeCurrent();
     detail::clearGlErrors();
@@ -709,11 +709,11 @@ void GlRenderer::drawFrame(const Camera& camera, const Lighting& lighting, int w
 {
     Impl& r = *mImpl;
     if (width < 1 || height < 1) {
-        throw Error("render: size " + std::to_string(width) + "x" + std::to_string(height) + " is empty");
+        throw Error(ErrorKind::BadInput, "render: size " + std::to_string(width) + "x" + std::to_string(height) + " is empty");
     }
     r.context.makeCurrent();
     if (width > r.maxRenderbufferSize || height > r.maxRenderbufferSize) {
-        throw Error("snapshot: size " + std::to_string(width) + "x" + std::to_string(height) +
+        throw Error(ErrorKind::BadInput, "snapshot: size " + std::to_string(width) + "x" + std::to_string(height) +
                     " exceeds this OpenGL's limit of " + std::to_string(r.maxRenderbufferSize));
     }
     samples = std::clamp(samples, 1, std::max(r.maxSamples, 1));
@@ -756,7 +756,7 @@ Image GlRenderer::readFrame()
 {
     Impl& r = *mImpl;
     if (!r.haveFrame) {
-        throw Error("render: no frame to read (call GlRenderer::drawFrame first)");
+        throw Error(ErrorKind::BadInput, "render: no frame to read (call GlRenderer::drawFrame first)");
     }
     r.context.makeCurrent();
     detail::clearGlErrors();

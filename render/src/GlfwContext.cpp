@@ -55,11 +55,11 @@ std::string glString(GLenum name)
 std::unique_ptr<GlfwContext> GlfwContext::create(int width, int height, const std::string& title, bool visible)
 {
     if (width < 1 || height < 1) {
-        throw Error("window size " + std::to_string(width) + "x" + std::to_string(height) + " must be at least 1x1");
+        throw Error(ErrorKind::BadInput, "window size " + std::to_string(width) + "x" + std::to_string(height) + " must be at least 1x1");
     }
     glfwSetErrorCallback(onGlfwError);
     if (gWindows == 0 && !glfwInit()) {
-        throw Error("cannot open a window: GLFW initialisation failed: " + takeLastError() +
+        throw Error(ErrorKind::Gl, "cannot open a window: GLFW initialisation failed: " + takeLastError() +
                     "; run under X (or `xvfb-run -a`), or use the headless EGL renderer");
     }
     glfwDefaultWindowHints();
@@ -76,7 +76,7 @@ std::unique_ptr<GlfwContext> GlfwContext::create(int width, int height, const st
         if (gWindows == 0) {
             glfwTerminate();
         }
-        throw Error("cannot open a window with an OpenGL 4.5 core context: " + reason);
+        throw Error(ErrorKind::Gl, "cannot open a window with an OpenGL 4.5 core context: " + reason);
     }
     ++gWindows;
     std::unique_ptr<GlfwContext> context(new GlfwContext());
@@ -86,7 +86,7 @@ std::unique_ptr<GlfwContext> GlfwContext::create(int width, int height, const st
     if (!epoxy_is_desktop_gl() || epoxy_gl_version() < 45) {
         const std::string version = glString(GL_VERSION);
         context.reset();
-        throw Error("cannot open a window with an OpenGL 4.5 core context: got OpenGL " + version);
+        throw Error(ErrorKind::Gl, "cannot open a window with an OpenGL 4.5 core context: got OpenGL " + version);
     }
     context->mDescription = glString(GL_RENDERER) + " (" + glString(GL_VERSION) + ") via GLFW";
     return context;
@@ -110,7 +110,7 @@ void GlfwContext::makeCurrent()
     if (glfwGetCurrentContext() != mWindow) {
         glfwMakeContextCurrent(mWindow);
         if (glfwGetCurrentContext() != mWindow) {
-            throw Error("cannot make the window's OpenGL context current: " + takeLastError());
+            throw Error(ErrorKind::Gl, "cannot make the window's OpenGL context current: " + takeLastError());
         }
     }
 }

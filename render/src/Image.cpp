@@ -150,26 +150,26 @@ Image readImage(const fs::path& path)
     try {
         reader = checkImageFileStructure(path);
     } catch (const Error& e) {
-        throw Error("cannot read image '" + path.string() + "': " + e.what());
+        throw Error(e.kind(), "cannot read image '" + path.string() + "': " + e.what());
     }
     // libpng prints its complaints on stderr; OpenImageIO's error says the same.
     StderrCapture libraryLines;
     std::string error;
     auto input = openImageWith(reader, path, config, error);
     if (!input) {
-        throw Error("cannot read image '" + path.string() + "' as a ." + reader + " image: " + oiioError(error));
+        throw Error(ErrorKind::BadInput, "cannot read image '" + path.string() + "' as a ." + reader + " image: " + oiioError(error));
     }
     const OIIO::ImageSpec& spec = input->spec();
     const int channels = spec.nchannels;
     if (spec.width <= 0 || spec.height <= 0 || channels <= 0 || spec.depth > 1) {
-        throw Error("cannot read image '" + path.string() + "': unsupported size " + std::to_string(spec.width) +
+        throw Error(ErrorKind::BadInput, "cannot read image '" + path.string() + "': unsupported size " + std::to_string(spec.width) +
                     "x" + std::to_string(spec.height) + "x" + std::to_string(spec.depth) + " with " +
                     std::to_string(channels) + " channels");
     }
     try {
         checkImageSizeAgainstFile(path, spec.width, spec.height, channels);
     } catch (const Error& e) {
-        throw Error("cannot read image '" + path.string() + "': " + e.what());
+        throw Error(e.kind(), "cannot read image '" + path.string() + "': " + e.what());
     }
     const std::string colorSpace = spec.get_string_attribute("oiio:ColorSpace");
     const bool linear = isLinearFormat(input->format_name()) || colorSpace == "Linear" ||
@@ -180,7 +180,7 @@ Image readImage(const fs::path& path)
     const std::size_t pixelCount = std::size_t(spec.width) * std::size_t(spec.height);
     std::vector<float> data(pixelCount * std::size_t(channels));
     if (!input->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, data.data())) {
-        throw Error("cannot read image '" + path.string() + "': " + oiioError(input->geterror()));
+        throw Error(ErrorKind::BadInput, "cannot read image '" + path.string() + "': " + oiioError(input->geterror()));
     }
 
     Image image;
@@ -211,7 +211,7 @@ namespace {
 void requireSameSize(const Image& a, const Image& b, const char* what)
 {
     if (a.width != b.width || a.height != b.height || a.pixels.size() != b.pixels.size()) {
-        throw Error(std::string(what) + ": images differ in size (" + std::to_string(a.width) + "x" +
+        throw Error(ErrorKind::BadInput, std::string(what) + ": images differ in size (" + std::to_string(a.width) + "x" +
                     std::to_string(a.height) + " and " + std::to_string(b.width) + "x" + std::to_string(b.height) + ")");
     }
 }

@@ -30,16 +30,16 @@ void checkPng(std::ifstream& in, std::uint64_t size)
     std::uint64_t offset = 8;
     for (;;) {
         if (size - offset < 12) {
-            throw Error("is a truncated PNG: it ends at byte " + std::to_string(size) + " without an IEND chunk");
+            throw Error(ErrorKind::BadInput, "is a truncated PNG: it ends at byte " + std::to_string(size) + " without an IEND chunk");
         }
         unsigned char chunk[8];
         in.seekg(std::streamoff(offset));
-        if (!in.read(reinterpret_cast<char*>(chunk), 8)) throw Error("cannot be read at byte " + std::to_string(offset));
+        if (!in.read(reinterpret_cast<char*>(chunk), 8)) throw Error(ErrorKind::BadInput, "cannot be read at byte " + std::to_string(offset));
         const std::uint64_t length = (std::uint64_t(chunk[0]) << 24) | (std::uint64_t(chunk[1]) << 16) |
                                      (std::uint64_t(chunk[2]) << 8) | std::uint64_t(chunk[3]);
         const std::string type = printable(std::string(reinterpret_cast<const char*>(chunk + 4), 4));
         if (length > 0x7fffffffu || length + 12 > size - offset) {
-            throw Error("is a truncated PNG: chunk '" + type + "' at byte " + std::to_string(offset) + " needs " +
+            throw Error(ErrorKind::BadInput, "is a truncated PNG: chunk '" + type + "' at byte " + std::to_string(offset) + " needs " +
                         std::to_string(length + 12) + " bytes, the file has " + std::to_string(size - offset) + " left");
         }
         offset += length + 12;
@@ -131,7 +131,7 @@ void checkExrPart(std::int64_t width, std::int64_t height, std::uint64_t pixelBy
                   std::uint64_t tileHeight, std::uint64_t size)
 {
     if (width <= 0 || height <= 0) {
-        throw Error("is a corrupt OpenEXR file: its data window is " + std::to_string(width) + "x" +
+        throw Error(ErrorKind::BadInput, "is a corrupt OpenEXR file: its data window is " + std::to_string(width) + "x" +
                     std::to_string(height) + " pixels");
     }
     const double most = double(MAX_IMAGE_EXPANSION) * double(size) + 65536.0;
@@ -140,7 +140,7 @@ void checkExrPart(std::int64_t width, std::int64_t height, std::uint64_t pixelBy
     const double lines = double(width) * double(std::min<std::int64_t>(height, 256)) * bytes;
     const double tile = double(tileWidth) * double(tileHeight) * bytes;
     if (pixels > most || lines > most || tile > most) {
-        throw Error("claims " + std::to_string(width) + "x" + std::to_string(height) + " pixels of " +
+        throw Error(ErrorKind::BadInput, "claims " + std::to_string(width) + "x" + std::to_string(height) + " pixels of " +
                     std::to_string(pixelBytes) + " bytes" +
                     (tileWidth ? " in " + std::to_string(tileWidth) + "x" + std::to_string(tileHeight) + " tiles" : "") +
                     " in a file of " + std::to_string(size) +
@@ -158,7 +158,7 @@ void checkExr(std::ifstream& in, std::uint64_t size)
     std::uint64_t offset = 4;
     std::uint32_t version = 0;
     in.seekg(4);
-    if (!in.read(reinterpret_cast<char*>(&version), 4)) throw Error("is a truncated OpenEXR file: no version");
+    if (!in.read(reinterpret_cast<char*>(&version), 4)) throw Error(ErrorKind::BadInput, "is a truncated OpenEXR file: no version");
     offset = 8;
     const bool multipart = (version & 0x1000u) != 0;
     auto readName = [&](const char* what) {
@@ -166,13 +166,13 @@ void checkExr(std::ifstream& in, std::uint64_t size)
         for (;;) {
             char c;
             if (offset >= size || !in.get(c)) {
-                throw Error("is a truncated OpenEXR file: " + std::string(what) + " at byte " + std::to_string(offset) +
+                throw Error(ErrorKind::BadInput, "is a truncated OpenEXR file: " + std::string(what) + " at byte " + std::to_string(offset) +
                             " runs past the end");
             }
             ++offset;
             if (c == '\0') return name;
             if (name.size() >= 255) {
-                throw Error("is a corrupt OpenEXR file: " + std::string(what) + " at byte " +
+                throw Error(ErrorKind::BadInput, "is a corrupt OpenEXR file: " + std::string(what) + " at byte " +
                             std::to_string(offset - name.size() - 1) + " is longer than 255 characters");
             }
             name += c;
@@ -192,18 +192,18 @@ void checkExr(std::ifstream& in, std::uint64_t size)
             const std::string type = readName("an attribute type");
             std::int32_t length = 0;
             if (size - offset < 4 || !in.read(reinterpret_cast<char*>(&length), 4)) {
-                throw Error("is a truncated OpenEXR file: attribute '" + printable(name) + "' has no size");
+                throw Error(ErrorKind::BadInput, "is a truncated OpenEXR file: attribute '" + printable(name) + "' has no size");
             }
             offset += 4;
             if (length < 0 || std::uint64_t(length) > size - offset) {
-                throw Error("is a corrupt OpenEXR file: attribute '" + printable(name) + "' at byte " +
+                throw Error(ErrorKind::BadInput, "is a corrupt OpenEXR file: attribute '" + printable(name) + "' at byte " +
                             std::to_string(offset - 4) + " claims " + std::to_string(length) + " bytes, the file has " +
                             std::to_string(size - offset) + " left");
             }
             std::string value(std::size_t(length), '\0');
-            if (!in.read(value.data(), length)) throw Error("cannot be read at byte " + std::to_string(offset));
+            if (!in.read(value.data(), length)) throw Error(ErrorKind::BadInput, "cannot be read at byte " + std::to_string(offset));
             if (const std::string problem = exrValueProblem(type, value); !problem.empty()) {
-                throw Error("is a corrupt OpenEXR file: attribute '" + printable(name) + "' (" + printable(type) +
+                throw Error(ErrorKind::BadInput, "is a corrupt OpenEXR file: attribute '" + printable(name) + "' (" + printable(type) +
                             ") at byte " + std::to_string(offset - 4) + " " + problem);
             }
             offset += std::uint64_t(length);
@@ -242,7 +242,7 @@ std::string checkImageFileStructure(const std::filesystem::path& path)
     if (std::find(known.begin(), known.end(), extension) == known.end()) {
         std::string list;
         for (const std::string& e : known) list += (list.empty() ? "." : ", .") + e;
-        throw Error(extension.empty() ? "has no file extension to say its image format (one of " + list + ")"
+        throw Error(ErrorKind::BadInput, extension.empty() ? "has no file extension to say its image format (one of " + list + ")"
                                       : "has the extension '." + printable(extension) +
                                             "', not an image format Strata reads (" + list + ")");
     }
@@ -267,7 +267,7 @@ void checkImageSizeAgainstFile(const std::filesystem::path& path, int width, int
     const double claimed = double(std::max(width, 0)) * double(std::max(height, 0)) * double(std::max(channels, 1));
     const double most = double(MAX_IMAGE_EXPANSION) * double(size) + 65536.0;
     if (claimed > most) {
-        throw Error("claims " + std::to_string(width) + "x" + std::to_string(height) + " pixels of " +
+        throw Error(ErrorKind::BadInput, "claims " + std::to_string(width) + "x" + std::to_string(height) + " pixels of " +
                     std::to_string(channels) + " channel(s) in a file of " + std::to_string(size) +
                     " bytes: more than any image compression holds (a corrupt or hostile header)");
     }

@@ -111,11 +111,11 @@ void checkBand(const std::string& what, const char* key, const LayerBand& band)
 {
     if (!band.enabled) return;
     if (std::isnan(band.min) || std::isnan(band.max) || band.min > band.max) {
-        throw Error(what + ": " + key + " band [" + std::to_string(band.min) + ", " + std::to_string(band.max) +
+        throw Error(ErrorKind::BadInput, what + ": " + key + " band [" + std::to_string(band.min) + ", " + std::to_string(band.max) +
                     "] needs min <= max");
     }
     if (!(band.softness >= 0.0f && std::isfinite(band.softness))) {
-        throw Error(what + ": " + key + " softness " + std::to_string(band.softness) + " must be finite and >= 0");
+        throw Error(ErrorKind::BadInput, what + ": " + key + " softness " + std::to_string(band.softness) + " must be finite and >= 0");
     }
 }
 
@@ -124,7 +124,7 @@ void checkOne(const Material& m, const std::string& what)
     auto range = [&what](const char* key, double value, double lo, double hi) {
         detail::checkRange(what.c_str(), key, value, lo, hi);
     };
-    if (!(std::isfinite(m.mapScale) && m.mapScale > 0.0f)) throw Error(what + ": mapScale must be > 0");
+    if (!(std::isfinite(m.mapScale) && m.mapScale > 0.0f)) throw Error(ErrorKind::BadInput, what + ": mapScale must be > 0");
     range("blendOffset", m.blendOffset, 0.0f, 0.5f);
     range("blendExponent", m.blendExponent, 1.0f, 64.0f);
     range("heightStrength", m.heightStrength, 0.0f, 0.99f);
@@ -139,7 +139,7 @@ void checkOne(const Material& m, const std::string& what)
     range("fresnelStrength", m.fresnelStrength, 0.0f, 1.0f);
     range("antiTilingSharpness", m.antiTilingSharpness, 1.0f, 16.0f);
     if (m.projections != 2 && m.projections != 3) {
-        throw Error(what + ": projections = " + std::to_string(m.projections) + " must be 2 (biplanar) or 3 (triplanar)");
+        throw Error(ErrorKind::BadInput, what + ": projections = " + std::to_string(m.projections) + " must be 2 (biplanar) or 3 (triplanar)");
     }
     for (int c = 0; c < 3; ++c) {
         range("albedoTint", m.albedoTint[c], 0.0f, 16.0f);
@@ -148,7 +148,7 @@ void checkOne(const Material& m, const std::string& what)
     const TexturePtr* maps[] = {&m.albedo,    &m.mask,   &m.normal,       &m.topAlbedo, &m.topMask,
                                 &m.topNormal, &m.detail, &m.detailNormal, &m.emission};
     for (const TexturePtr* map : maps) {
-        if (*map && (*map)->levels.empty()) throw Error(what + ": a texture has no levels");
+        if (*map && (*map)->levels.empty()) throw Error(ErrorKind::BadInput, what + ": a texture has no levels");
     }
 }
 
@@ -159,7 +159,7 @@ void checkMaterial(const Material& m)
     checkOne(m, "material");
     if (m.layers.empty()) return;
     if (int(m.layers.size()) + 1 > MAX_MATERIAL_LAYERS) {
-        throw Error("material: " + std::to_string(m.layers.size()) + " layers over the base; at most " +
+        throw Error(ErrorKind::BadInput, "material: " + std::to_string(m.layers.size()) + " layers over the base; at most " +
                     std::to_string(MAX_MATERIAL_LAYERS - 1));
     }
     detail::checkRange("material", "layerBlendDepth", m.layerBlendDepth, 1e-3, 100.0);
@@ -167,7 +167,7 @@ void checkMaterial(const Material& m)
         const MaterialLayer& layer = m.layers[i];
         const std::string what = "material layer '" + (layer.name.empty() ? std::to_string(i + 1) : layer.name) + "'";
         checkOne(layer.material, what);
-        if (!layer.material.layers.empty()) throw Error(what + ": layers cannot have layers of their own");
+        if (!layer.material.layers.empty()) throw Error(ErrorKind::BadInput, what + ": layers cannot have layers of their own");
         const LayerRule& r = layer.rule;
         checkBand(what, "altitude", r.altitude);
         checkBand(what, "slope", r.slope);

@@ -171,13 +171,13 @@ std::array<SlotPlan, 9> planLayerSlots(const Material& material)
             if (!t) continue;
             const std::string what = "material: layer '" + layerName(material, i) + "' map " + SLOT_NAMES[k];
             if (t->srgb != reference.srgb) {
-                throw Error(what + " is " + (t->srgb ? "sRGB" : "linear") + " but layer '" +
+                throw Error(ErrorKind::BadInput, what + " is " + (t->srgb ? "sRGB" : "linear") + " but layer '" +
                             layerName(material, smallest) + "''s is not (one colour space per map slot)");
             }
             std::size_t j = 0;
             while (j < t->levels.size() && !(t->levels[j].width == plan.width && t->levels[j].height == plan.height)) ++j;
             if (j == t->levels.size()) {
-                throw Error(what + " is " + size(t->width(), t->height()) + ": none of its mip levels is " +
+                throw Error(ErrorKind::BadInput, what + " is " + size(t->width(), t->height()) + ": none of its mip levels is " +
                             size(plan.width, plan.height) + ", the size of layer '" + layerName(material, smallest) +
                             "''s (the layers' maps of one slot share a texture array: give them one size, or sizes a "
                             "power of two apart)");

@@ -288,8 +288,8 @@ PbrFiles findPbrFiles(const fs::path& folder, bool defaultNormalDirectX)
 {
     const std::string where = "PBR folder " + quoted(folder);
     std::error_code ec;
-    if (!fs::exists(folder, ec)) throw Error(where + ": no such folder");
-    if (!fs::is_directory(folder, ec)) throw Error(where + ": is not a folder");
+    if (!fs::exists(folder, ec)) throw Error(ErrorKind::BadInput, where + ": no such folder");
+    if (!fs::is_directory(folder, ec)) throw Error(ErrorKind::BadInput, where + ": is not a folder");
 
     std::vector<fs::path> files;
     fs::directory_iterator it(folder, ec);
@@ -336,7 +336,7 @@ PbrFiles findPbrFiles(const fs::path& folder, bool defaultNormalDirectX)
         if (tied.size() > 1) {
             std::string names;
             for (const Candidate* c : tied) names += (names.empty() ? "" : ", ") + quoted(c->path.filename());
-            throw Error(where + ": " + std::to_string(tied.size()) + " candidates for the " + roleName(role) +
+            throw Error(ErrorKind::BadInput, where + ": " + std::to_string(tied.size()) + " candidates for the " + roleName(role) +
                         " map: " + names + "; remove all but one");
         }
         return *tied[0];
@@ -345,7 +345,7 @@ PbrFiles findPbrFiles(const fs::path& folder, bool defaultNormalDirectX)
     PbrFiles files_;
     const std::optional<Candidate> albedo = pick(Role::Albedo);
     if (!albedo) {
-        throw Error(where + ": no albedo / base colour map (a file named like *_Color.*, *_BaseColor.*, *_albedo.*, "
+        throw Error(ErrorKind::BadInput, where + ": no albedo / base colour map (a file named like *_Color.*, *_BaseColor.*, *_albedo.*, "
                             "*_diffuse.* or *_diff_*)");
     }
     files_.albedo = albedo->path;
@@ -367,7 +367,7 @@ PbrFiles findPbrFiles(const fs::path& folder, bool defaultNormalDirectX)
 PbrMaps loadPbrFolder(const fs::path& folder, const MipOptions& mips, int maxSize, bool defaultNormalDirectX)
 {
     if (maxSize < 0 || (maxSize & (maxSize - 1)) != 0) {
-        throw Error("PBR folder " + quoted(folder) + ": maxSize = " + std::to_string(maxSize) +
+        throw Error(ErrorKind::BadInput, "PBR folder " + quoted(folder) + ": maxSize = " + std::to_string(maxSize) +
                     " must be 0 (keep) or a power of two");
     }
     const PbrFiles files = findPbrFiles(folder, defaultNormalDirectX);
@@ -420,7 +420,7 @@ PbrMaps loadPbrFolder(const fs::path& folder, const MipOptions& mips, int maxSiz
     for (const Part& part : parts) {
         if (!part.from) continue;
         if (first && (part.image.width != first->image.width || part.image.height != first->image.height)) {
-            throw Error("PBR folder " + quoted(folder) +
+            throw Error(ErrorKind::BadInput, "PBR folder " + quoted(folder) +
                         ": the maps packed into the mask differ in size: " + quoted(first->from->path.filename()) +
                         " is " + sizeText(first->from->fileWidth, first->from->fileHeight) + ", " +
                         quoted(part.from->path.filename()) + " is " +

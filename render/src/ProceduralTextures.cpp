@@ -182,7 +182,7 @@ std::uint8_t toByte(float v)
 void checkSize(int size, const char* what)
 {
     if (size < 16 || size > 16384 || (size & (size - 1)) != 0) {
-        throw Error(std::string(what) + " texture size must be a power of two in 16..16384, got " +
+        throw Error(ErrorKind::BadInput, std::string(what) + " texture size must be a power of two in 16..16384, got " +
                     std::to_string(size));
     }
 }

@@ -19,7 +19,7 @@ inline void checkRange(const char* what, const char* key, double value, double l
     if (!(std::isfinite(value) && value >= lo && value <= hi)) {
         std::ostringstream s;
         s << what << ": " << key << " = " << value << " outside [" << lo << ", " << hi << "]";
-        throw Error(s.str());
+        throw Error(ErrorKind::BadInput, s.str());
     }
 }
 

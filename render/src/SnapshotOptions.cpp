@@ -24,7 +24,7 @@ void checkSnapshotOptions(const SnapshotOptions& options)
 {
     auto require = [](bool ok, const std::string& message) {
         if (!ok) {
-            throw Error("snapshot: " + message);
+            throw Error(ErrorKind::BadInput, "snapshot: " + message);
         }
     };
     require(options.width >= 1 && options.width <= 16384 && options.height >= 1 && options.height <= 16384,
@@ -35,7 +35,7 @@ void checkSnapshotOptions(const SnapshotOptions& options)
     try {
         checkMaterial(options.material);
     } catch (const Error& e) {
-        throw Error(std::string("snapshot: ") + e.what());
+        throw Error(e.kind(), std::string("snapshot: ") + e.what());
     }
     const Camera& c = options.camera;
     require(c.nearPlane > 0.0 && c.farPlane > c.nearPlane, "camera needs 0 < near < far");

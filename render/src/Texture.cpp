@@ -60,7 +60,7 @@ void checkImage(const Image& image, const char* what)
 {
     if (image.width <= 0 || image.height <= 0 ||
         image.pixels.size() != std::size_t(image.width) * std::size_t(image.height) * 4) {
-        throw Error(std::string(what) + ": not a valid RGBA8 image (" + std::to_string(image.width) + "x" +
+        throw Error(ErrorKind::BadInput, std::string(what) + ": not a valid RGBA8 image (" + std::to_string(image.width) + "x" +
                     std::to_string(image.height) + ")");
     }
 }
@@ -182,7 +182,7 @@ ChannelSource parseChannelSource(const std::string& text, const std::string& wha
     }
     static const std::string NAMES = "rgba01";
     if (t.size() != 1 || NAMES.find(t[0]) == std::string::npos) {
-        throw Error(what + " = '" + text + "' must be r, g, b, a, 0, 1 or 1-r, 1-g, 1-b, 1-a");
+        throw Error(ErrorKind::BadInput, what + " = '" + text + "' must be r, g, b, a, 0, 1 or 1-r, 1-g, 1-b, 1-a");
     }
     source.channel = int(NAMES.find(t[0]));
     return source;
@@ -222,7 +222,7 @@ std::uint64_t textureBytes(const TexturePtr& texture)
 
 Image loadMapImage(const std::filesystem::path& path, MapKind kind, int minChannels, const std::string& what)
 {
-    auto fail = [&](const std::string& why) -> Error { return Error(what + ": '" + path.string() + "': " + why); };
+    auto fail = [&](const std::string& why) -> Error { return Error(ErrorKind::BadInput, what + ": '" + path.string() + "': " + why); };
     std::error_code ec;
     if (!std::filesystem::exists(path, ec)) throw fail("no such file");
     if (!std::filesystem::is_regular_file(path, ec)) throw fail("is not a file");
@@ -295,7 +295,7 @@ Image packMohs(const Image* metallic, const Image* occlusion, const Image* heigh
         if (image) {
             checkImage(*image, "packMohs");
             if (first && (image->width != first->width || image->height != first->height)) {
-                throw Error("packMohs: images differ in size (" + std::to_string(first->width) + "x" +
+                throw Error(ErrorKind::BadInput, "packMohs: images differ in size (" + std::to_string(first->width) + "x" +
                             std::to_string(first->height) + " vs " + std::to_string(image->width) + "x" +
                             std::to_string(image->height) + ")");
             }

@@ -81,7 +81,7 @@ CaveView findCaveView(const openvdb::FloatGrid& grid, const glm::dvec3& regionMi
 {
     const glm::dvec3 extent = regionMax - regionMin;
     if (!(extent.x > 0.0 && extent.y > 0.0 && extent.z > 0.0)) {
-        throw Error("--view cave: the region is empty");
+        throw Error(ErrorKind::BadInput, "--view cave: the region is empty");
     }
     Cells cells;
     cells.size = options.cellSize > 0.0 ? options.cellSize : 2.0 * grid.voxelSize()[0];
@@ -156,7 +156,7 @@ CaveView findCaveView(const openvdb::FloatGrid& grid, const glm::dvec3& regionMi
         ++labels;
     }
     if (best == NONE || bestSize < 8) {
-        throw Error("--view cave: the terrain has no cave (no air under rock inside the region, at " +
+        throw Error(ErrorKind::BadInput, "--view cave: the terrain has no cave (no air under rock inside the region, at " +
                     std::to_string(cells.size) + " m cells)");
     }
     auto inCave = [&](int i, int j, int k) { return cells.inside(i, j, k) && label[cells.index(i, j, k)] == best; };

@@ -32,8 +32,8 @@ std::string oneLine(std::string message, const char* fallback)
 terrain::HeightImage readHeightImageFile(const std::filesystem::path& path)
 {
     std::error_code ec;
-    if (!std::filesystem::exists(path, ec)) throw Error("no such file");
-    if (!std::filesystem::is_regular_file(path, ec)) throw Error("is not a file");
+    if (!std::filesystem::exists(path, ec)) throw Error(ErrorKind::BadInput, "no such file");
+    if (!std::filesystem::is_regular_file(path, ec)) throw Error(ErrorKind::BadInput, "is not a file");
     const std::string reader = render::checkImageFileStructure(path);
     OIIO::ImageSpec config;
     config.attribute("oiio:UnassociatedAlpha", 1);
@@ -45,13 +45,13 @@ terrain::HeightImage readHeightImageFile(const std::filesystem::path& path)
     if (!in || !in->open(path.string(), opened, config)) {
         const std::string printed = libraryLines.release();
         const std::string why = in ? in->geterror() : OIIO::geterror();
-        throw Error("cannot be read as a ." + reader + " image: " +
+        throw Error(ErrorKind::BadInput, "cannot be read as a ." + reader + " image: " +
                     oneLine(why, printed.empty() ? "unknown format" : printed.c_str()));
     }
     const OIIO::ImageSpec& spec = in->spec();
     if (spec.width < 2 || spec.height < 2 || spec.depth != 1 || spec.nchannels < 1 ||
         double(spec.width) * double(spec.height) > MAX_HEIGHT_IMAGE_PIXELS) {
-        throw Error("is " + std::to_string(spec.width) + "x" + std::to_string(spec.height) +
+        throw Error(ErrorKind::BadInput, "is " + std::to_string(spec.width) + "x" + std::to_string(spec.height) +
                     (spec.depth != 1 ? "x" + std::to_string(spec.depth) : std::string()) +
                     " pixels: heightmaps need 2x2 to 16384x16384");
     }
@@ -63,7 +63,7 @@ terrain::HeightImage readHeightImageFile(const std::filesystem::path& path)
     // Channel 0 as float: 8- and 16-bit integers come normalised to [0, 1].
     if (!in->read_image(0, 0, 0, 1, OIIO::TypeDesc::FLOAT, image.values.data())) {
         const std::string printed = libraryLines.release();
-        throw Error("cannot be read: " + oneLine(in->geterror(), printed.empty() ? "unknown OpenImageIO error" : printed.c_str()));
+        throw Error(ErrorKind::BadInput, "cannot be read: " + oneLine(in->geterror(), printed.empty() ? "unknown OpenImageIO error" : printed.c_str()));
     }
     in->close();
     return image;

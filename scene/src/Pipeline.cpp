@@ -142,7 +142,7 @@ meshing::TriangleMesh meshWithQuality(const openvdb::FloatGrid& grid, const Qual
                                           : quality.normals == "field" ? meshing::NormalMethod::Gradient
                                                                        : meshing::NormalMethod::Grid;
     if (normals == meshing::NormalMethod::Gradient && !gradient) {
-        throw Error("quality normals = 'field' needs a density field gradient");
+        throw Error(ErrorKind::BadInput, "quality normals = 'field' needs a density field gradient");
     }
     meshing::TriangleMesh mesh;
     std::ostringstream description;

@@ -110,14 +110,14 @@ const std::map<std::string, QualityOverrides>& presetTable()
 void checkPreset(const std::string& name, const std::string& what)
 {
     if (!presetTable().count(name)) {
-        throw Error(what + " '" + name + "' is not a preset (use " + joinChoices(presetNames()) + ")");
+        throw Error(ErrorKind::BadInput, what + " '" + name + "' is not a preset (use " + joinChoices(presetNames()) + ")");
     }
 }
 
 void checkVoxelPair(const QualityOverrides& overrides, const std::string& where)
 {
     if (overrides.count("voxel_size") && overrides.count("voxel_scale")) {
-        throw Error(where + "voxel_size and voxel_scale cannot both be given (voxel_size is metres, voxel_scale "
+        throw Error(ErrorKind::BadInput, where + "voxel_size and voxel_scale cannot both be given (voxel_size is metres, voxel_scale "
                             "multiplies the scene's [sampling] voxel_size)");
     }
 }
@@ -169,7 +169,7 @@ const std::vector<std::string>& qualityKeys()
 const std::vector<std::string>& knobChoices(const std::string& key)
 {
     const Knob* knob = findKnob(key);
-    if (!knob) throw Error("unknown quality key '" + key + "' (use " + keyList() + ")");
+    if (!knob) throw Error(ErrorKind::BadInput, "unknown quality key '" + key + "' (use " + keyList() + ")");
     return knob->choices;
 }
 
@@ -182,24 +182,24 @@ QualityOverrides presetKnobs(const std::string& name)
 std::string checkKnob(const std::string& key, const std::string& value)
 {
     const Knob* knob = findKnob(key);
-    if (!knob) throw Error("unknown quality key '" + key + "' (use " + keyList() + ")");
+    if (!knob) throw Error(ErrorKind::BadInput, "unknown quality key '" + key + "' (use " + keyList() + ")");
     if (knob->kind == KnobKind::Choice) {
         if (std::find(knob->choices.begin(), knob->choices.end(), value) == knob->choices.end()) {
-            throw Error(key + " = '" + value + "' must be " + joinChoices(knob->choices));
+            throw Error(ErrorKind::BadInput, key + " = '" + value + "' must be " + joinChoices(knob->choices));
         }
         return value;
     }
     char* end = nullptr;
     const double x = std::strtod(value.c_str(), &end);
     if (value.empty() || end != value.c_str() + value.size()) {
-        throw Error(key + " = '" + value + "' must be a number");
+        throw Error(ErrorKind::BadInput, key + " = '" + value + "' must be a number");
     }
-    if (!std::isfinite(x)) throw Error(key + " = '" + value + "' must be finite");
+    if (!std::isfinite(x)) throw Error(ErrorKind::BadInput, key + " = '" + value + "' must be finite");
     if (knob->kind == KnobKind::Integer && x != std::floor(x)) {
-        throw Error(key + " = '" + value + "' must be an integer");
+        throw Error(ErrorKind::BadInput, key + " = '" + value + "' must be an integer");
     }
     if (x < knob->min || x > knob->max) {
-        throw Error(key + " = '" + value + "' is out of range [" + formatNumber(knob->min) + ", " +
+        throw Error(ErrorKind::BadInput, key + " = '" + value + "' is out of range [" + formatNumber(knob->min) + ", " +
                     formatNumber(knob->max) + "]");
     }
     std::ostringstream canonical;
@@ -212,14 +212,14 @@ void addQualityFlag(const std::string& text, QualityOverrides& overrides)
 {
     const std::size_t equals = text.find('=');
     if (equals == std::string::npos) {
-        throw Error("--quality '" + text + "' must look like KEY=VALUE, e.g. mesher=surface-nets (keys: " + keyList() +
+        throw Error(ErrorKind::BadInput, "--quality '" + text + "' must look like KEY=VALUE, e.g. mesher=surface-nets (keys: " + keyList() +
                     ")");
     }
     const std::string key = text.substr(0, equals);
     try {
         overrides[key] = checkKnob(key, text.substr(equals + 1));
     } catch (const Error& e) {
-        throw Error("--quality '" + text + "': " + e.what());
+        throw Error(e.kind(), "--quality '" + text + "': " + e.what());
     }
     checkVoxelPair(overrides, "--quality: ");
 }

@@ -117,7 +117,7 @@ Scene parseScene(std::string_view text, const std::string& source, const SceneLo
     try {
         document = toml::parse(text, source);
     } catch (const toml::parse_error& e) {
-        throw Error(source + ":" + std::to_string(e.source().begin.line) + ": " + std::string(e.description()));
+        throw Error(ErrorKind::BadInput, source + ":" + std::to_string(e.source().begin.line) + ": " + std::string(e.description()));
     }
 
     Scene scene;
@@ -241,7 +241,7 @@ Scene loadScene(const std::filesystem::path& path, const SceneLoadOptions& optio
 {
     std::ifstream in(path, std::ios::binary);
     if (!in) {
-        throw Error("cannot open scene file '" + path.string() + "'");
+        throw Error(ErrorKind::BadInput, "cannot open scene file '" + path.string() + "'");
     }
     std::ostringstream text;
     text << in.rdbuf();

@@ -255,7 +255,7 @@ render::TexturePtr loadSlot(const MapFileSettings& f, render::MapKind kind, cons
         try {
             image = render::packMohs(pointers[0], pointers[1], pointers[2], pointers[3]);
         } catch (const Error& e) {
-            throw Error(what + ": " + e.what());
+            throw Error(e.kind(), what + ": " + e.what());
         }
     }
     if (f.directX) render::flipGreen(image);
@@ -440,7 +440,7 @@ render::Material buildMaterial(const MaterialSettings& settings)
             material.mask = pbr.mask;
             material.normal = pbr.normal;
         } catch (const Error& e) {
-            throw Error(ErrorKind::BadInput, settings.pbrWhere + " (material '" + settings.name + "'): " + e.what());
+            throw Error(e.kind(), settings.pbrWhere + " (material '" + settings.name + "'): " + e.what());
         }
     }
     if (settings.top != "none") {

@@ -50,7 +50,7 @@ Scene offsetScene(Scene scene, const glm::dvec3& offset)
             std::ostringstream text;
             text << "--offset '" << offset.x << "," << offset.y << "," << offset.z
                  << "' is out of range (finite, |value| <= 1e9 metres)";
-            throw Error(text.str());
+            throw Error(ErrorKind::BadInput, text.str());
         }
     }
     if (offset == glm::dvec3(0.0)) return scene;

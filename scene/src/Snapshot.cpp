@@ -27,19 +27,19 @@ std::optional<render::DebugView> debugViewFromName(const std::string& name)
 void checkSnapshotRequest(const SnapshotRequest& r)
 {
     if (r.backend != "auto" && r.backend != "gl" && r.backend != "cpu") {
-        throw Error("--backend '" + r.backend + "' is not a backend (use auto, gl or cpu)");
+        throw Error(ErrorKind::BadInput, "--backend '" + r.backend + "' is not a backend (use auto, gl or cpu)");
     }
     if (!r.view.empty() && r.view != "orbit" && r.view != "top" && r.view != "cave") {
-        throw Error("--view '" + r.view + "' is not a view (use orbit, top or cave)");
+        throw Error(ErrorKind::BadInput, "--view '" + r.view + "' is not a view (use orbit, top or cave)");
     }
     if (r.fov && !(*r.fov > 0.0 && *r.fov < 180.0)) {
-        throw Error("--fov '" + std::to_string(*r.fov) + "' must be in (0, 180) degrees");
+        throw Error(ErrorKind::BadInput, "--fov '" + std::to_string(*r.fov) + "' must be in (0, 180) degrees");
     }
     if (r.turntable < 0 || r.turntable > 3600) {
-        throw Error("--turntable '" + std::to_string(r.turntable) + "' must be a frame count in [1, 3600]");
+        throw Error(ErrorKind::BadInput, "--turntable '" + std::to_string(r.turntable) + "' must be a frame count in [1, 3600]");
     }
     if (!r.format.empty() && r.format != "png" && r.format != "exr") {
-        throw Error("--snapshot-format '" + r.format + "' is not a format (use png or exr)");
+        throw Error(ErrorKind::BadInput, "--snapshot-format '" + r.format + "' is not a format (use png or exr)");
     }
     if (!r.debugView.empty() && !debugViewFromName(r.debugView)) {
         std::string names;
@@ -47,10 +47,10 @@ void checkSnapshotRequest(const SnapshotRequest& r)
             names += std::string(v == 1 ? "" : v + 1 == render::DEBUG_VIEW_COUNT ? " or " : ", ") +
                      render::debugViewName(render::DebugView(v));
         }
-        throw Error("--debug-view '" + r.debugView + "' is not a debug view (use " + names + ")");
+        throw Error(ErrorKind::BadInput, "--debug-view '" + r.debugView + "' is not a debug view (use " + names + ")");
     }
     if (r.cameraPosition && r.cameraTarget && glm::length(*r.cameraPosition - *r.cameraTarget) == 0.0) {
-        throw Error("--camera-position equals --camera-target");
+        throw Error(ErrorKind::BadInput, "--camera-position equals --camera-target");
     }
 }
 
@@ -71,12 +71,12 @@ glm::vec<N, double> parseNumbersFlag(const std::string& flag, const std::string&
         const std::string part = comma == std::string::npos ? std::string() : text.substr(start, comma - start);
         if (comma == std::string::npos || !std::regex_match(part, match, number) ||
             (i == N - 1 && text.find(',', start) != std::string::npos)) {
-            throw Error(flag + " '" + text + "' must look like " + shape + " (" + count + " numbers in metres, e.g. " +
+            throw Error(ErrorKind::BadInput, flag + " '" + text + "' must look like " + shape + " (" + count + " numbers in metres, e.g. " +
                         example + ")");
         }
         v[i] = std::strtod(match[1].str().c_str(), nullptr); // ±HUGE_VAL on overflow, caught below
         if (!std::isfinite(v[i]) || std::abs(v[i]) > 1e9) {
-            throw Error(flag + " '" + text + "' is out of range (|value| <= 1e9 metres)");
+            throw Error(ErrorKind::BadInput, flag + " '" + text + "' is out of range (|value| <= 1e9 metres)");
         }
         start = comma + 1;
     }
@@ -108,7 +108,7 @@ std::unique_ptr<render::EglContext> openBackend(const SnapshotRequest& request, 
         return context;
     } catch (const Error& e) {
         if (request.backend == "gl") {
-            throw Error(std::string("--backend gl: no OpenGL context: ") + e.what());
+            throw Error(e.kind(), std::string("--backend gl: no OpenGL context: ") + e.what());
         }
         notices << "strata: no OpenGL context (" << e.what() << "); rendering on the CPU" << std::endl;
         renderer = "strata CPU reference renderer";
@@ -123,7 +123,7 @@ render::Camera snapshotCamera(const Scene& scene, const SnapshotRequest& request
     const double extent = glm::length(bounds.max - bounds.min);
     render::Camera camera;
     if (request.view == "cave") {
-        if (!cave) throw Error("--view cave: no cave view was computed");
+        if (!cave) throw Error(ErrorKind::BadInput, "--view cave: no cave view was computed");
         camera = *cave;
     } else if (request.view == "top") {
         // Straight down, north (−Z) at the top of the image.
@@ -150,7 +150,7 @@ render::Camera snapshotCamera(const Scene& scene, const SnapshotRequest& request
         if (request.cameraPosition) camera.position = *request.cameraPosition;
         if (request.cameraTarget) camera.target = *request.cameraTarget;
         if (glm::length(camera.position - camera.target) == 0.0) {
-            throw Error("--camera-position and --camera-target give a camera looking at its own position");
+            throw Error(ErrorKind::BadInput, "--camera-position and --camera-target give a camera looking at its own position");
         }
         const glm::dvec3 forward = glm::normalize(camera.target - camera.position);
         camera.up = std::abs(forward.y) > 0.999 ? glm::dvec3(0.0, 0.0, -1.0) : glm::dvec3(0.0, 1.0, 0.0);

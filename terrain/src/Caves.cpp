@@ -32,13 +32,13 @@ using namespace detail;
 
 void requirePositive(const char* key, double v)
 {
-    if (!(std::isfinite(v) && v > 0.0)) throw Error(std::string(key) + " = " + show(v) + " must be a finite number > 0");
+    if (!(std::isfinite(v) && v > 0.0)) throw Error(ErrorKind::BadInput, std::string(key) + " = " + show(v) + " must be a finite number > 0");
 }
 
 void requireRange(const char* key, double v, double lo, double hi)
 {
     if (!(std::isfinite(v) && v >= lo && v <= hi)) {
-        throw Error(std::string(key) + " = " + show(v) + " is out of range [" + show(lo) + ", " + show(hi) + "]");
+        throw Error(ErrorKind::BadInput, std::string(key) + " = " + show(v) + " is out of range [" + show(lo) + ", " + show(hi) + "]");
     }
 }
 
@@ -63,7 +63,7 @@ SpaghettiCaves::SpaghettiCaves(std::uint64_t seed, const SpaghettiOptions& optio
     requirePositive("wavelength", options.wavelength);
     requirePositive("radius", options.radius);
     requirePositive("vertical_squash", options.verticalSquash);
-    if (std::isnan(options.maxHeight)) throw Error("max_height = nan must be a number");
+    if (std::isnan(options.maxHeight)) throw Error(ErrorKind::BadInput, "max_height = nan must be a number");
     mNoiseRadius = options.radius * SPAGHETTI_TYPICAL_GRADIENT / options.wavelength;
     mGain = options.wavelength / SPAGHETTI_TYPICAL_GRADIENT; // metres per noise unit
     // |∇ tube| <= √2·L_n·max(1, squash) / wavelength per metre.
@@ -97,7 +97,7 @@ CheeseCaves::CheeseCaves(std::uint64_t seed, const CheeseOptions& options)
     requirePositive("wavelength", options.wavelength);
     requireRange("threshold", options.threshold, -2.0, 2.0);
     requirePositive("vertical_squash", options.verticalSquash);
-    if (std::isnan(options.maxHeight)) throw Error("max_height = nan must be a number");
+    if (std::isnan(options.maxHeight)) throw Error(ErrorKind::BadInput, "max_height = nan must be a number");
     const double slope = mNoise.lipschitz(3) * std::max(1.0, options.verticalSquash) / options.wavelength;
     mBoundScale = 1.0 / slope;
     mScale = mBoundScale / CHEESE_TYPICAL_FRACTION;
@@ -246,7 +246,7 @@ WormCaves::WormCaves(std::uint64_t seed, const WormOptions& options)
     requirePositive("cell_size", options.cellSize);
     requireRange("worms_per_cell", options.wormsPerCell, 0.0, 16.0);
     if (!(std::isfinite(options.minY) && std::isfinite(options.maxY) && options.maxY >= options.minY)) {
-        throw Error("max_y = " + show(options.maxY) + " must be a finite number >= min_y = " + show(options.minY));
+        throw Error(ErrorKind::BadInput, "max_y = " + show(options.maxY) + " must be a finite number >= min_y = " + show(options.minY));
     }
     requireRange("segments", options.segments, 1, 256);
     requirePositive("segment_length", options.segmentLength);
@@ -255,7 +255,7 @@ WormCaves::WormCaves(std::uint64_t seed, const WormOptions& options)
     requireRange("turn", options.turn, 0.0, 10.0);
     requireRange("max_pitch", options.maxPitch, 0.0, 1.4);
     mReach = options.segments * options.segmentLength + options.radius * (1.0 + options.radiusVariation);
-    if (mReach > 4096.0) throw Error("segments × segment_length = " + show(mReach) + " m is too long (4096 m at most)");
+    if (mReach > 4096.0) throw Error(ErrorKind::BadInput, "segments × segment_length = " + show(mReach) + " m is too long (4096 m at most)");
 }
 
 WormCaves::~WormCaves() = default;

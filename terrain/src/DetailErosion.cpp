@@ -168,7 +168,7 @@ void erodeDetail(std::vector<double>& heights, int width, int height, std::int64
 {
     checkDetailErosionOptions(o);
     if (width < 2 || height < 2 || heights.size() != std::size_t(width) * std::size_t(height)) {
-        throw Error("detail erosion: " + std::to_string(heights.size()) + " heights for " + std::to_string(width) +
+        throw Error(ErrorKind::BadInput, "detail erosion: " + std::to_string(heights.size()) + " heights for " + std::to_string(width) +
                     "x" + std::to_string(height) + " corners (at least 2x2)");
     }
     const std::vector<double> original = heights;

@@ -41,20 +41,20 @@ struct PopsLater
 void checkInput(const std::vector<double>& heights, int width, int height, double cellSize)
 {
     if (width < 1 || height < 1)
-        throw Error("flow routing: the grid is " + std::to_string(width) + " x " + std::to_string(height) +
+        throw Error(ErrorKind::BadInput, "flow routing: the grid is " + std::to_string(width) + " x " + std::to_string(height) +
                     " cells; both sides must be >= 1");
     if (std::uint64_t(width) * std::uint64_t(height) > std::numeric_limits<std::uint32_t>::max())
-        throw Error("flow routing: the grid is " + std::to_string(width) + " x " + std::to_string(height) +
+        throw Error(ErrorKind::BadInput, "flow routing: the grid is " + std::to_string(width) + " x " + std::to_string(height) +
                     " cells, more than 2^32 - 1");
     if (heights.size() != std::size_t(width) * std::size_t(height))
-        throw Error("flow routing: " + std::to_string(heights.size()) + " heights for a " + std::to_string(width) +
+        throw Error(ErrorKind::BadInput, "flow routing: " + std::to_string(heights.size()) + " heights for a " + std::to_string(width) +
                     " x " + std::to_string(height) + " grid (" +
                     std::to_string(std::size_t(width) * std::size_t(height)) + " cells)");
     if (!std::isfinite(cellSize) || cellSize <= 0.0)
-        throw Error("flow routing: cell size = " + formatNumber(cellSize) + " must be a finite number > 0");
+        throw Error(ErrorKind::BadInput, "flow routing: cell size = " + formatNumber(cellSize) + " must be a finite number > 0");
     for (std::size_t i = 0; i < heights.size(); ++i) {
         if (!std::isfinite(heights[i]))
-            throw Error("flow routing: the height at cell (x " + std::to_string(i % std::size_t(width)) + ", z " +
+            throw Error(ErrorKind::BadInput, "flow routing: the height at cell (x " + std::to_string(i % std::size_t(width)) + ", z " +
                         std::to_string(i / std::size_t(width)) + ") is " + formatNumber(heights[i]) +
                         ", not a finite number");
     }

@@ -150,13 +150,13 @@ FractalNoise::FractalNoise(std::uint64_t seed, const FractalOptions& options)
     : mOptions(options)
 {
     if (options.octaves < 1 || options.octaves > MAX_OCTAVES) {
-        throw Error("octaves = " + std::to_string(options.octaves) + " is out of range 1..24");
+        throw Error(ErrorKind::BadInput, "octaves = " + std::to_string(options.octaves) + " is out of range 1..24");
     }
     if (!(std::isfinite(options.lacunarity) && options.lacunarity > 0.0)) {
-        throw Error("lacunarity = " + show(options.lacunarity) + " must be a finite number > 0");
+        throw Error(ErrorKind::BadInput, "lacunarity = " + show(options.lacunarity) + " must be a finite number > 0");
     }
     if (!(std::isfinite(options.gain) && options.gain >= 0.0)) {
-        throw Error("gain = " + show(options.gain) + " must be a finite number >= 0");
+        throw Error(ErrorKind::BadInput, "gain = " + show(options.gain) + " must be a finite number >= 0");
     }
     mCount = options.octaves;
     double norm = 0.0, amplitude = 1.0, frequency = 1.0;

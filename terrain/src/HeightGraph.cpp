@@ -55,7 +55,7 @@ double smoothstep01(double t)
 ConstantHeight::ConstantHeight(double value)
     : mValue(value)
 {
-    if (!std::isfinite(value)) throw Error("value = " + show(value) + " must be a finite number");
+    if (!std::isfinite(value)) throw Error(ErrorKind::BadInput, "value = " + show(value) + " must be a finite number");
     setSlopeBound(0.0);
 }
 
@@ -64,7 +64,7 @@ ConstantHeight::ConstantHeight(double value)
 HeightCombine::HeightCombine(HeightOp op, std::vector<HeightNodePtr> inputs)
     : mOp(op), mInputs(std::move(inputs))
 {
-    if (mInputs.size() < 2) throw Error("children must name at least two height nodes");
+    if (mInputs.size() < 2) throw Error(ErrorKind::BadInput, "children must name at least two height nodes");
     double slope = mInputs[0]->slopeBound();
     Interval value = range(*mInputs[0]);
     for (std::size_t i = 1; i < mInputs.size(); ++i) {
@@ -80,7 +80,7 @@ HeightCombine::HeightCombine(HeightOp op, std::vector<HeightNodePtr> inputs)
         value = fold(value, v);
     }
     if (!std::isfinite(slope)) {
-        throw Error("children: the product of these inputs has no finite slope bound (an input is unbounded); "
+        throw Error(ErrorKind::BadInput, "children: the product of these inputs has no finite slope bound (an input is unbounded); "
                     "clamp it first with height_scale's min and max");
     }
     setSlopeBound(slope);
@@ -145,7 +145,7 @@ HeightBlend::HeightBlend(HeightNodePtr a, HeightNodePtr b, HeightNodePtr mask)
     const double spread = std::max(std::abs(rb.hi - ra.lo), std::abs(ra.hi - rb.lo));
     const double slope = std::max(mA->slopeBound(), mB->slopeBound()) + spread * mMask->slopeBound();
     if (!std::isfinite(slope)) {
-        throw Error("mask: blending unbounded inputs by a varying mask has no finite slope bound; clamp a and b "
+        throw Error(ErrorKind::BadInput, "mask: blending unbounded inputs by a varying mask has no finite slope bound; clamp a and b "
                     "with height_scale's min and max");
     }
     setSlopeBound(slope);
@@ -188,10 +188,10 @@ void MappedHeight::heights(const double* x, const double* z, std::size_t n, doub
 HeightAffine::HeightAffine(HeightNodePtr child, const HeightAffineOptions& options)
     : MappedHeight(std::move(child)), mOptions(options)
 {
-    if (!std::isfinite(options.scale)) throw Error("scale = " + show(options.scale) + " must be a finite number");
-    if (!std::isfinite(options.offset)) throw Error("offset = " + show(options.offset) + " must be a finite number");
+    if (!std::isfinite(options.scale)) throw Error(ErrorKind::BadInput, "scale = " + show(options.scale) + " must be a finite number");
+    if (!std::isfinite(options.offset)) throw Error(ErrorKind::BadInput, "offset = " + show(options.offset) + " must be a finite number");
     if (std::isnan(options.min) || std::isnan(options.max) || options.min > options.max) {
-        throw Error("max = " + show(options.max) + " must be >= min = " + show(options.min));
+        throw Error(ErrorKind::BadInput, "max = " + show(options.max) + " must be >= min = " + show(options.min));
     }
     setSlopeBound(std::abs(options.scale) * mChild->slopeBound());
 }
@@ -298,9 +298,9 @@ Interval HeightCurve::heightBounds(const glm::dvec2& min, const glm::dvec2& max)
 HeightTerrace::HeightTerrace(HeightNodePtr child, double step, double sharpness)
     : MappedHeight(std::move(child)), mStep(step), mSharpness(sharpness)
 {
-    if (!(std::isfinite(step) && step > 0.0)) throw Error("step = " + show(step) + " must be a finite number > 0");
+    if (!(std::isfinite(step) && step > 0.0)) throw Error(ErrorKind::BadInput, "step = " + show(step) + " must be a finite number > 0");
     if (!(std::isfinite(sharpness) && sharpness >= 1.0 && sharpness <= 64.0)) {
-        throw Error("sharpness = " + show(sharpness) + " is out of range [1, 64]");
+        throw Error(ErrorKind::BadInput, "sharpness = " + show(sharpness) + " is out of range [1, 64]");
     }
     // d/dh step·f^s = s·f^(s−1) <= s.
     setSlopeBound(sharpness * mChild->slopeBound());
@@ -328,10 +328,10 @@ HeightWarp::HeightWarp(HeightNodePtr child, std::uint64_t seed, const HeightWarp
       mNoiseZ(seed ^ 0x9E3779B97F4A7C15ull, options.noise)
 {
     if (!(std::isfinite(options.amplitude) && options.amplitude >= 0.0)) {
-        throw Error("amplitude = " + show(options.amplitude) + " must be a finite number >= 0");
+        throw Error(ErrorKind::BadInput, "amplitude = " + show(options.amplitude) + " must be a finite number >= 0");
     }
     if (!(std::isfinite(options.wavelength) && options.wavelength > 0.0)) {
-        throw Error("wavelength = " + show(options.wavelength) + " must be a finite number > 0");
+        throw Error(ErrorKind::BadInput, "wavelength = " + show(options.wavelength) + " must be a finite number > 0");
     }
     // ∇h = Jᵀ∇child with J = I + (A/w)·(∇n₁; ∇n₂), whose norm is at most
     // 1 + √2·(A/w)·L (each row's gradient bounded by L).
@@ -374,13 +374,13 @@ HeightMask::HeightMask(HeightNodePtr child, const MaskOptions& options)
     : mChild(std::move(child)), mOptions(options)
 {
     if (!(std::isfinite(options.min) && std::isfinite(options.max) && options.max >= options.min)) {
-        throw Error("max = " + show(options.max) + " must be a finite number >= min = " + show(options.min));
+        throw Error(ErrorKind::BadInput, "max = " + show(options.max) + " must be a finite number >= min = " + show(options.min));
     }
     if (!(std::isfinite(options.softness) && options.softness > 0.0)) {
-        throw Error("softness = " + show(options.softness) + " must be a finite number > 0");
+        throw Error(ErrorKind::BadInput, "softness = " + show(options.softness) + " must be a finite number > 0");
     }
     if (!(std::isfinite(options.radius) && options.radius > 0.0)) {
-        throw Error("radius = " + show(options.radius) + " must be a finite number > 0");
+        throw Error(ErrorKind::BadInput, "radius = " + show(options.radius) + " must be a finite number > 0");
     }
     // The band's steepest smoothstep is 1.5/softness; the measured value's
     // own bound: |∇h| <= S; a central difference over ±r is S/r-Lipschitz

@@ -67,12 +67,12 @@ Interval HeightfieldBase::heightBounds(const glm::dvec2& min, const glm::dvec2& 
 NoiseHeightfield::NoiseHeightfield(std::uint64_t seed, const NoiseHeightfieldOptions& options)
     : mOptions(options), mNoise(seed, options.noise)
 {
-    if (!std::isfinite(options.base)) throw Error("base = " + show(options.base) + " must be a finite number");
+    if (!std::isfinite(options.base)) throw Error(ErrorKind::BadInput, "base = " + show(options.base) + " must be a finite number");
     if (!(std::isfinite(options.amplitude) && options.amplitude >= 0.0)) {
-        throw Error("amplitude = " + show(options.amplitude) + " must be a finite number >= 0");
+        throw Error(ErrorKind::BadInput, "amplitude = " + show(options.amplitude) + " must be a finite number >= 0");
     }
     if (!(std::isfinite(options.wavelength) && options.wavelength > 0.0)) {
-        throw Error("wavelength = " + show(options.wavelength) + " must be a finite number > 0");
+        throw Error(ErrorKind::BadInput, "wavelength = " + show(options.wavelength) + " must be a finite number > 0");
     }
     setSlopeBound(options.amplitude / options.wavelength * mNoise.lipschitz(2));
 }
@@ -107,22 +107,22 @@ ImageHeightfield::ImageHeightfield(HeightImage image, const ImageHeightfieldOpti
     : mImage(std::move(image)), mOptions(options)
 {
     if (mImage.width < 2 || mImage.height < 2) {
-        throw Error("image is " + std::to_string(mImage.width) + "x" + std::to_string(mImage.height) +
+        throw Error(ErrorKind::BadInput, "image is " + std::to_string(mImage.width) + "x" + std::to_string(mImage.height) +
                     " pixels, at least 2x2 are needed");
     }
     if (mImage.values.size() != std::size_t(mImage.width) * std::size_t(mImage.height)) {
-        throw Error("image has " + std::to_string(mImage.values.size()) + " values for " +
+        throw Error(ErrorKind::BadInput, "image has " + std::to_string(mImage.values.size()) + " values for " +
                     std::to_string(mImage.width) + "x" + std::to_string(mImage.height) + " pixels");
     }
     for (int a = 0; a < 2; ++a) {
         if (!(std::isfinite(options.min[a]) && std::isfinite(options.max[a]) && options.max[a] > options.min[a])) {
-            throw Error(std::string("the image rectangle is empty or not finite along ") + (a == 0 ? "x" : "z") +
+            throw Error(ErrorKind::BadInput, std::string("the image rectangle is empty or not finite along ") + (a == 0 ? "x" : "z") +
                         ": min = " + show(options.min[a]) + ", max = " + show(options.max[a]));
         }
     }
-    if (!std::isfinite(options.base)) throw Error("base = " + show(options.base) + " must be a finite number");
+    if (!std::isfinite(options.base)) throw Error(ErrorKind::BadInput, "base = " + show(options.base) + " must be a finite number");
     if (!std::isfinite(options.heightScale)) {
-        throw Error("height_scale = " + show(options.heightScale) + " must be a finite number");
+        throw Error(ErrorKind::BadInput, "height_scale = " + show(options.heightScale) + " must be a finite number");
     }
     // Bilinear interpolation: the slope along an axis is at most the largest
     // step between neighbouring pixels along it, over the pixel spacing.
@@ -130,7 +130,7 @@ ImageHeightfield::ImageHeightfield(HeightImage image, const ImageHeightfieldOpti
     for (int z = 0; z < mImage.height; ++z) {
         for (int x = 0; x < mImage.width; ++x) {
             const float v = mImage.values[std::size_t(z) * mImage.width + x];
-            if (!std::isfinite(v)) throw Error("image value at pixel (" + std::to_string(x) + ", " +
+            if (!std::isfinite(v)) throw Error(ErrorKind::BadInput, "image value at pixel (" + std::to_string(x) + ", " +
                                                std::to_string(z) + ") is not finite");
             if (x + 1 < mImage.width) stepX = std::max(stepX, double(std::abs(mImage.values[std::size_t(z) * mImage.width + x + 1] - v)));
             if (z + 1 < mImage.height) stepZ = std::max(stepZ, double(std::abs(mImage.values[std::size_t(z + 1) * mImage.width + x] - v)));

@@ -22,7 +22,7 @@ constexpr double NOT_A_NUMBER = std::numeric_limits<double>::quiet_NaN();
 void checkOptions(const LandformStatisticsOptions& o)
 {
     const auto bad = [](const std::string& name, double value, const std::string& range) {
-        throw Error("landform statistics: " + name + " = " + formatNumber(value) + " must be " + range);
+        throw Error(ErrorKind::BadInput, "landform statistics: " + name + " = " + formatNumber(value) + " must be " + range);
     };
     if (!(o.depressionTolerance >= 0.0) || !std::isfinite(o.depressionTolerance))
         bad("depressionTolerance", o.depressionTolerance, "a finite number >= 0");
@@ -78,7 +78,7 @@ LandformStatistics measureLandforms(const std::vector<double>& heights, int widt
                                     const LandformStatisticsOptions& options)
 {
     if (width < 3 || height < 3)
-        throw Error("landform statistics: the grid is " + std::to_string(width) + " x " + std::to_string(height) +
+        throw Error(ErrorKind::BadInput, "landform statistics: the grid is " + std::to_string(width) + " x " + std::to_string(height) +
                     " cells; it must be at least 3 x 3");
     checkOptions(options);
     const FlowRouting routing = routeFlow(heights, width, height, cellSize); // checks the rest of the input

@@ -59,14 +59,14 @@ std::string show(double value) { return formatExact(value); }
 void validate(const SampleOptions& o)
 {
     if (!(std::isfinite(o.voxelSize) && o.voxelSize > 0.0)) {
-        throw Error("sampling: voxel_size = " + show(o.voxelSize) + " must be a finite number > 0");
+        throw Error(ErrorKind::BadInput, "sampling: voxel_size = " + show(o.voxelSize) + " must be a finite number > 0");
     }
     if (o.halfWidth < 3 || o.halfWidth > MAX_HALF_WIDTH) {
-        throw Error("sampling: half_width = " + std::to_string(o.halfWidth) + " is out of range 3.." +
+        throw Error(ErrorKind::BadInput, "sampling: half_width = " + std::to_string(o.halfWidth) + " is out of range 3.." +
                     std::to_string(MAX_HALF_WIDTH));
     }
     if (o.renormalizeIterations < 1 || o.renormalizeIterations > 64) {
-        throw Error("sampling: renormalize_iterations = " + std::to_string(o.renormalizeIterations) +
+        throw Error(ErrorKind::BadInput, "sampling: renormalize_iterations = " + std::to_string(o.renormalizeIterations) +
                     " is out of range 1..64");
     }
     const char* axes = "xyz";
@@ -74,11 +74,11 @@ void validate(const SampleOptions& o)
         const double lo = o.region.min[a], hi = o.region.max[a];
         const std::string key = std::string(".") + axes[a];
         if (!std::isfinite(lo) || !std::isfinite(hi)) {
-            throw Error("sampling: region min" + key + " = " + show(lo) + ", max" + key + " = " + show(hi) +
+            throw Error(ErrorKind::BadInput, "sampling: region min" + key + " = " + show(lo) + ", max" + key + " = " + show(hi) +
                         " must be finite numbers");
         }
         if (!(hi > lo)) {
-            throw Error("sampling: region is empty: max" + key + " = " + show(hi) + " is not greater than min" +
+            throw Error(ErrorKind::BadInput, "sampling: region is empty: max" + key + " = " + show(hi) + " is not greater than min" +
                         key + " = " + show(lo));
         }
     }
@@ -92,7 +92,7 @@ CoordBBox indexBox(const Region& region, double voxelSize)
     for (int a = 0; a < 3; ++a) {
         const double first = std::ceil(region.min[a] / voxelSize), last = std::floor(region.max[a] / voxelSize);
         if (!(std::abs(first) < MAX_INDEX && std::abs(last) < MAX_INDEX)) {
-            throw Error(std::string("sampling: region ") + axes[a] + " range [" + show(region.min[a]) + ", " +
+            throw Error(ErrorKind::BadInput, std::string("sampling: region ") + axes[a] + " range [" + show(region.min[a]) + ", " +
                         show(region.max[a]) + ") is too far out for voxel_size = " + show(voxelSize) +
                         " (more than 2^30 voxels from the origin)");
         }
@@ -103,7 +103,7 @@ CoordBBox indexBox(const Region& region, double voxelSize)
         while (double(j) * voxelSize >= region.max[a]) --j;
         while (double(j + 1) * voxelSize < region.max[a]) ++j;
         if (j < i) {
-            throw Error(std::string("sampling: region ") + axes[a] + " range [" + show(region.min[a]) + ", " +
+            throw Error(ErrorKind::BadInput, std::string("sampling: region ") + axes[a] + " range [" + show(region.min[a]) + ", " +
                         show(region.max[a]) + ") holds no voxel centre at voxel_size = " + show(voxelSize));
         }
         lo[a] = openvdb::Int32(i);
@@ -111,7 +111,7 @@ CoordBBox indexBox(const Region& region, double voxelSize)
     }
     const double voxels = double(hi.x() - lo.x() + 1) * double(hi.y() - lo.y() + 1) * double(hi.z() - lo.z() + 1);
     if (voxels > MAX_VOXELS) {
-        throw Error("sampling: region holds " + show(voxels) + " voxels at voxel_size = " + show(voxelSize) +
+        throw Error(ErrorKind::BadInput, "sampling: region holds " + show(voxels) + " voxels at voxel_size = " + show(voxelSize) +
                     ", more than the limit of 2^40: sample it in chunks or use larger voxels");
     }
     return CoordBBox(lo, hi);
@@ -496,7 +496,7 @@ openvdb::FloatGrid::Ptr sampleLevelSet(const DensityField& field, const SampleOp
     const std::uint64_t estimate = estimateBytes(tiles);
     if (stats) stats->estimatedBytes = estimate;
     if (options.maxMemoryBytes > 0 && (estimate > options.maxMemoryBytes || tileCount.load() > tileLimit)) {
-        throw Error("sampling: the grid would need " + std::string(tileCount.load() > tileLimit ? "more than " : "about ") +
+        throw Error(ErrorKind::BadInput, "sampling: the grid would need " + std::string(tileCount.load() > tileLimit ? "more than " : "about ") +
                     showBytes(estimate) + ", more than the memory budget of " + showBytes(options.maxMemoryBytes) +
                     ": use a coarser voxel_size (doubling it needs about 4x less) or a smaller region, or raise "
                     "--max-memory");

@@ -116,11 +116,11 @@ StreamPowerResult evolveLandscape(std::vector<double> heights, int width, int he
 {
     checkOptions(options);
     if (width < 1 || height < 1 || heights.size() != std::size_t(width) * std::size_t(height)) {
-        throw Error("erosion grid: " + std::to_string(heights.size()) + " heights for " + std::to_string(width) +
+        throw Error(ErrorKind::BadInput, "erosion grid: " + std::to_string(heights.size()) + " heights for " + std::to_string(width) +
                     "x" + std::to_string(height) + " cells");
     }
     if (!upliftMap.empty() && upliftMap.size() != heights.size()) {
-        throw Error("erosion grid: the uplift map has " + std::to_string(upliftMap.size()) + " values for " +
+        throw Error(ErrorKind::BadInput, "erosion grid: the uplift map has " + std::to_string(upliftMap.size()) + " values for " +
                     std::to_string(heights.size()) + " cells");
     }
     const std::size_t count = heights.size();
@@ -215,7 +215,7 @@ StreamPowerResult evolveLandscape(std::vector<double> heights, int width, int he
             r.diffusedOut -= inside * cellArea;
         }
         r.steps = step + 1;
-        if (progress && !progress(double(step + 1) / double(steps))) throw Error("erosion interrupted");
+        if (progress && !progress(double(step + 1) / double(steps))) throw Error(ErrorKind::Interrupted, "erosion interrupted");
     }
 
     routing = routeFlow(heights, width, height, dx);

@@ -33,21 +33,21 @@ std::string show(double value) { return formatNumber(value); }
 void requirePositive(const char* key, double value)
 {
     if (!(std::isfinite(value) && value > 0.0)) {
-        throw Error(std::string("terrain: ") + key + " = " + show(value) + " must be a finite number > 0");
+        throw Error(ErrorKind::BadInput, std::string("terrain: ") + key + " = " + show(value) + " must be a finite number > 0");
     }
 }
 
 void requireNonNegative(const char* key, double value)
 {
     if (!(std::isfinite(value) && value >= 0.0)) {
-        throw Error(std::string("terrain: ") + key + " = " + show(value) + " must be a finite number >= 0");
+        throw Error(ErrorKind::BadInput, std::string("terrain: ") + key + " = " + show(value) + " must be a finite number >= 0");
     }
 }
 
 void requireFinite(const char* key, double value)
 {
     if (!std::isfinite(value)) {
-        throw Error(std::string("terrain: ") + key + " = " + show(value) + " must be a finite number");
+        throw Error(ErrorKind::BadInput, std::string("terrain: ") + key + " = " + show(value) + " must be a finite number");
     }
 }
 
@@ -55,7 +55,7 @@ void validateFbm(const char* prefix, const FbmOptions& fbm)
 {
     const std::string p(prefix);
     if (fbm.octaves < 1 || fbm.octaves > 24) {
-        throw Error("terrain: " + p + ".octaves = " + std::to_string(fbm.octaves) + " is out of range 1..24");
+        throw Error(ErrorKind::BadInput, "terrain: " + p + ".octaves = " + std::to_string(fbm.octaves) + " is out of range 1..24");
     }
     requirePositive((p + ".lacunarity").c_str(), fbm.lacunarity);
     requireNonNegative((p + ".gain").c_str(), fbm.gain);
@@ -75,7 +75,7 @@ const TerrainOptions& validated(const TerrainOptions& o)
     requirePositive("caves.vertical_squash", o.caves.verticalSquash);
     validateFbm("caves", o.caves.fbm);
     if (std::isnan(o.caves.maxHeight)) {
-        throw Error("terrain: caves.max_height = nan must be a number");
+        throw Error(ErrorKind::BadInput, "terrain: caves.max_height = nan must be a number");
     }
     return o;
 }

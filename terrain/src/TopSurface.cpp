@@ -87,11 +87,11 @@ TopSurfaceGrid sampleTopSurface(const DensityField& field, const WorldBox& regio
                                 const std::function<bool(double)>& progress)
 {
     if (!std::isfinite(cellSize) || cellSize <= 0.0) {
-        throw Error("top surface: the cell size must be finite and > 0 metres, not " + formatNumber(cellSize));
+        throw Error(ErrorKind::BadInput, "top surface: the cell size must be finite and > 0 metres, not " + formatNumber(cellSize));
     }
     if (!isFinite(region.min) || !isFinite(region.max) || region.min.x > region.max.x || region.min.y > region.max.y ||
         region.min.z > region.max.z) {
-        throw Error("top surface: the region must be finite with min <= max on every axis, not " +
+        throw Error(ErrorKind::BadInput, "top surface: the region must be finite with min <= max on every axis, not " +
                     showPoint(region.min) + " to " + showPoint(region.max));
     }
     const double columns = columnsAlong(region.max.x - region.min.x, cellSize);
@@ -99,7 +99,7 @@ TopSurfaceGrid sampleTopSurface(const DensityField& field, const WorldBox& regio
     constexpr double MAX_AXIS = double(std::numeric_limits<int>::max());
     constexpr double MAX_CELLS = double(1 << 28);
     if (!(columns <= MAX_AXIS) || !(rows <= MAX_AXIS) || !(columns * rows <= MAX_CELLS)) {
-        throw Error("top surface: " + formatNumber(columns) + " x " + formatNumber(rows) + " columns of " +
+        throw Error(ErrorKind::BadInput, "top surface: " + formatNumber(columns) + " x " + formatNumber(rows) + " columns of " +
                     formatNumber(cellSize) + " m are too many (at most 2^28): use a larger cell or a smaller region");
     }
 

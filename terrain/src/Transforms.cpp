@@ -26,13 +26,13 @@ WarpField::WarpField(DensityFieldPtr child, std::uint64_t seed, const WarpOption
     , mZ(deriveSeed(seed, 3), options.noise)
 {
     if (!(std::isfinite(options.amplitude) && options.amplitude >= 0.0)) {
-        throw Error("amplitude = " + show(options.amplitude) + " must be a finite number >= 0");
+        throw Error(ErrorKind::BadInput, "amplitude = " + show(options.amplitude) + " must be a finite number >= 0");
     }
     if (!(std::isfinite(options.wavelength) && options.wavelength > 0.0)) {
-        throw Error("wavelength = " + show(options.wavelength) + " must be a finite number > 0");
+        throw Error(ErrorKind::BadInput, "wavelength = " + show(options.wavelength) + " must be a finite number > 0");
     }
     if (!(std::isfinite(options.vertical) && options.vertical >= 0.0)) {
-        throw Error("vertical = " + show(options.vertical) + " must be a finite number >= 0");
+        throw Error(ErrorKind::BadInput, "vertical = " + show(options.vertical) + " must be a finite number >= 0");
     }
     // ‖J‖ <= 1 + ‖amplitude·∇(f1, v·f2, f3)/wavelength‖_F.
     const double lf = mX.lipschitz(3) / options.wavelength;
@@ -105,9 +105,9 @@ Interval WarpField::bounds(const WorldBox& box) const
 TerraceField::TerraceField(DensityFieldPtr child, double step, double sharpness)
     : mChild(std::move(child)), mStep(step), mSharpness(sharpness)
 {
-    if (!(std::isfinite(step) && step > 0.0)) throw Error("step = " + show(step) + " must be a finite number > 0");
+    if (!(std::isfinite(step) && step > 0.0)) throw Error(ErrorKind::BadInput, "step = " + show(step) + " must be a finite number > 0");
     if (!(std::isfinite(sharpness) && sharpness >= 1.0 && sharpness <= 64.0)) {
-        throw Error("sharpness = " + show(sharpness) + " is out of range [1, 64]");
+        throw Error(ErrorKind::BadInput, "sharpness = " + show(sharpness) + " is out of range [1, 64]");
     }
 }
 

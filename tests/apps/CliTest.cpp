@@ -222,3 +222,43 @@ TEST(Cli, CtrlCStopsTheRunWritesNothingAndExits130)
     EXPECT_NE(text.find("interrupted"), std::string::npos) << text;
     EXPECT_FALSE(std::filesystem::exists(out)) << "an interrupted run left " << out;
 }
+
+// Exit code 1 is for failures of the system, not of the input: an output
+// that cannot be written (a file stands where a parent folder should be;
+// the tests run as root, so a read-only folder would not stop them) and a
+// GL context that cannot be had. Bad input is 2 (above), Ctrl-C 130 (above),
+// success 0 (GenerateDefaultSceneEndToEnd).
+TEST(Cli, UnwritableOutputExitsWithOne)
+{
+    const auto dir = strata::test::freshTestDir();
+    std::ofstream(dir / "blocker") << "a file, not a folder\n";
+    const auto out = dir / "blocker" / "out";
+    const CommandResult generate = runStrata("generate -o " + out.string() + " --no-snapshot -q", dir);
+    EXPECT_EQ(generate.exitCode, 1) << generate.output;
+    EXPECT_NE(generate.output.find("strata: error: cannot create output directory '" + out.string() + "'"),
+              std::string::npos)
+        << generate.output;
+
+    const auto benchOut = dir / "blocker" / "bench";
+    const CommandResult bench = runStrata("bench -o " + benchOut.string() + " --tiny", dir);
+    EXPECT_EQ(bench.exitCode, 1) << bench.output; // was 2: bench's write errors defaulted to bad input
+    EXPECT_NE(bench.output.find(benchOut.string()), std::string::npos) << bench.output;
+
+    const CommandResult bake = runStrata("bake -o " + (dir / "blocker" / "bake").string() + " --tile-size 64", dir);
+    EXPECT_EQ(bake.exitCode, 1) << bake.output;
+    EXPECT_NE(bake.output.find((dir / "blocker" / "bake").string()), std::string::npos) << bake.output;
+}
+
+TEST(Cli, NoGlContextForBackendGlExitsWithOne)
+{
+    // GLVND finds no EGL vendor library: no EGL display at all. That is the
+    // machine's failure, not the user's input (it was rewrapped as bad input).
+    const auto dir = strata::test::freshTestDir();
+    const auto out = dir / "out";
+    const CommandResult run = strata::test::runStrataWithEnvironment(
+        "__EGL_VENDOR_LIBRARY_FILENAMES=" + (dir / "no-such-vendor.json").string(),
+        "generate -o " + out.string() + " --backend gl -q", dir);
+    EXPECT_EQ(run.exitCode, 1) << run.output;
+    EXPECT_NE(run.output.find("--backend gl: no OpenGL context"), std::string::npos) << run.output;
+    EXPECT_FALSE(std::filesystem::exists(out)) << "a run that cannot render wrote files";
+}

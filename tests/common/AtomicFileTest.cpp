@@ -79,7 +79,7 @@ TEST(AtomicFile, TwoThreadsSavingToOnePathNeverShareATemporary)
                 strata::writeAtomically(dir / "shared.txt", [&](const fs::path& temporary) {
                     std::ofstream out(temporary, std::ios::binary);
                     out << (who == 0 ? a : b);
-                    if (!out.flush()) throw strata::Error("flush");
+                    if (!out.flush()) throw strata::Error(strata::ErrorKind::Io, "flush");
                 });
             } catch (const std::exception& e) {
                 errors[who].push_back(e.what());

@@ -126,7 +126,7 @@ class FailingField final : public terrain::DensityField
 public:
     double density(const glm::dvec3& p) const override
     {
-        if (p.x > 40.0) throw Error("FailingField: no terrain east of x = 40");
+        if (p.x > 40.0) throw Error(ErrorKind::BadInput, "FailingField: no terrain east of x = 40");
         return p.y;
     }
     double lipschitz() const override { return 1.0; }

@@ -38,7 +38,7 @@ std::string str(const glm::dvec3& v)
 {
     std::string message = "edit shape: ";
     for (const std::string& part : parts) message += part;
-    throw Error(message);
+    throw Error(ErrorKind::BadInput, message);
 }
 
 } // namespace

@@ -133,30 +133,30 @@ struct World::Impl
 
 World::World(std::shared_ptr<const terrain::DensityField> field, const WorldOptions& options)
 {
-    if (!field) throw Error("World: the density field is null");
+    if (!field) throw Error(ErrorKind::BadInput, "World: the density field is null");
     WorldOptions o = options;
     if (!std::isfinite(o.voxelSize) || o.voxelSize <= 0.0)
-        throw Error("WorldOptions: voxelSize = " + formatNumber(o.voxelSize) + " must be finite and > 0");
+        throw Error(ErrorKind::BadInput, "WorldOptions: voxelSize = " + formatNumber(o.voxelSize) + " must be finite and > 0");
     if (o.chunkSize < 8 || o.chunkSize > 128 || (o.chunkSize & (o.chunkSize - 1)) != 0)
-        throw Error("WorldOptions: chunkSize = " + std::to_string(o.chunkSize) + " must be a power of two in [8, 128]");
+        throw Error(ErrorKind::BadInput, "WorldOptions: chunkSize = " + std::to_string(o.chunkSize) + " must be a power of two in [8, 128]");
     if (o.levels < 1 || o.levels > 8)
-        throw Error("WorldOptions: levels = " + std::to_string(o.levels) + " must be in [1, 8]");
+        throw Error(ErrorKind::BadInput, "WorldOptions: levels = " + std::to_string(o.levels) + " must be in [1, 8]");
     const double w0 = o.chunkSize * o.voxelSize;
     if (o.lodDistance == 0.0) o.lodDistance = 4.0 * w0;
     const double minLod = 2.0 * std::sqrt(3.0) * w0;
     if (!std::isfinite(o.lodDistance) || (o.levels > 1 && o.lodDistance < minLod) || o.lodDistance < 0.0)
-        throw Error("WorldOptions: lodDistance = " + formatNumber(o.lodDistance) + " must be at least 2·sqrt(3) chunk widths (" +
+        throw Error(ErrorKind::BadInput, "WorldOptions: lodDistance = " + formatNumber(o.lodDistance) + " must be at least 2·sqrt(3) chunk widths (" +
                     formatNumber(minLod) + " m)");
     if (o.viewRadius == 0.0) o.viewRadius = 3.0 * w0 * double(1 << (o.levels - 1));
     if (!std::isfinite(o.viewRadius) || o.viewRadius <= 0.0)
-        throw Error("WorldOptions: viewRadius = " + formatNumber(o.viewRadius) + " must be finite and > 0");
-    if (o.threads < 0) throw Error("WorldOptions: threads = " + std::to_string(o.threads) + " must be >= 0");
+        throw Error(ErrorKind::BadInput, "WorldOptions: viewRadius = " + formatNumber(o.viewRadius) + " must be finite and > 0");
+    if (o.threads < 0) throw Error(ErrorKind::BadInput, "WorldOptions: threads = " + std::to_string(o.threads) + " must be >= 0");
     if (o.threads == 0) o.threads = int(std::max(1u, std::thread::hardware_concurrency()));
     if (o.editBand < 1 || o.editBand > 16)
-        throw Error("WorldOptions: editBand = " + std::to_string(o.editBand) + " must be in [1, 16]");
+        throw Error(ErrorKind::BadInput, "WorldOptions: editBand = " + std::to_string(o.editBand) + " must be in [1, 16]");
     if (o.sampleCacheLevels < 0 || o.sampleCacheLevels > o.levels)
-        throw Error("WorldOptions: sampleCacheLevels = " + std::to_string(o.sampleCacheLevels) + " must be in [0, levels]");
-    if (o.maxInFlight < 0) throw Error("WorldOptions: maxInFlight = " + std::to_string(o.maxInFlight) + " must be >= 0");
+        throw Error(ErrorKind::BadInput, "WorldOptions: sampleCacheLevels = " + std::to_string(o.sampleCacheLevels) + " must be in [0, levels]");
+    if (o.maxInFlight < 0) throw Error(ErrorKind::BadInput, "WorldOptions: maxInFlight = " + std::to_string(o.maxInFlight) + " must be >= 0");
     if (o.maxInFlight == 0) o.maxInFlight = 2 * o.threads + 2;
     openvdb::initialize();
     mImpl = std::make_unique<Impl>(std::move(field), o);
@@ -185,10 +185,10 @@ void World::setPointsOfInterest(std::vector<glm::dvec3> points)
     const double limit = double(1 << 29) * mImpl->options.voxelSize - mImpl->options.viewRadius -
                          detail::chunkWidth(mImpl->lod, mImpl->options.levels - 1);
     for (const glm::dvec3& p : points) {
-        if (!isFinite(p)) throw Error("World: point of interest (" + formatNumber(p.x) + ", " + formatNumber(p.y) + ", " + formatNumber(p.z) +
+        if (!isFinite(p)) throw Error(ErrorKind::BadInput, "World: point of interest (" + formatNumber(p.x) + ", " + formatNumber(p.y) + ", " + formatNumber(p.z) +
                                     ") is not finite");
         if (std::abs(p.x) > limit || std::abs(p.y) > limit || std::abs(p.z) > limit)
-            throw Error("World: point of interest (" + formatNumber(p.x) + ", " + formatNumber(p.y) + ", " + formatNumber(p.z) +
+            throw Error(ErrorKind::BadInput, "World: point of interest (" + formatNumber(p.x) + ", " + formatNumber(p.y) + ", " + formatNumber(p.z) +
                         ") is farther than " + formatNumber(limit) + " m from the origin");
     }
     std::vector<ChunkKey> interest = detail::interestChunks(points, mImpl->lod);
@@ -231,7 +231,7 @@ EditResult World::apply(const Edit& edit)
 {
     edit.shape.validate();
     if (!std::isfinite(edit.smoothRadius) || edit.smoothRadius < 0.0)
-        throw Error("edit: smoothRadius = " + formatNumber(edit.smoothRadius) + " must be finite and >= 0");
+        throw Error(ErrorKind::BadInput, "edit: smoothRadius = " + formatNumber(edit.smoothRadius) + " must be finite and >= 0");
     const std::vector<Coord> changed = mImpl->edits.apply(edit, *mImpl->field, mImpl->options.editBand);
     return mImpl->mark(changed);
 }

@@ -47,7 +47,7 @@ std::optional<RayHit> raycast(const terrain::DensityField& field, const EditLaye
 {
     if (!isFinite(origin) || !isFinite(direction) || glm::length(direction) == 0.0 || !std::isfinite(maxDistance) ||
         maxDistance < 0.0)
-        throw Error("World::raycast: origin and direction must be finite, direction not zero, maxDistance >= 0 (got " +
+        throw Error(ErrorKind::BadInput, "World::raycast: origin and direction must be finite, direction not zero, maxDistance >= 0 (got " +
                     formatNumber(maxDistance) + ")");
     const glm::dvec3 d = glm::normalize(direction);
     const double v = voxelSize;
@@ -106,7 +106,7 @@ bool isBoxSolid(const terrain::DensityField& field, const EditLayer& edits, doub
                 const glm::dvec3& max)
 {
     if (!isFinite(min) || !isFinite(max) || min.x > max.x || min.y > max.y || min.z > max.z)
-        throw Error("World::isBoxSolid: the box must be finite with min <= max");
+        throw Error(ErrorKind::BadInput, "World::isBoxSolid: the box must be finite with min <= max");
     const double v = voxelSize;
     const glm::dvec3 lo = glm::floor(min / v), hi = glm::floor(max / v) + 1.0;
     const Coord clo(int(lo.x), int(lo.y), int(lo.z)), chi(int(hi.x), int(hi.y), int(hi.z));

@@ -30,7 +30,7 @@ enum class ErrorKind
     Interrupted, ///< the caller asked a long operation to stop (a progress callback returned false)
 };
 
-/// "bad input", "I/O", "GL" or "internal".
+/// "bad input", "I/O", "GL", "internal" or "interrupted".
 inline const char* errorKindName(ErrorKind kind)
 {
     switch (kind) {
@@ -58,12 +58,8 @@ struct ErrorPlace
 class Error : public std::runtime_error
 {
 public:
-    /// A bad-input error with a complete message (the most common case).
-    explicit Error(const std::string& message)
-        : std::runtime_error(message)
-    {
-    }
-
+    /// An error of `kind` with a complete message. There is no default kind:
+    /// the kind decides the CLI's exit code, so every throw site names it.
     Error(ErrorKind kind, const std::string& message, ErrorPlace place = {})
         : std::runtime_error(message), mKind(kind), mPlace(std::move(place))
     {
@@ -73,7 +69,7 @@ public:
     const ErrorPlace& place() const { return mPlace; }
 
 private:
-    ErrorKind mKind = ErrorKind::BadInput;
+    ErrorKind mKind;
     ErrorPlace mPlace;
 };
 
