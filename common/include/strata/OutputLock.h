@@ -13,7 +13,9 @@ namespace strata {
 /// Holds an advisory lock (flock) on FOLDER/.strata.lock while it lives; the
 /// file records the holder's process id. The lock dies with the process, so
 /// a killed run never leaves the folder locked. The lock file is removed
-/// when the lock is released.
+/// when the lock is released; a process that wins the flock on a file that
+/// was removed meanwhile notices (the name points to another inode) and
+/// retries, so two processes never both hold the folder (OutputLock.cpp).
 class OutputLock
 {
 public:
