@@ -311,10 +311,21 @@ BakeSummary bake(const Scene& scene, const BakeOptions& options, const BakePlan&
     if (!options.worker) lock.emplace(dir);
     const bool replace = old && options.force && detail::headerJson(*old) != detail::headerJson(manifest);
     if (replace) removeOldBake(dir, *old);
-    for (int level = 0; level < plan.lods; ++level) fs::create_directories(dir / "tiles" / std::to_string(level), ec);
-    if (options.grids) fs::create_directories(dir / "grids", ec);
-    fs::create_directories(dir / "records", ec);
-    if (ec) throw Error(ErrorKind::Io, "cannot create folders in '" + dir.string() + "': " + ec.message(), {dir.string()});
+    // Each folder is checked as it is made: one error code shared by all
+    // would keep only the last call's result and lose an earlier failure.
+    const auto makeFolder = [](const fs::path& folder) {
+        std::error_code error;
+        fs::create_directories(folder, error);
+        if (error || !fs::is_directory(folder)) {
+            throw Error(ErrorKind::Io,
+                        "cannot create folder '" + folder.string() + "': " +
+                            (error ? error.message() : std::string("a file of that name is in the way")),
+                        {folder.string()});
+        }
+    };
+    for (int level = 0; level < plan.lods; ++level) makeFolder(dir / "tiles" / std::to_string(level));
+    if (options.grids) makeFolder(dir / "grids");
+    makeFolder(dir / "records");
     // The same bytes from every run and worker of this bake.
     writeFileAtomically(dir / "scene.toml", scene.text);
     writeFileAtomically(dir / "bake.json", detail::headerJson(manifest).dump(1) + "\n");

@@ -366,6 +366,33 @@ TEST(Bake, BadInputIsRefusedBeforeAnythingIsWritten)
     refused(o, "--tile-size", "over the budget");
 }
 
+// A folder that cannot be made is reported, naming it, before any tile is
+// baked, even when folders made after it succeed (one shared error code
+// once kept only the last call's result).
+TEST(Bake, AFolderThatCannotBeMadeIsReportedNamingIt)
+{
+    const fs::path dir = test::freshTestDir();
+    const Scene scene = parseScene(CAVE_SCENE, "caves.toml");
+    fs::create_directories(dir / "tiles");
+    std::ofstream(dir / "tiles" / "0") << "a file where the level 0 folder goes\n";
+    BakeOptions options = smallBake();
+    try {
+        bakeInto(scene, dir, options);
+        ADD_FAILURE() << "baked with a file in the way of tiles/0";
+    } catch (const Error& e) {
+        EXPECT_EQ(e.kind(), ErrorKind::Io) << e.what();
+        EXPECT_NE(std::string(e.what()).find("cannot create folder '" + (dir / "tiles" / "0").string() + "'"),
+                  std::string::npos)
+            << e.what();
+        EXPECT_EQ(e.place().file, (dir / "tiles" / "0").string());
+    }
+    for (const char* level : {"1", "2"}) {
+        if (fs::exists(dir / "tiles" / level)) {
+            EXPECT_TRUE(fs::is_empty(dir / "tiles" / level)) << "a tile was baked";
+        }
+    }
+}
+
 TEST(Bake, AnotherScenesBakeIsRefusedNamingBothHashesUnlessForced)
 {
     const fs::path dir = test::freshTestDir();
