@@ -32,6 +32,9 @@ find_package(OpenSSL REQUIRED COMPONENTS Crypto)
 find_package(OpenMesh CONFIG REQUIRED)
 find_package(TinyGLTF CONFIG REQUIRED)
 find_package(meshoptimizer CONFIG REQUIRED)
+# libpng: PNG files are decoded by it directly, with a per-read error handler
+# (render's ImageFileInput; OpenImageIO 2.4 lets libpng print on stderr).
+find_package(PNG REQUIRED)
 find_package(OpenImageIO CONFIG REQUIRED)
 # Debian's OpenImageIO config lists /usr/include/opencv4, which only exists
 # when OpenCV is installed: drop missing include directories.

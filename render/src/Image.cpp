@@ -5,10 +5,8 @@
 
 #include <strata/AtomicFile.h>
 #include <strata/Error.h>
-#include <strata/StderrCapture.h>
+#include <strata/render/ImageFileInput.h>
 #include <strata/render/ImageFileStructure.h>
-
-#include "OpenImage.h"
 
 #include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
@@ -152,12 +150,11 @@ Image readImage(const fs::path& path)
     } catch (const Error& e) {
         throw Error(e.kind(), "cannot read image '" + path.string() + "': " + e.what());
     }
-    // libpng prints its complaints on stderr; OpenImageIO's error says the same.
-    StderrCapture libraryLines;
     std::string error;
-    auto input = openImageWith(reader, path, config, error);
+    auto input = ImageFileInput::open(reader, path, config, error);
     if (!input) {
-        throw Error(ErrorKind::BadInput, "cannot read image '" + path.string() + "' as a ." + reader + " image: " + oiioError(error));
+        throw Error(ErrorKind::BadInput, "cannot read image '" + path.string() + "' as a ." + reader + " image: " + error,
+                    {.file = path.string()});
     }
     const OIIO::ImageSpec& spec = input->spec();
     const int channels = spec.nchannels;
@@ -172,15 +169,15 @@ Image readImage(const fs::path& path)
         throw Error(e.kind(), "cannot read image '" + path.string() + "': " + e.what());
     }
     const std::string colorSpace = spec.get_string_attribute("oiio:ColorSpace");
-    const bool linear = isLinearFormat(input->format_name()) || colorSpace == "Linear" ||
+    const bool linear = isLinearFormat(input->formatName()) || colorSpace == "Linear" ||
                         colorSpace == "lin_srgb" || colorSpace == "scene_linear";
     const int alphaChannel =
         spec.alpha_channel >= 0 ? spec.alpha_channel : (channels == 2 ? 1 : channels >= 4 ? 3 : -1);
 
     const std::size_t pixelCount = std::size_t(spec.width) * std::size_t(spec.height);
     std::vector<float> data(pixelCount * std::size_t(channels));
-    if (!input->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, data.data())) {
-        throw Error(ErrorKind::BadInput, "cannot read image '" + path.string() + "': " + oiioError(input->geterror()));
+    if (!input->readFloat(channels, data.data(), error)) {
+        throw Error(ErrorKind::BadInput, "cannot read image '" + path.string() + "': " + error, {.file = path.string()});
     }
 
     Image image;

@@ -4,10 +4,8 @@
 #include <strata/render/Texture.h>
 
 #include <strata/Error.h>
-#include <strata/StderrCapture.h>
+#include <strata/render/ImageFileInput.h>
 #include <strata/render/ImageFileStructure.h>
-
-#include "OpenImage.h"
 
 #include <OpenImageIO/imageio.h>
 
@@ -21,16 +19,6 @@
 namespace strata::render {
 
 namespace {
-
-/// OpenImageIO's error in one line (it may hold several), else what the
-/// image library printed, else a generic reason.
-std::string oneLineError(std::string message, const std::string& printed)
-{
-    std::replace(message.begin(), message.end(), '\n', ' ');
-    while (!message.empty() && message.back() == ' ') message.pop_back();
-    if (message.empty()) message = printed;
-    return message.empty() ? "unknown OpenImageIO error" : message;
-}
 
 const std::array<float, 256>& srgbTable()
 {
@@ -234,12 +222,10 @@ Image loadMapImage(const std::filesystem::path& path, MapKind kind, int minChann
     }
     OIIO::ImageSpec config;
     config.attribute("oiio:UnassociatedAlpha", 1);
-    // libpng prints its complaints on stderr; OpenImageIO's error says the same.
-    StderrCapture libraryLines;
     std::string error;
-    auto input = openImageWith(reader, path, config, error);
+    auto input = ImageFileInput::open(reader, path, config, error);
     if (!input) {
-        throw fail("cannot read as a ." + reader + " image: " + oneLineError(error, libraryLines.release()));
+        throw fail("cannot read as a ." + reader + " image: " + error);
     }
     const OIIO::ImageSpec& spec = input->spec();
     const int channels = spec.nchannels;
@@ -258,13 +244,13 @@ Image loadMapImage(const std::filesystem::path& path, MapKind kind, int minChann
     } catch (const Error& e) {
         throw fail(e.what());
     }
-    const std::string format = input->format_name();
+    const std::string format = input->formatName();
     const std::string colorSpace = spec.get_string_attribute("oiio:ColorSpace");
     const bool fileLinear = format == "openexr" || format == "hdr" || colorSpace == "Linear" ||
                             colorSpace == "lin_srgb" || colorSpace == "scene_linear";
     std::vector<float> data(std::size_t(spec.width) * std::size_t(spec.height) * std::size_t(channels));
-    if (!input->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, data.data())) {
-        throw fail("cannot read: " + oneLineError(input->geterror(), libraryLines.release()));
+    if (!input->readFloat(channels, data.data(), error)) {
+        throw fail("cannot read: " + error);
     }
     Image image;
     image.width = spec.width;

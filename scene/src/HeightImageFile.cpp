@@ -4,30 +4,16 @@
 #include "HeightImageFile.h"
 
 #include <strata/Error.h>
-#include <strata/StderrCapture.h>
+#include <strata/render/ImageFileInput.h>
 #include <strata/render/ImageFileStructure.h>
 
 #include <OpenImageIO/imageio.h>
 
-#include <algorithm>
 #include <memory>
 #include <string>
 #include <system_error>
 
 namespace strata::scene {
-
-namespace {
-
-/// OpenImageIO's message in one line (it may hold several, one per failed
-/// reader or libpng complaint), or `fallback` when it has none.
-std::string oneLine(std::string message, const char* fallback)
-{
-    std::replace(message.begin(), message.end(), '\n', ' ');
-    while (!message.empty() && message.back() == ' ') message.pop_back();
-    return message.empty() ? fallback : message;
-}
-
-} // namespace
 
 terrain::HeightImage readHeightImageFile(const std::filesystem::path& path)
 {
@@ -37,17 +23,10 @@ terrain::HeightImage readHeightImageFile(const std::filesystem::path& path)
     const std::string reader = render::checkImageFileStructure(path);
     OIIO::ImageSpec config;
     config.attribute("oiio:UnassociatedAlpha", 1);
-    // libpng prints its complaints on stderr; OpenImageIO's error says the same.
-    StderrCapture libraryLines;
     // The extension's reader only (see checkImageFileStructure()).
-    std::unique_ptr<OIIO::ImageInput> in = OIIO::ImageInput::create(reader);
-    OIIO::ImageSpec opened;
-    if (!in || !in->open(path.string(), opened, config)) {
-        const std::string printed = libraryLines.release();
-        const std::string why = in ? in->geterror() : OIIO::geterror();
-        throw Error(ErrorKind::BadInput, "cannot be read as a ." + reader + " image: " +
-                    oneLine(why, printed.empty() ? "unknown format" : printed.c_str()));
-    }
+    std::string error;
+    std::unique_ptr<render::ImageFileInput> in = render::ImageFileInput::open(reader, path, config, error);
+    if (!in) throw Error(ErrorKind::BadInput, "cannot be read as a ." + reader + " image: " + error);
     const OIIO::ImageSpec& spec = in->spec();
     if (spec.width < 2 || spec.height < 2 || spec.depth != 1 || spec.nchannels < 1 ||
         double(spec.width) * double(spec.height) > MAX_HEIGHT_IMAGE_PIXELS) {
@@ -61,11 +40,7 @@ terrain::HeightImage readHeightImageFile(const std::filesystem::path& path)
     image.height = spec.height;
     image.values.resize(std::size_t(spec.width) * std::size_t(spec.height));
     // Channel 0 as float: 8- and 16-bit integers come normalised to [0, 1].
-    if (!in->read_image(0, 0, 0, 1, OIIO::TypeDesc::FLOAT, image.values.data())) {
-        const std::string printed = libraryLines.release();
-        throw Error(ErrorKind::BadInput, "cannot be read: " + oneLine(in->geterror(), printed.empty() ? "unknown OpenImageIO error" : printed.c_str()));
-    }
-    in->close();
+    if (!in->readFloat(1, image.values.data(), error)) throw Error(ErrorKind::BadInput, "cannot be read: " + error);
     return image;
 }
 
