@@ -16,8 +16,9 @@
 
 #include <strata/terrain/SimdTarget.h>
 
+#include <strata/Error.h>
+
 #include <algorithm>
-#include <stdexcept>
 
 HWY_BEFORE_NAMESPACE();
 namespace strata::terrain::detail {
@@ -533,11 +534,40 @@ HWY_EXPORT(TargetInUse);
 HWY_EXPORT(GradientLanesImpl);
 HWY_EXPORT(NativeLaneHashingImpl);
 
-bool nativeLaneHashing() { return HWY_DYNAMIC_DISPATCH(NativeLaneHashingImpl)(); }
+namespace {
+
+/// The target Strata's noise runs on: our own hwy::ChosenTarget, not
+/// Highway's process-wide one (hwy::GetChosenTarget()), so choosing a
+/// target here changes nothing for other Highway users in the process, and
+/// no test-only Highway call (SetSupportedTargetsForTest) ships. Its
+/// GetIndex() is the index into the HWY_EXPORT tables of this file for the
+/// best target its mask holds; Update(SupportedTargets()) is what
+/// HWY_DYNAMIC_DISPATCH does on its first call.
+hwy::ChosenTarget& chosenTarget()
+{
+    static hwy::ChosenTarget target;
+    static const bool initialized = [] {
+        target.Update(hwy::SupportedTargets());
+        return true;
+    }();
+    (void)initialized;
+    return target;
+}
+
+} // namespace
+
+// HWY_DYNAMIC_DISPATCH with chosenTarget() in place of Highway's global.
+#if HWY_IDE || ((HWY_TARGETS & (HWY_TARGETS - 1)) == 0)
+#define STRATA_DISPATCH(FUNC_NAME) HWY_STATIC_DISPATCH(FUNC_NAME)
+#else
+#define STRATA_DISPATCH(FUNC_NAME) (*(HWY_DISPATCH_TABLE(FUNC_NAME)[::strata::terrain::detail::chosenTarget().GetIndex()]))
+#endif
+
+bool nativeLaneHashing() { return STRATA_DISPATCH(NativeLaneHashingImpl)(); }
 
 void gradientLanes(std::uint64_t seed, const SplitPoints& split, std::size_t n, bool threeD, double* out)
 {
-    HWY_DYNAMIC_DISPATCH(GradientLanesImpl)(seed, split, n, threeD, out);
+    STRATA_DISPATCH(GradientLanesImpl)(seed, split, n, threeD, out);
 }
 
 std::size_t cellSize(InCell kind)
@@ -559,47 +589,43 @@ std::size_t cellSize(InCell kind)
 
 void evaluateRuns(InCell kind, const CellRuns& runs, const double* x, const double* y, const double* z, double* out)
 {
-    HWY_DYNAMIC_DISPATCH(EvaluateRuns)(kind, runs, x, y, z, out);
+    STRATA_DISPATCH(EvaluateRuns)(kind, runs, x, y, z, out);
 }
 
 void splitPoints(Lattice lattice, const double* x, const double* y, const double* z, std::size_t n,
                  const SplitPoints& out)
 {
-    HWY_DYNAMIC_DISPATCH(SplitPointsImpl)(lattice, x, y, z, n, out);
+    STRATA_DISPATCH(SplitPointsImpl)(lattice, x, y, z, n, out);
 }
 
 } // namespace detail
 
 std::vector<std::string> availableSimdTargets()
 {
-    // Listed once, before useSimdTarget() first narrows what Highway reports.
-    static const std::vector<std::string> names = [] {
-        std::vector<std::string> list; // Highway numbers better targets with lower bits: best first
-        for (const std::int64_t target : hwy::SupportedAndGeneratedTargets()) list.emplace_back(hwy::TargetName(target));
-        return list;
-    }();
-    return names;
+    std::vector<std::string> list; // Highway numbers better targets with lower bits: best first
+    for (const std::int64_t target : hwy::SupportedAndGeneratedTargets()) list.emplace_back(hwy::TargetName(target));
+    return list;
 }
 
-std::string simdTarget() { return HWY_DYNAMIC_DISPATCH(detail::TargetInUse)(); }
+std::string simdTarget() { return STRATA_DISPATCH(detail::TargetInUse)(); }
 
 void useSimdTarget(const std::string& name)
 {
-    const std::vector<std::string> known = availableSimdTargets(); // before narrowing
     if (name.empty()) {
-        hwy::SetSupportedTargetsForTest(0);
+        detail::chosenTarget().Update(hwy::SupportedTargets());
         return;
     }
-    hwy::SetSupportedTargetsForTest(0); // the real list, to look the name up in
     for (const std::int64_t target : hwy::SupportedAndGeneratedTargets()) {
         if (name == hwy::TargetName(target)) {
-            hwy::SetSupportedTargetsForTest(target);
+            // The mask holds this target and the fallback: GetIndex() picks this one.
+            detail::chosenTarget().Update(target);
             return;
         }
     }
     std::string list;
-    for (const std::string& n : known) list += (list.empty() ? "" : ", ") + n;
-    throw std::invalid_argument("unknown SIMD target '" + name + "' (this machine: " + list + ")");
+    for (const std::string& n : availableSimdTargets()) list += (list.empty() ? "" : ", ") + n;
+    throw Error(ErrorKind::BadInput, "unknown SIMD target '" + name + "' (this machine: " + list + ")",
+                {.value = name});
 }
 
 } // namespace strata::terrain

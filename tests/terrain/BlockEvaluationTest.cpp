@@ -11,6 +11,7 @@
 #include "NoiseHash.h" // internal: noise3/noise2, seedHash
 #include "NoiseSimd.h" // internal: gradientLanes
 
+#include <strata/Error.h>
 #include <strata/terrain/FractalNoise.h>
 #include <strata/terrain/Heightfield.h>
 #include <strata/terrain/NodeRegistry.h>
@@ -19,6 +20,7 @@
 #include <strata/terrain/TerrainField.h>
 
 #include <gtest/gtest.h>
+#include <hwy/targets.h>
 
 #include <cstdint>
 #include <cstring>
@@ -200,7 +202,31 @@ TEST(BlockEvaluation, EverySimdTargetGivesTheScalarBits)
     }
     useSimdTarget("");
     EXPECT_EQ(simdTarget(), targets.front());
-    EXPECT_THROW(useSimdTarget("NEON9000"), std::invalid_argument);
+    try {
+        useSimdTarget("NEON9000");
+        ADD_FAILURE() << "an unknown target was accepted";
+    } catch (const strata::Error& e) {
+        EXPECT_EQ(e.kind(), strata::ErrorKind::BadInput);
+        EXPECT_EQ(e.place().value, "NEON9000");
+        EXPECT_NE(std::string(e.what()).find(targets.front()), std::string::npos) << e.what();
+    } catch (const std::exception& e) {
+        ADD_FAILURE() << "not a strata::Error: " << e.what();
+    }
+}
+
+// Choosing Strata's target leaves Highway's process-wide choice alone: other
+// Highway code in the process still sees every target the CPU has (the old
+// hwy::SetSupportedTargetsForTest narrowed it for everyone).
+TEST(BlockEvaluation, ChoosingATargetLeavesHighwaysOwnChoiceAlone)
+{
+    const std::int64_t before = hwy::SupportedTargets();
+    for (const std::string& target : availableSimdTargets()) {
+        useSimdTarget(target);
+        EXPECT_EQ(simdTarget(), target);
+        EXPECT_EQ(hwy::SupportedTargets(), before) << "after choosing " << target;
+    }
+    useSimdTarget("");
+    EXPECT_EQ(hwy::SupportedTargets(), before);
 }
 
 TEST(BlockEvaluation, LaneHashedGradientNoiseGivesTheScalarBitsOnEveryTarget)

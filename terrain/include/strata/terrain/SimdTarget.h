@@ -22,7 +22,10 @@ std::string simdTarget();
 
 /// Restricts evaluation to the target `name` (one of availableSimdTargets());
 /// an empty name returns to the best. For tests and benchmarks: call it
-/// while no evaluation runs. Throws std::invalid_argument on an unknown name.
+/// while no evaluation runs (a run that straddles the switch gives the same
+/// bits, since every target does). Only Strata's noise is affected, not
+/// Highway's process-wide choice. Throws strata::Error (BadInput) naming
+/// the targets on an unknown name.
 void useSimdTarget(const std::string& name);
 
 } // namespace strata::terrain
