@@ -1,0 +1,49 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
+#pragma once
+// Internal: tells ThreadSanitizer about a happens-before edge that TBB
+// provides but TSan cannot see (TBB is not built with TSan here, so its
+// internal atomics are invisible to it). Everything a thread does before
+// tbb::task_arena::enqueue() or tbb::parallel_for() happens before the task
+// or body runs, and a parallel_for's bodies happen before it returns: TBB
+// guarantees both. These annotations only describe those edges to TSan;
+// they compile to nothing in other builds (no lock on the hot path).
+
+#if defined(__SANITIZE_THREAD__)
+#define STRATA_TSAN 1
+#elif defined(__has_feature)
+#if __has_feature(thread_sanitizer)
+#define STRATA_TSAN 1
+#endif
+#endif
+
+#ifdef STRATA_TSAN
+#include <sanitizer/tsan_interface.h>
+#endif
+
+namespace strata::world::detail {
+
+/// Before handing work to TBB: what this thread did so far is published
+/// under `key` (any address both sides agree on).
+inline void tsanHandOff(const void* key)
+{
+#ifdef STRATA_TSAN
+    __tsan_release(const_cast<void*>(key));
+#else
+    (void)key;
+#endif
+}
+
+/// First thing in the task or body (or after the parallel_for, for what its
+/// bodies published): takes what was published under `key`.
+inline void tsanTakeOver(const void* key)
+{
+#ifdef STRATA_TSAN
+    __tsan_acquire(const_cast<void*>(key));
+#else
+    (void)key;
+#endif
+}
+
+} // namespace strata::world::detail
