@@ -11,8 +11,10 @@
 
 #include <glm/geometric.hpp>
 
+#include <atomic>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <set>
 #include <thread>
 
@@ -144,14 +146,97 @@ TEST(World, FieldErrorsReachTheCaller)
     }
 }
 
+/// A sphere that counts its evaluations and the calls running now, and is
+/// slow (a block of points takes about 0.2 ms), so chunk tasks are still
+/// running when the World is destroyed.
+class WatchedSphere final : public terrain::DensityField
+{
+public:
+    double density(const glm::dvec3& p) const override
+    {
+        const Running running(*this);
+        return mSphere.density(p);
+    }
+    void densities(const terrain::PointBlock& points, double* out) const override
+    {
+        const Running running(*this);
+        std::this_thread::sleep_for(std::chrono::microseconds(200));
+        mSphere.densities(points, out);
+    }
+    double lipschitz() const override { return 1.0; }
+    terrain::Interval bounds(const terrain::WorldBox& box) const override
+    {
+        const Running running(*this);
+        return mSphere.bounds(box);
+    }
+
+    mutable std::atomic<int> running{0};      ///< calls in progress now
+    mutable std::atomic<long> calls{0};       ///< calls so far
+    mutable std::atomic<long> lateCalls{0};   ///< calls that began after `closed` was set
+    std::atomic<bool> closed{false};          ///< set by the test once the World is gone
+
+private:
+    struct Running
+    {
+        explicit Running(const WatchedSphere& f)
+            : field(f)
+        {
+            ++field.running;
+            ++field.calls;
+            if (field.closed) ++field.lateCalls;
+        }
+        ~Running() { --field.running; }
+        const WatchedSphere& field;
+    };
+    terrain::SphereField mSphere{glm::dvec3(0.0), 30.0};
+};
+
+// Destroying a World while its chunk tasks run waits for the running ones,
+// cancels the queued ones, and leaves nothing behind: no evaluation running
+// or starting afterwards, the field released by every task, and far less
+// work done than meshing the whole resident set would take.
 TEST(World, DestroyedWhileChunksAreMeshed)
 {
-    for (int i = 0; i < 3; ++i) {
-        World w(std::make_shared<terrain::SphereField>(glm::dvec3(0.0), 30.0), smallOptions());
-        w.setPointsOfInterest({glm::dvec3(30.0, 0.0, 0.0)});
-        w.poll(); // queues tasks; the destructor cancels or waits for them
+    // The work of meshing the whole resident set, for comparison.
+    long fullCalls = 0;
+    {
+        auto field = std::make_shared<WatchedSphere>();
+        {
+            World w(field, smallOptions());
+            w.setPointsOfInterest({glm::dvec3(30.0, 0.0, 0.0)});
+            w.waitIdle();
+            EXPECT_GT(w.stats().generated, 8u);
+        }
+        fullCalls = field->calls;
     }
-    SUCCEED();
+    for (int i = 0; i < 3; ++i) {
+        auto field = std::make_shared<WatchedSphere>();
+        std::size_t inFlight = 0;
+        {
+            World w(field, smallOptions());
+            w.setPointsOfInterest({glm::dvec3(30.0, 0.0, 0.0)});
+            // The resident set is computed off this thread: poll until tasks run.
+            const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(20);
+            while (inFlight == 0 && std::chrono::steady_clock::now() < deadline) {
+                w.poll();
+                inFlight = w.stats().inFlight;
+                if (inFlight == 0) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+            }
+            ASSERT_GT(inFlight, 0u) << "no chunk task ever started";
+            while (field->running == 0 && std::chrono::steady_clock::now() < deadline) std::this_thread::yield();
+            EXPECT_GT(field->running.load(), 0) << "destroyed with no evaluation running: the test proves less";
+        } // ~World
+        EXPECT_EQ(field->running.load(), 0) << "an evaluation was still running after ~World returned";
+        const long atDestruction = field->calls;
+        field->closed = true;
+        std::this_thread::sleep_for(std::chrono::milliseconds(100));
+        EXPECT_EQ(field->lateCalls.load(), 0) << "a task evaluated the field after ~World returned";
+        EXPECT_EQ(field->calls.load(), atDestruction);
+        EXPECT_EQ(field.use_count(), 1) << "a task or the World still holds the field";
+        EXPECT_LT(atDestruction, fullCalls / 2) << "the destructor ran the queued tasks instead of cancelling them";
+        std::printf("destroyed with %zu tasks in flight after %ld of the %ld field calls of a full run\n", inFlight,
+                    atDestruction, fullCalls);
+    }
 }
 
 TEST(World, PollReportsEveryMeshOnceAndEvictions)
