@@ -6,11 +6,18 @@
 # bad scene path is exit code 2.
 #   cmake -DVIEWER=... -DXVFB_RUN=... -DIINFO=... -DSCENE=... -DOUTPUT=... -P ViewerScreenshotTest.cmake
 
-foreach(_var VIEWER XVFB_RUN IINFO SCENE OUTPUT)
+foreach(_var VIEWER SCENE OUTPUT)
   if(NOT ${_var})
     message(FATAL_ERROR "ViewerScreenshotTest.cmake: set ${_var}")
   endif()
 endforeach()
+# The tools are found at configure time; a missing one fails the test by name.
+if(NOT XVFB_RUN OR NOT EXISTS "${XVFB_RUN}")
+  message(FATAL_ERROR "xvfb-run is missing (install xvfb and xauth: scripts/install-deps.sh), then re-run cmake")
+endif()
+if(NOT IINFO OR NOT EXISTS "${IINFO}")
+  message(FATAL_ERROR "iinfo is missing (install openimageio-tools: scripts/install-deps.sh), then re-run cmake")
+endif()
 
 execute_process(COMMAND ${VIEWER} --help RESULT_VARIABLE _rc OUTPUT_VARIABLE _help ERROR_VARIABLE _help)
 if(NOT _rc EQUAL 0 OR NOT _help MATCHES "--screenshot" OR NOT _help MATCHES "wireframe")
