@@ -11,6 +11,7 @@
 #include <strata/render/Image.h>
 
 #include "GoldenScenes.h"
+#include "Parity.h"
 #include "ShadingBridge.h"
 #include "TestMeshes.h"
 
@@ -144,9 +145,9 @@ TEST(AntiTiling, GlMatchesTheCpuAndTheWorldAnchorsThePattern)
     const Image cpuPlain = renderSnapshotCpu(box.view(), plain, &off);
     const double parity = psnr(gl, cpu);
     const double fetchRatio = double(on.textureFetches) / double(off.textureFetches);
-    std::cout << "[ anti-til ] GL vs CPU " << parity << " dB; against plain tiling " << psnr(cpu, cpuPlain)
-              << " dB; fetches x" << fetchRatio << std::endl;
-    EXPECT_GE(parity, 40.0);
+    std::cout << "[ anti-til ] against plain tiling " << psnr(cpu, cpuPlain) << " dB; fetches x" << fetchRatio
+              << std::endl;
+    STRATA_EXPECT_PARITY(parity, 53.07, "anti-tiling box"); // measured 53.07 dB on llvmpipe/EGL, AMD EPYC (Parity.h)
     EXPECT_LT(psnr(cpu, cpuPlain), 30.0); // it changes the look
     EXPECT_NEAR(fetchRatio, 3.0, 0.01);   // albedo, mask and normal: three taps each
 

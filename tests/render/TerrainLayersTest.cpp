@@ -15,6 +15,7 @@
 #include "GoldenScenes.h"
 #include "LayerSetup.h"
 #include "MaterialMaps.h"
+#include "Parity.h"
 #include "ShadingBridge.h"
 #include "TestDir.h"
 #include "TestMeshes.h"
@@ -24,6 +25,7 @@
 #include <cmath>
 #include <iostream>
 #include <limits>
+#include <map>
 #include <memory>
 #include <string>
 #include <utility>
@@ -511,10 +513,10 @@ TEST(TerrainLayers, GlMatchesTheCpuWithFourLayersOfDifferentFeatureSets)
     const Image gl = renderSnapshot(context(), mesh.view(), options);
     const double p = psnr(gl, cpu);
     const double within = fractionWithin(gl, cpu, 2);
-    std::cout << "[ layers   ] GL vs CPU, four layers: PSNR " << p << " dB, " << within * 100.0
-              << "% within 2/255, " << double(stats.textureFetches) / double(stats.shadedPixels)
-              << " fetches per shaded pixel" << std::endl;
-    EXPECT_GE(p, 40.0);
+    std::cout << "[ layers   ] GL vs CPU, four layers: " << within * 100.0 << "% within 2/255, "
+              << double(stats.textureFetches) / double(stats.shadedPixels) << " fetches per shaded pixel"
+              << std::endl;
+    STRATA_EXPECT_PARITY(p, 55.95, "four layers"); // measured 55.95 dB on llvmpipe/EGL, AMD EPYC (Parity.h)
     EXPECT_GE(within, 0.99);
     // Each layer shows somewhere: switching one off changes the image.
     for (std::size_t off = 0; off < options.material.layers.size(); ++off) {
@@ -522,7 +524,7 @@ TEST(TerrainLayers, GlMatchesTheCpuWithFourLayersOfDifferentFeatureSets)
         less.material.layers[off].rule.opacity = 0.0f;
         EXPECT_LT(psnr(renderSnapshotCpu(mesh.view(), less), cpu), 40.0) << options.material.layers[off].name;
     }
-    if (!(p >= 40.0 && within >= 0.99)) {
+    if (!(p >= strata::test::parityFloor(55.95) && within >= 0.99)) {
         const auto dir = strata::test::freshTestDir();
         writeImage(gl, dir / "layers-gl.png");
         writeImage(cpu, dir / "layers-cpu.png");
@@ -545,7 +547,8 @@ TEST(TerrainLayers, FarFromTheOriginTheImageIsTheSame)
         EXPECT_GE(psnr(cpu, near), 60.0) << offset;
         if (offset == 8388608.0) {
             const Image gl = renderSnapshot(context(), view, layerOptions(mesh, origin));
-            EXPECT_GE(psnr(gl, cpu), 40.0);
+            // Measured 55.95 dB on llvmpipe/EGL, AMD EPYC (Parity.h)
+            STRATA_EXPECT_PARITY(psnr(gl, cpu), 55.95, "four layers 8388608 m away");
         }
     }
 }
@@ -568,8 +571,9 @@ TEST(TerrainLayers, SurfaceAttributesReachTheRulesOnBothRenderers)
     const Image cpu = renderSnapshotCpu(view, options);
     const Image gl = renderSnapshot(context(), view, options);
     EXPECT_LT(psnr(cpu, without), 30.0);
-    EXPECT_GE(psnr(gl, cpu), 40.0);
-    if (psnr(gl, cpu) < 40.0) {
+    // Measured 58.03 dB on llvmpipe/EGL, AMD EPYC (Parity.h)
+    STRATA_EXPECT_PARITY(psnr(gl, cpu), 58.03, "surface attributes");
+    if (psnr(gl, cpu) < strata::test::parityFloor(58.03)) {
         const auto dir = strata::test::freshTestDir();
         writeImage(gl, dir / "surface-gl.png");
         writeImage(cpu, dir / "surface-cpu.png");
@@ -592,7 +596,8 @@ TEST(TerrainLayers, TheLayersDebugViewShowsWhereEachLayerIs)
     options.debugView = DebugView::Layers;
     const Image cpu = renderSnapshotCpu(mesh.view(), options);
     const Image gl = renderSnapshot(context(), mesh.view(), options);
-    EXPECT_GE(psnr(gl, cpu), 40.0);
+    // Measured 70.46 dB on llvmpipe/EGL, AMD EPYC (Parity.h)
+    STRATA_EXPECT_PARITY(psnr(gl, cpu), 70.46, "layers debug view");
     // The block's top (above 2 m) is snow, layer 3: blue.
     const glm::dvec3 top(0.0, 2.5, 0.0);
     const glm::dvec4 clip = glm::dmat4(projectionMatrix(options.camera, 480.0 / 270.0)) *
@@ -662,7 +667,8 @@ TEST(TerrainLayers, LandformReachesTheRulesOnBothRenderers)
     const Image without = renderSnapshotCpu(view, options);
     const Image withoutGl = renderSnapshot(context(), view, options);
     EXPECT_GE(psnr(without, plain), 60.0);
-    EXPECT_GE(psnr(withoutGl, without), 40.0);
+    // Measured 56.13 dB on llvmpipe/EGL, AMD EPYC (Parity.h)
+    STRATA_EXPECT_PARITY(psnr(withoutGl, without), 56.13, "no landform");
     // With the surface attributes too: the landform follows them in GL's vertex buffer.
     const std::vector<glm::vec2> surface(mesh.positions.size(), glm::vec2(0.7f, 1.0f));
     view.surface = surface.data();
@@ -670,11 +676,10 @@ TEST(TerrainLayers, LandformReachesTheRulesOnBothRenderers)
     const Image cpu = renderSnapshotCpu(view, options);
     const Image gl = renderSnapshot(context(), view, options);
     const double p = psnr(gl, cpu);
-    std::cout << "[ landform ] GL vs CPU, flow band: PSNR " << p << " dB" << std::endl;
     EXPECT_LT(psnr(cpu, without), 30.0);
-    EXPECT_GE(p, 40.0);
+    STRATA_EXPECT_PARITY(p, 58.03, "landform flow band"); // measured 58.03 dB on llvmpipe/EGL, AMD EPYC (Parity.h)
     EXPECT_GE(fractionWithin(gl, cpu, 2), 0.99);
-    writeOnFailure(p < 40.0, "landform", gl, cpu);
+    writeOnFailure(p < strata::test::parityFloor(58.03), "landform", gl, cpu);
     // The block is blue, the ground in front of it is not.
     const auto [block, front] = blockAndGroundPixels(options);
     const std::uint8_t* top = cpu.at(block.x, block.y);
@@ -699,7 +704,8 @@ TEST(TerrainLayers, AnAbsentLandformReadsZeroOnGlToo)
     const Image cpu = renderSnapshotCpu(mesh.view(), options);
     const Image gl = renderSnapshot(context(), mesh.view(), options);
     EXPECT_LT(psnr(cpu, plain), 30.0); // the dry layer shows
-    EXPECT_GE(psnr(gl, cpu), 40.0);
+    // Measured 64.75 dB on llvmpipe/EGL, AMD EPYC (Parity.h)
+    STRATA_EXPECT_PARITY(psnr(gl, cpu), 64.75, "absent landform, dry layer");
     const std::uint8_t* centre = gl.at(80, 45);
     EXPECT_GT(centre[0], centre[2] + 40);
 }
@@ -716,14 +722,17 @@ TEST(TerrainLayers, LandformDebugViewsShowTheMasksOnBothRenderers)
     options.height = 135;
     const auto [top, ground] = blockAndGroundPixels(options);
     std::vector<Image> images;
+    // Each view's PSNR measured on llvmpipe/EGL, AMD EPYC (Parity.h).
+    const std::map<DebugView, double> measuredDb = {
+        {DebugView::Flow, 63.14}, {DebugView::Wear, 63.14}, {DebugView::Deposition, 59.33}, {DebugView::Water, 63.76}};
     for (DebugView v : {DebugView::Flow, DebugView::Wear, DebugView::Deposition, DebugView::Water}) {
         options.debugView = v;
         ASSERT_TRUE(isLandformView(v));
         const Image cpu = renderSnapshotCpu(view, options);
         const Image gl = renderSnapshot(context(), view, options);
         const double p = psnr(gl, cpu);
-        EXPECT_GE(p, 40.0) << debugViewName(v);
-        writeOnFailure(p < 40.0, debugViewName(v), gl, cpu);
+        STRATA_EXPECT_PARITY(p, measuredDb.at(v), std::string("debug view ") + debugViewName(v)); // values above
+        writeOnFailure(p < strata::test::parityFloor(measuredDb.at(v)), debugViewName(v), gl, cpu);
         // More of the mask on the block: brighter there than on the ground.
         const std::uint8_t* a = cpu.at(top.x, top.y);
         const std::uint8_t* b = cpu.at(ground.x, ground.y);
