@@ -328,3 +328,74 @@ TEST(TerrainExport, BadSettingsAreRefusedWithTheNumbers)
     }
     EXPECT_FALSE(fs::exists(dir / "terrain.json")) << "planning writes nothing";
 }
+
+namespace {
+
+/// The heightfield's height at (x, z) metres from the tile corner, bilinear
+/// between lattice columns, as an engine draws it.
+double skin(const world::TerrainTile& tile, double x, double z)
+{
+    const double fx = std::clamp(x / tile.voxelSize, 0.0, double(tile.columns - 1));
+    const double fz = std::clamp(z / tile.voxelSize, 0.0, double(tile.rows - 1));
+    const int i = std::min(int(fx), tile.columns - 2), k = std::min(int(fz), tile.rows - 2);
+    const double tx = fx - i, tz = fz - k;
+    return (1 - tz) * ((1 - tx) * tile.height(i, k) + tx * tile.height(i + 1, k)) +
+           tz * ((1 - tx) * tile.height(i, k + 1) + tx * tile.height(i + 1, k + 1));
+}
+
+} // namespace
+
+TEST(TerrainExport, WormTunnelsOpenThroughHolesAndTheirMeshesWeldToTheSkin)
+{
+    // The default scene: terraced hills cut by worm tunnels that reach the
+    // surface. Its middle 64 m × 64 m at 0.5 m voxels.
+    const Scene scene = defaultScene();
+    world::TileBox box;
+    box.min = {-64, -88, -64};
+    box.size = {128, 176, 128};
+    const world::TerrainTile tile = world::extractTerrainTile(*scene.field, box, {scene.voxelSize});
+    std::size_t holes = 0;
+    for (std::uint8_t h : tile.holes) holes += h;
+    EXPECT_GT(holes, 0u);
+    const meshing::TriangleMesh rest = world::heightfieldRemainder(tile, {});
+    ASSERT_GT(rest.indices.size(), 0u);
+
+    // Every open edge of the remainder lies where the heightfield takes
+    // over: outside the holes, on the skin.
+    std::map<std::pair<std::uint32_t, std::uint32_t>, int> uses;
+    for (std::size_t t = 0; t + 2 < rest.indices.size(); t += 3)
+        for (int e = 0; e < 3; ++e) {
+            const std::uint32_t a = rest.indices[t + e], b = rest.indices[t + (e + 1) % 3];
+            ++uses[{std::min(a, b), std::max(a, b)}];
+        }
+    std::vector<double> gaps, verticalGaps;
+    for (const auto& [edge, count] : uses) {
+        if (count != 1) continue;
+        for (std::uint32_t n : {edge.first, edge.second}) {
+            const glm::vec3 p = rest.positions[n];
+            // The tile's own box faces are open by clipping, not welds.
+            if (p.x <= 0.0f || p.z <= 0.0f || p.x >= 64.0f || p.z >= 64.0f || p.y <= 0.0f || p.y >= 88.0f) continue;
+            // Distance to the skin's tangent plane: the vertical gap over
+            // sqrt(1 + |grad h|^2), the slope from the heightfield itself.
+            const double e = 0.25 * tile.voxelSize;
+            const double gx = (skin(tile, p.x + e, p.z) - skin(tile, p.x - e, p.z)) / (2 * e);
+            const double gz = (skin(tile, p.x, p.z + e) - skin(tile, p.x, p.z - e)) / (2 * e);
+            const double vertical = std::abs(rest.origin.y + p.y - skin(tile, p.x, p.z));
+            gaps.push_back(vertical / std::sqrt(1.0 + gx * gx + gz * gz));
+            verticalGaps.push_back(vertical);
+        }
+    }
+    ASSERT_FALSE(gaps.empty());
+    std::sort(gaps.begin(), gaps.end());
+    const double median = gaps[gaps.size() / 2], p99 = gaps[gaps.size() * 99 / 100], worst = gaps.back();
+    std::sort(verticalGaps.begin(), verticalGaps.end());
+    std::printf("weld gap over %zu border vertices: median %.3f m, 99th percentile %.3f m, max %.3f m (vertical: "
+                "99th %.3f m, max %.3f m; voxel %.2f m)\n",
+                gaps.size(), median, p99, worst, verticalGaps[gaps.size() * 99 / 100], verticalGaps.back(),
+                scene.voxelSize);
+    // The stated bound (docs/export-terrain.md): within one voxel of the
+    // heightfield's surface, most far closer (measured: median 0.012 m,
+    // max 0.405 m at 0.5 m voxels).
+    EXPECT_LE(worst, scene.voxelSize);
+    EXPECT_LE(median, 0.1 * scene.voxelSize);
+}
