@@ -7,6 +7,7 @@
 
 #include <strata/scene/Quality.h>
 #include "RunStrata.h"
+#include "Parity.h"
 #include <strata/scene/Scene.h>
 #include "TestDir.h"
 
@@ -361,7 +362,8 @@ TEST(Quality, BilinearFilteringMatchesOnBothRenderersAndDiffersFromTrilinear)
     EXPECT_EQ(gl["quality"]["filtering"], "bilinear");
     const strata::render::Image glBilinear = strata::render::readImage(dir / "gl-bilinear" / "snapshot.png");
     // One sample per pixel on both: the same filtering gives nearly the same image.
-    EXPECT_GT(strata::render::psnr(glBilinear, bilinear), 40.0);
+    // Measured 55.24 dB on llvmpipe/EGL, AMD EPYC (Parity.h)
+    STRATA_EXPECT_PARITY(strata::render::psnr(glBilinear, bilinear), 55.24, "bilinear, 160x96");
     EXPECT_GT(strata::render::psnr(glBilinear, bilinear), strata::render::psnr(glBilinear, trilinear));
 }
 
