@@ -61,6 +61,9 @@ void writeDataImage(const DataImage& image, const fs::path& path)
     spec.attribute("oiio:ColorSpace", "Linear");
     if (image.channels == 4) spec.attribute("oiio:UnassociatedAlpha", 1);
     if (format == "png") spec.attribute("png:compressionLevel", 9);
+    // OpenImageIO's EXR writer stamps the time of writing (capDate) unless
+    // the spec has one: an empty one keeps the file a function of the data.
+    if (format == "openexr") spec.attribute("DateTime", "");
 
     const auto encode = [&](OIIO::ImageOutput& out, const std::string& name) {
         bool ok = out.open(name, spec) && out.write_image(type, image.bytes.data());

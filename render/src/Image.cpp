@@ -84,6 +84,9 @@ void writeImage(const Image& image, const fs::path& path)
         OIIO::ImageSpec spec(image.width, image.height, channels,
                              linear ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8);
         spec.attribute("oiio:ColorSpace", linear ? "Linear" : "sRGB");
+        // OpenImageIO's EXR writer stamps the time of writing unless the spec
+        // has one: an empty one keeps a snapshot a function of the scene.
+        if (formatName == "openexr") spec.attribute("DateTime", "");
         if (channels == 4) {
             // Our alpha is unassociated: do not let the writer un-premultiply.
             spec.attribute("oiio:UnassociatedAlpha", 1);

@@ -43,30 +43,15 @@ double sampleVoxel(std::int64_t tileMin, int index, const TerrainExportPlan& pla
 }
 
 /// The tile's heights at the engine's samples (rows along z, columns along
-/// x, both ascending): the lattice heights, bilinear between columns.
+/// x, both ascending), the sample positions in lattice units computed from
+/// integers.
 std::vector<double> engineHeights(const world::TerrainTile& tile, const TerrainExportPlan& plan)
 {
     const int n = plan.resolution;
     std::vector<double> out(std::size_t(n) * n);
-    const auto along = [&](int index, int& cell, double& t) {
-        const double f = double(std::int64_t(index) * plan.tileVoxels) / double(n - 1);
-        cell = std::min(int(std::floor(f)), int(plan.tileVoxels) - 1);
-        t = f - double(cell);
-    };
-    for (int r = 0; r < n; ++r) {
-        int k;
-        double tz;
-        along(r, k, tz);
-        for (int c = 0; c < n; ++c) {
-            int i;
-            double tx;
-            along(c, i, tx);
-            const double h0 = tx == 0.0 ? tile.height(i, k) : (1.0 - tx) * tile.height(i, k) + tx * tile.height(i + 1, k);
-            const double h1 = tx == 0.0 ? tile.height(i, k + 1)
-                                        : (1.0 - tx) * tile.height(i, k + 1) + tx * tile.height(i + 1, k + 1);
-            out[std::size_t(r) * n + c] = tz == 0.0 ? h0 : (1.0 - tz) * h0 + tz * h1;
-        }
-    }
+    const auto lattice = [&](int index) { return double(std::int64_t(index) * plan.tileVoxels) / double(n - 1); };
+    for (int r = 0; r < n; ++r)
+        for (int c = 0; c < n; ++c) out[std::size_t(r) * n + c] = world::latticeHeight(tile, lattice(c), lattice(r));
     return out;
 }
 

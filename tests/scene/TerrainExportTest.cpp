@@ -329,22 +329,6 @@ TEST(TerrainExport, BadSettingsAreRefusedWithTheNumbers)
     EXPECT_FALSE(fs::exists(dir / "terrain.json")) << "planning writes nothing";
 }
 
-namespace {
-
-/// The heightfield's height at (x, z) metres from the tile corner, bilinear
-/// between lattice columns, as an engine draws it.
-double skin(const world::TerrainTile& tile, double x, double z)
-{
-    const double fx = std::clamp(x / tile.voxelSize, 0.0, double(tile.columns - 1));
-    const double fz = std::clamp(z / tile.voxelSize, 0.0, double(tile.rows - 1));
-    const int i = std::min(int(fx), tile.columns - 2), k = std::min(int(fz), tile.rows - 2);
-    const double tx = fx - i, tz = fz - k;
-    return (1 - tz) * ((1 - tx) * tile.height(i, k) + tx * tile.height(i + 1, k)) +
-           tz * ((1 - tx) * tile.height(i, k + 1) + tx * tile.height(i + 1, k + 1));
-}
-
-} // namespace
-
 TEST(TerrainExport, WormTunnelsOpenThroughHolesAndTheirMeshesWeldToTheSkin)
 {
     // The default scene: terraced hills cut by worm tunnels that reach the
@@ -378,9 +362,9 @@ TEST(TerrainExport, WormTunnelsOpenThroughHolesAndTheirMeshesWeldToTheSkin)
             // Distance to the skin's tangent plane: the vertical gap over
             // sqrt(1 + |grad h|^2), the slope from the heightfield itself.
             const double e = 0.25 * tile.voxelSize;
-            const double gx = (skin(tile, p.x + e, p.z) - skin(tile, p.x - e, p.z)) / (2 * e);
-            const double gz = (skin(tile, p.x, p.z + e) - skin(tile, p.x, p.z - e)) / (2 * e);
-            const double vertical = std::abs(rest.origin.y + p.y - skin(tile, p.x, p.z));
+            const double gx = (world::heightAt(tile, p.x + e, p.z) - world::heightAt(tile, p.x - e, p.z)) / (2 * e);
+            const double gz = (world::heightAt(tile, p.x, p.z + e) - world::heightAt(tile, p.x, p.z - e)) / (2 * e);
+            const double vertical = std::abs(rest.origin.y + p.y - world::heightAt(tile, p.x, p.z));
             gaps.push_back(vertical / std::sqrt(1.0 + gx * gx + gz * gz));
             verticalGaps.push_back(vertical);
         }

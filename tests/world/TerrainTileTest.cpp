@@ -64,18 +64,6 @@ std::size_t countHoles(const TerrainTile& tile)
     return n;
 }
 
-/// The heightfield's height at (x, z) metres relative to the tile corner:
-/// bilinear between the lattice columns, as an engine draws it.
-double skin(const TerrainTile& tile, double x, double z)
-{
-    const double fx = std::clamp(x / tile.voxelSize, 0.0, double(tile.columns - 1));
-    const double fz = std::clamp(z / tile.voxelSize, 0.0, double(tile.rows - 1));
-    const int i = std::min(int(fx), tile.columns - 2), k = std::min(int(fz), tile.rows - 2);
-    const double tx = fx - i, tz = fz - k;
-    return (1 - tz) * ((1 - tx) * tile.height(i, k) + tx * tile.height(i + 1, k)) +
-           tz * ((1 - tx) * tile.height(i, k + 1) + tx * tile.height(i + 1, k + 1));
-}
-
 /// Edges used by one triangle only (the mesh's open border).
 std::vector<std::pair<std::uint32_t, std::uint32_t>> borderEdges(const meshing::TriangleMesh& mesh)
 {
@@ -173,7 +161,7 @@ TEST(TerrainTile, CaveMouthIsAHoleAndTheCaveIsMeshedAndWelded)
     for (const auto& [a, b] : borderEdges(rest))
         for (std::uint32_t n : {a, b}) {
             const glm::vec3 p = rest.positions[n];
-            worst = std::max(worst, std::abs(rest.origin.y + p.y - skin(tile, p.x, p.z)));
+            worst = std::max(worst, std::abs(rest.origin.y + p.y - heightAt(tile, p.x, p.z)));
         }
     EXPECT_LE(worst, v) << "the cave mesh meets the heightfield within one voxel";
 }

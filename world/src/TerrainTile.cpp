@@ -125,6 +125,25 @@ TerrainTile extractTerrainTile(const terrain::DensityField& field, const TileBox
     return tile;
 }
 
+double latticeHeight(const TerrainTile& tile, double fx, double fz)
+{
+    fx = std::clamp(fx, 0.0, double(tile.columns - 1));
+    fz = std::clamp(fz, 0.0, double(tile.rows - 1));
+    const int i = std::min(int(fx), tile.columns - 2), k = std::min(int(fz), tile.rows - 2);
+    const double tx = fx - i, tz = fz - k;
+    // No fraction: the column itself, bit for bit (no 0 · h terms).
+    const auto along = [&](int row) {
+        return tx == 0.0 ? tile.height(i, row) : tx == 1.0 ? tile.height(i + 1, row)
+                                                          : (1.0 - tx) * tile.height(i, row) + tx * tile.height(i + 1, row);
+    };
+    return tz == 0.0 ? along(k) : tz == 1.0 ? along(k + 1) : (1.0 - tz) * along(k) + tz * along(k + 1);
+}
+
+double heightAt(const TerrainTile& tile, double x, double z)
+{
+    return latticeHeight(tile, x / tile.voxelSize, z / tile.voxelSize);
+}
+
 HeightfieldHoles engineHoles(const TerrainTile& tile, int cellsX, int cellsZ, double cellSize)
 {
     HeightfieldHoles out;

@@ -77,6 +77,17 @@ struct TerrainTile
 TerrainTile extractTerrainTile(const terrain::DensityField& field, const TileBox& box,
                                const TerrainTileOptions& options);
 
+/// The heightfield's height between the columns: bilinear in the lattice
+/// cell holding (fx, fz), lattice units from the tile's minimum corner,
+/// clamped to the tile. Exact at the columns (a coordinate with no
+/// fraction reads the column itself), and along an edge of the tile it
+/// reads that edge's columns only, so neighbours agree there.
+double latticeHeight(const TerrainTile& tile, double fx, double fz);
+
+/// latticeHeight() at (x, z) metres from the tile's minimum corner: the
+/// surface an engine draws from a heightmap of one sample per voxel.
+double heightAt(const TerrainTile& tile, double x, double z);
+
 /// Bytes of the sample array extractTerrainTile() allocates for `box`.
 std::size_t terrainTileBytes(const TileBox& box);
 
