@@ -6,6 +6,7 @@
 #include <strata/scene/Pipeline.h>
 
 #include "BakeManifest.h"
+#include "TileWorkers.h"
 
 #include <strata/AtomicFile.h>
 #include <strata/Error.h>
@@ -24,10 +25,8 @@
 
 #include <algorithm>
 #include <atomic>
-#include <condition_variable>
 #include <fstream>
 #include <mutex>
-#include <thread>
 
 namespace strata::scene {
 
@@ -346,58 +345,25 @@ BakeSummary bake(const Scene& scene, const BakeOptions& options, const BakePlan&
     // thread reports progress and hears Ctrl-C.
     if (observer) observer->beginStage("bake");
     std::mutex mutex;
-    std::condition_variable changed;
-    std::size_t next = 0, finished = 0;
-    bool stop = false;
-    std::vector<std::pair<int, std::string>> failures;
     std::map<int, TileRecord> made;
-    const int threads = std::max(1, std::min<int>(options.threads > 0 ? options.threads
-                                                                      : int(std::max(1u, std::thread::hardware_concurrency())),
-                                                  int(todo.size())));
-    std::vector<std::thread> workers;
-    for (int w = 0; w < threads && !todo.empty(); ++w) {
-        workers.emplace_back([&] {
-            for (;;) {
-                int index;
-                {
-                    std::lock_guard<std::mutex> hold(mutex);
-                    if (stop || next >= todo.size()) return;
-                    index = todo[next++];
-                }
-                const BakeTile tile = plan.tile(index);
-                std::optional<TileRecord> record;
-                std::string failure;
-                try {
-                    record = bakeTile(*field, scene, plan, options.grids, options.maxMemoryBytes, tile, &dir,
-                                      landform.get());
-                } catch (const std::exception& e) {
-                    failure = "tile " + std::to_string(index) + " (" + tile.name + "): " + e.what();
-                    // No half-made tile: its finished files go too.
-                    std::error_code ignored;
-                    fs::remove(detail::recordPath(dir, index), ignored);
-                    for (int level = 0; level < plan.lods; ++level) fs::remove(dir / tileFile(level, tile.name), ignored);
-                    fs::remove(dir / gridFile(tile.name), ignored);
-                }
-                std::lock_guard<std::mutex> hold(mutex);
-                if (record) made.emplace(index, std::move(*record));
-                else failures.emplace_back(index, failure);
-                ++finished;
-                changed.notify_all();
-            }
-        });
-    }
-    {
-        std::unique_lock<std::mutex> hold(mutex);
-        while (finished < todo.size() && !(stop && finished == next)) {
-            changed.wait(hold);
-            const std::size_t done = finished;
-            hold.unlock();
-            const bool go = !observer || observer->progressCount(done, todo.size(), "tiles");
-            hold.lock();
-            if (!go) stop = true;
+    const detail::TileWorkResult run = detail::runTileWorkers(todo, options.threads, observer, [&](int index) {
+        const BakeTile tile = plan.tile(index);
+        try {
+            TileRecord record =
+                bakeTile(*field, scene, plan, options.grids, options.maxMemoryBytes, tile, &dir, landform.get());
+            std::lock_guard<std::mutex> hold(mutex);
+            made.emplace(index, std::move(record));
+        } catch (const std::exception& e) {
+            // No half-made tile: its finished files go too.
+            std::error_code ignored;
+            fs::remove(detail::recordPath(dir, index), ignored);
+            for (int level = 0; level < plan.lods; ++level) fs::remove(dir / tileFile(level, tile.name), ignored);
+            fs::remove(dir / gridFile(tile.name), ignored);
+            throw Error(ErrorKind::Io, "tile " + std::to_string(index) + " (" + tile.name + "): " + e.what());
         }
-    }
-    for (std::thread& worker : workers) worker.join();
+    });
+    const bool stop = run.interrupted;
+    const std::vector<std::pair<int, std::string>>& failures = run.failures;
     for (auto& [index, record] : made) manifest.tiles[index] = std::move(record);
     summary.baked = int(made.size());
 
@@ -417,7 +383,6 @@ BakeSummary bake(const Scene& scene, const BakeOptions& options, const BakePlan&
     if (stop) throw Error(ErrorKind::Interrupted, "bake interrupted: " + std::to_string(summary.baked) +
                                                      " tiles baked; run the same command again to resume");
     if (!failures.empty()) {
-        std::sort(failures.begin(), failures.end());
         std::vector<int> indices;
         for (const auto& failure : failures) indices.push_back(failure.first);
         throw Error(ErrorKind::Io,
