@@ -35,13 +35,6 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-/// Where in the world sample (c, r) of a tile lies, in voxels: computed
-/// from integers so a shared edge gives the same bits in both tiles.
-double sampleVoxel(std::int64_t tileMin, int index, const TerrainExportPlan& plan)
-{
-    return double(tileMin) + double(std::int64_t(index) * plan.tileVoxels) / double(plan.resolution - 1);
-}
-
 /// The tile's heights at the engine's samples (rows along z, columns along
 /// x, both ascending), the sample positions in lattice units computed from
 /// integers.
@@ -91,7 +84,8 @@ void quantiseWeights(const float* shares, int count, std::uint8_t* out)
 struct TileMaps
 {
     std::vector<double> heights;            ///< resolution², rows along z
-    std::vector<std::uint8_t> weights;      ///< resolution² × layers
+    std::vector<std::uint8_t> weights;      ///< weightSize² × layers
+    int weightSize = 0;                     ///< weights per side: samples, or cells for Unity
     world::HeightfieldHoles holes;          ///< (resolution − 1)², rows along z
     meshing::TriangleMesh remainder;
     std::size_t clippedColumns = 0;
@@ -125,14 +119,24 @@ TileMaps computeTile(const Scene& scene, const terrain::DensityField& field, con
     const glm::dvec3 origin = glm::dvec3(box.min[0], box.min[1], box.min[2]) * v;
     const render::LayerCoverage coverage(rules, origin);
     const int layers = coverage.layerCount();
-    maps.weights.resize(std::size_t(n) * n * layers);
+    // Unity's alphamaps are 2^n texels a side, one per heightmap cell
+    // (texel centres at the cells' centres); the others' weights stand at
+    // the heightmap samples.
+    const bool cells = plan.engine == TerrainEngine::Unity;
+    const int m = maps.weightSize = cells ? n - 1 : n;
+    maps.weights.resize(std::size_t(m) * m * layers);
     const double radius = 4.0 * v; // as meshing::SurfaceAttributeOptions' default cavity radius
     std::vector<float> shares(static_cast<std::size_t>(layers), 0.0f);
-    for (int r = 0; r < n; ++r)
-        for (int c = 0; c < n; ++c) {
-            const std::size_t s = std::size_t(r) * n + c;
-            const glm::dvec3 p{sampleVoxel(box.min[0], c, plan) * v, maps.heights[s],
-                               sampleVoxel(box.min[2], r, plan) * v};
+    const auto lattice = [&](int index) {
+        return cells ? (double(index) + 0.5) * double(plan.tileVoxels) / double(n - 1)
+                     : double(std::int64_t(index) * plan.tileVoxels) / double(n - 1);
+    };
+    for (int r = 0; r < m; ++r)
+        for (int c = 0; c < m; ++c) {
+            const std::size_t s = std::size_t(r) * m + c;
+            const double lx = lattice(c), lz = lattice(r);
+            const glm::dvec3 p{(double(box.min[0]) + lx) * v, world::latticeHeight(tile, lx, lz),
+                               (double(box.min[2]) + lz) * v};
             double slope = 0.0;
             const glm::dvec3 normal = gradient(field, p, 0.5 * v, &slope);
             glm::vec2 surface(0.0f);
@@ -206,15 +210,16 @@ std::string raw16(const render::DataImage& image)
 
 render::DataImage weightImage(const TerrainExportPlan& plan, const TileMaps& maps, int first, int channels)
 {
-    const int n = plan.resolution;
+    const int m = maps.weightSize;
     const int layers = int(plan.layers.size());
-    render::DataImage image{n, n, channels, render::SampleType::UInt8, {}};
-    image.bytes.assign(std::size_t(n) * n * channels, 0);
-    for (int r = 0; r < n; ++r)
-        for (int c = 0; c < n; ++c) {
-            const std::size_t s = std::size_t(r) * n + sourceColumn(plan, c);
+    render::DataImage image{m, m, channels, render::SampleType::UInt8, {}};
+    image.bytes.assign(std::size_t(m) * m * channels, 0);
+    for (int r = 0; r < m; ++r)
+        for (int c = 0; c < m; ++c) {
+            const int source = plan.engine == TerrainEngine::Unity ? m - 1 - c : c;
+            const std::size_t s = std::size_t(r) * m + source;
             for (int k = 0; k < channels && first + k < layers; ++k)
-                image.bytes[(std::size_t(r) * n + c) * channels + k] = maps.weights[s * layers + first + k];
+                image.bytes[(std::size_t(r) * m + c) * channels + k] = maps.weights[s * layers + first + k];
         }
     return image;
 }
@@ -342,6 +347,7 @@ json importSettings(const TerrainExportPlan& plan)
                 {"heightmap_resolution", plan.resolution},
                 {"terrain_size", {{"x", plan.tileSize}, {"y", 65535.0 * plan.heightStep}, {"z", plan.tileSize}}},
                 {"axes", "Unity x = −Strata x, Unity z = Strata z, y up (the frame of glTFast and UnityGLTF)"},
+                {"alphamap_resolution", plan.resolution - 1},
                 {"splat_layers", plan.layers},
                 {"holes", "holes/NAME.png, one pixel per heightmap cell: TerrainData.SetHoles(false where 255)"}};
     case TerrainEngine::Godot:

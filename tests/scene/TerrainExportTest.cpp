@@ -157,12 +157,14 @@ TEST(TerrainExport, UnityRawHeightsMatchTheLevelSetAndNeighboursShareEdges)
     for (int r = 0; r < n; ++r) EXPECT_EQ(raw[0][std::size_t(r) * n], raw[1][std::size_t(r) * n + n - 1]) << r;
     for (int c = 0; c < n; ++c) EXPECT_EQ(raw[0][std::size_t(n - 1) * n + c], raw[2][std::size_t(c)]) << c;
 
-    // Splat maps: three layers in one RGBA map, each sample summing to 255.
+    // Splat maps: Unity's alphamap, one texel per heightmap cell (2^5), three
+    // layers in one RGBA map, each texel summing to 255.
     const render::DataImage splat = render::readDataImage(dir / "splat" / (plan.tileName(0, 0) + "_0.png"));
-    ASSERT_EQ(splat.width, n);
+    ASSERT_EQ(splat.width, n - 1);
+    ASSERT_EQ(splat.height, n - 1);
     ASSERT_EQ(splat.channels, 4);
     int cliff = 0, snow = 0;
-    for (std::size_t s = 0; s < std::size_t(n) * n; ++s) {
+    for (std::size_t s = 0; s < std::size_t(n - 1) * (n - 1); ++s) {
         const std::uint8_t* w = &splat.bytes[s * 4];
         ASSERT_EQ(int(w[0]) + w[1] + w[2] + w[3], 255);
         EXPECT_EQ(w[3], 0) << "no fourth layer";
@@ -179,6 +181,7 @@ TEST(TerrainExport, UnityRawHeightsMatchTheLevelSetAndNeighboursShareEdges)
     const nlohmann::json manifest = readJson(dir / "terrain.json");
     EXPECT_EQ(manifest["engine"], "unity");
     EXPECT_EQ(manifest["import"]["heightmap_resolution"], n);
+    EXPECT_EQ(manifest["import"]["alphamap_resolution"], n - 1);
     EXPECT_DOUBLE_EQ(manifest["import"]["terrain_size"]["y"].get<double>(), 65535.0 * plan.heightStep);
     ASSERT_EQ(manifest["tiles"].size(), 4u);
     EXPECT_DOUBLE_EQ(manifest["tiles"][0]["position"]["x"].get<double>(), -16.0) << "Unity x = −Strata x";
