@@ -169,6 +169,12 @@ void DetailErodedHeightfield::heights(const double* x, const double* z, std::siz
     if (recent.node != mId) recent = Recent{mId, {}};
     for (std::size_t k = 0; k < n; ++k) {
         const double u = x[k] / cell, v = z[k] / cell;
+        // Beyond ±2^62 cells (or at NaN) a block index does not fit an
+        // int64 (the conversion would be undefined behaviour, found by UBSan
+        // on BlockEvaluation's 1e300 m column): no detail there, the child's
+        // height alone, the same on the scalar and the block path.
+        constexpr double MAX_CELLS = 4611686018427387904.0; // 2^62
+        if (!(std::abs(u) < MAX_CELLS && std::abs(v) < MAX_CELLS)) continue;
         const std::int64_t bx0 = floorDiv(std::int64_t(std::floor(u - halo)), size);
         const std::int64_t bx1 = floorDiv(std::int64_t(std::floor(u + halo)), size);
         const std::int64_t bz0 = floorDiv(std::int64_t(std::floor(v - halo)), size);

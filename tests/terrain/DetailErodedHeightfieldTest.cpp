@@ -14,6 +14,7 @@
 
 #include <cmath>
 #include <memory>
+#include <utility>
 
 using namespace strata::terrain;
 
@@ -102,6 +103,23 @@ TEST(DetailErodedHeightfield, ContinuousAcrossBlockBorders)
     }
     EXPECT_LE(steepest, detail.slopeBound());
     EXPECT_LT(steepest, 5.0); // no step anywhere: the hills' own slopes plus rills
+}
+
+TEST(DetailErodedHeightfield, BeyondTheBlockLatticeTheChildsHeightIsKept)
+{
+    // Beyond ±2^62 cells no block index fits an int64: the old code converted
+    // anyway (undefined behaviour, reported by UBSan in scripts/sanitizers.sh).
+    const auto child = hills();
+    const DetailErodedHeightfield detail(child, 5, options());
+    for (const auto& [x, z] : {std::pair{-1e300, 0.0}, std::pair{0.0, 1e300}, std::pair{1e19, -1e19},
+                               std::pair{std::nan(""), 0.0}}) {
+        const double h = detail.height(x, z), expected = child->height(x, z);
+        if (std::isnan(expected)) {
+            EXPECT_TRUE(std::isnan(h)) << x << ", " << z;
+        } else {
+            EXPECT_EQ(h, expected) << x << ", " << z;
+        }
+    }
 }
 
 TEST(DetailErodedHeightfield, FarFromTheOriginAndBadKeys)
