@@ -254,7 +254,10 @@ json writeTile(const fs::path& dir, const TerrainExportPlan& plan, const TileMap
     };
     const render::DataImage h16 = heightImage16(plan, maps.heights);
     switch (plan.engine) {
-    case TerrainEngine::Unreal: write("heightmap", "heightmaps/" + name + ".png", h16); break;
+    case TerrainEngine::Unreal:
+        write("heightmap", "heightmaps/" + name + ".png", h16);
+        writeRaw("heightmap_r16", "heightmaps/" + name + ".r16", h16);
+        break;
     case TerrainEngine::Unity: writeRaw("heightmap", "heightmaps/" + name + ".raw", h16); break;
     case TerrainEngine::Godot:
         write("heightmap", "heightmaps/" + name + ".exr", heightImageFloat(plan, maps.heights));
@@ -334,7 +337,8 @@ json importSettings(const TerrainExportPlan& plan)
     case TerrainEngine::Unreal: {
         // Landscape: z_cm = location.z + (value − 32768) · scale.z / 128.
         const double zScale = plan.heightStep * 100.0 * 128.0;
-        return {{"heightmap_format", "16-bit grey PNG, one per tile, World Partition names NAME_xX_yY"},
+        return {{"heightmap_format", "16-bit grey PNG (and the same as r16 RAW, little-endian), one per tile, World "
+                                     "Partition names NAME_xX_yY"},
                 {"heightmap_resolution", plan.resolution},
                 {"scale_cm", {{"x", plan.spacing * 100.0}, {"y", plan.spacing * 100.0}, {"z", zScale}}},
                 {"location_cm", {{"x", x0 * 100.0}, {"y", z0 * 100.0}, {"z", plan.base * 100.0 + 256.0 * zScale}}},

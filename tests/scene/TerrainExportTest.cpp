@@ -203,6 +203,10 @@ TEST(TerrainExport, UnrealWeightLayersSumTo255AndScalesAreExact)
     const render::DataImage height = render::readDataImage(dir / "heightmaps" / (name + ".png"));
     EXPECT_EQ(height.width, 64);
     EXPECT_EQ(height.type, render::SampleType::UInt16);
+    // The r16 RAW beside it holds the same values, little-endian.
+    const std::vector<std::uint16_t> r16 = readRaw16(dir / "heightmaps" / (name + ".r16"), 64);
+    for (int y = 0; y < 64; ++y)
+        for (int x = 0; x < 64; ++x) ASSERT_EQ(r16[std::size_t(y) * 64 + x], at16(height, x, y));
     std::vector<render::DataImage> layers;
     for (const std::string& layer : plan.layers)
         layers.push_back(render::readDataImage(dir / "weights" / layer / (name + ".png")));
