@@ -3,13 +3,14 @@
 
 #include <strata/render/DataImage.h>
 
-#include <strata/AtomicFile.h>
+#include "ImageOutputFile.h"
+
 #include <strata/Error.h>
 
-#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
+#include <cctype>
 #include <string>
 
 namespace strata::render {
@@ -28,13 +29,6 @@ OIIO::TypeDesc typeOf(SampleType type)
     return OIIO::TypeDesc::UINT8;
 }
 
-std::string oneLine(std::string message)
-{
-    while (!message.empty() && (message.back() == '\n' || message.back() == ' ')) message.pop_back();
-    std::replace(message.begin(), message.end(), '\n', ' ');
-    return message.empty() ? "unknown OpenImageIO error" : message;
-}
-
 } // namespace
 
 void writeDataImage(const DataImage& image, const fs::path& path)
@@ -46,48 +40,28 @@ void writeDataImage(const DataImage& image, const fs::path& path)
                                              "x" + std::to_string(image.height) + "x" + std::to_string(image.channels) +
                                              " samples do not match its " + std::to_string(image.bytes.size()) + " bytes",
                     {.file = path.string()});
-    auto output = OIIO::ImageOutput::create(path.string());
-    if (!output)
-        throw Error(ErrorKind::Io, "cannot write image '" + path.string() + "': " + oneLine(OIIO::geterror()),
-                    {.file = path.string()});
-    const std::string format = output->format_name();
-    OIIO::TypeDesc type = typeOf(image.type);
-    if (format == "png" && image.type == SampleType::Float32)
+    std::string extension = path.extension().string();
+    std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    const OIIO::TypeDesc type = typeOf(image.type);
+    if (extension == ".png" && image.type == SampleType::Float32)
         throw Error(ErrorKind::BadInput, "cannot write image '" + path.string() + "': PNG holds no float samples",
                     {.file = path.string()});
-    // EXR stores float (or half): integers are written as their values.
-    const OIIO::TypeDesc fileType = format == "openexr" ? OIIO::TypeDesc::FLOAT : type;
-    OIIO::ImageSpec spec(image.width, image.height, image.channels, fileType);
-    spec.attribute("oiio:ColorSpace", "Linear");
-    if (image.channels == 4) spec.attribute("oiio:UnassociatedAlpha", 1);
-    if (format == "png") spec.attribute("png:compressionLevel", 9);
-    // OpenImageIO's EXR writer stamps the time of writing (capDate) unless
-    // the spec has one: an empty one keeps the file a function of the data.
-    if (format == "openexr") spec.attribute("DateTime", "");
-
-    const auto encode = [&](OIIO::ImageOutput& out, const std::string& name) {
+    detail::writeImageFile(path, [&](OIIO::ImageOutput& out, const std::string& name) {
+        const std::string writer = out.format_name();
+        // EXR stores float (or half): integers are written as their values.
+        OIIO::ImageSpec spec(image.width, image.height, image.channels,
+                             writer == "openexr" ? OIIO::TypeDesc::FLOAT : type);
+        spec.attribute("oiio:ColorSpace", "Linear");
+        if (image.channels == 4) spec.attribute("oiio:UnassociatedAlpha", 1);
+        if (writer == "png") spec.attribute("png:compressionLevel", 9);
+        // OpenImageIO's EXR writer stamps the time of writing (capDate) unless
+        // the spec has one: an empty one keeps the file a function of the data.
+        if (writer == "openexr") spec.attribute("DateTime", "");
         bool ok = out.open(name, spec) && out.write_image(type, image.bytes.data());
         ok = out.close() && ok;
         if (!ok)
-            throw Error(ErrorKind::Io, "cannot write image '" + path.string() + "': " + oneLine(out.geterror()),
+            throw Error(ErrorKind::Io, "cannot write image '" + path.string() + "': " + detail::oiioErrorLine(out.geterror()),
                         {.file = path.string()});
-    };
-    // Encoded in memory and written with checked writes (as writeImage()).
-    if ((format == "png" || format == "openexr") && output->supports("ioproxy")) {
-        std::vector<unsigned char> bytes;
-        OIIO::Filesystem::IOVecOutput proxy(bytes);
-        if (output->set_ioproxy(&proxy)) {
-            encode(*output, path.string());
-            writeFileAtomically(path, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
-            return;
-        }
-    }
-    writeAtomically(path, [&](const fs::path& temporary) {
-        auto fileOutput = OIIO::ImageOutput::create(temporary.string());
-        if (!fileOutput)
-            throw Error(ErrorKind::Io, "cannot write image '" + path.string() + "': " + oneLine(OIIO::geterror()),
-                        {.file = path.string()});
-        encode(*fileOutput, temporary.string());
     });
 }
 
@@ -98,7 +72,7 @@ DataImage readDataImage(const fs::path& path)
     config.attribute("oiio:UnassociatedAlpha", 1);
     auto input = OIIO::ImageInput::open(path.string(), &config);
     if (!input)
-        throw Error(ErrorKind::BadInput, "cannot read image '" + path.string() + "': " + oneLine(OIIO::geterror()),
+        throw Error(ErrorKind::BadInput, "cannot read image '" + path.string() + "': " + detail::oiioErrorLine({}),
                     {.file = path.string()});
     const OIIO::ImageSpec& spec = input->spec();
     DataImage image;
@@ -113,7 +87,7 @@ DataImage readDataImage(const fs::path& path)
                     {.file = path.string()});
     image.bytes.resize(std::size_t(image.width) * image.height * image.channels * image.sampleBytes());
     if (!input->read_image(0, 0, 0, image.channels, typeOf(image.type), image.bytes.data()))
-        throw Error(ErrorKind::BadInput, "cannot read image '" + path.string() + "': " + oneLine(input->geterror()),
+        throw Error(ErrorKind::BadInput, "cannot read image '" + path.string() + "': " + detail::oiioErrorLine(input->geterror()),
                     {.file = path.string()});
     return image;
 }

@@ -3,6 +3,8 @@
 
 #include <strata/render/Image.h>
 
+#include "ImageOutputFile.h"
+
 #include <strata/AtomicFile.h>
 #include <strata/Error.h>
 #include <strata/render/ImageFileInput.h>
@@ -40,17 +42,7 @@ std::uint8_t toByte(float v)
     return std::uint8_t(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f));
 }
 
-/// OpenImageIO keeps its error messages per thread; take the global one when
-/// the object has none.
-std::string oiioError(const std::string& objectError)
-{
-    std::string message = objectError.empty() ? OIIO::geterror() : objectError;
-    while (!message.empty() && (message.back() == '\n' || message.back() == ' ')) {
-        message.pop_back();
-    }
-    std::replace(message.begin(), message.end(), '\n', ' ');
-    return message.empty() ? "unknown OpenImageIO error" : message;
-}
+std::string oiioError(const std::string& objectError) { return detail::oiioErrorLine(objectError); }
 
 /// True for formats whose pixels are linear light, not sRGB-encoded.
 bool isLinearFormat(const std::string& formatName)
@@ -114,33 +106,7 @@ void writeImage(const Image& image, const fs::path& path)
         }
     };
 
-    // PNG and EXR (the formats snapshots use) are encoded in memory and written with
-    // checked writes (OpenImageIO does not always report a failed file write);
-    // the others write beside `path` under a temporary name that keeps the
-    // extension, then are checked, synced and renamed.
-    auto output = OIIO::ImageOutput::create(path.string());
-    if (!output) {
-        throwWriteError(path, oiioError({}));
-    }
-    // Only formats whose memory output was checked to give the same file:
-    // OpenImageIO 2.4's TIFF writer produces a broken file through a proxy.
-    const std::string format = output->format_name();
-    if ((format == "png" || format == "openexr") && output->supports("ioproxy")) {
-        std::vector<unsigned char> bytes;
-        OIIO::Filesystem::IOVecOutput proxy(bytes);
-        if (output->set_ioproxy(&proxy)) {
-            encode(*output, path.string());
-            writeFileAtomically(path, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
-            return;
-        }
-    }
-    writeAtomically(path, [&](const fs::path& temporary) {
-        auto fileOutput = OIIO::ImageOutput::create(temporary.string());
-        if (!fileOutput) {
-            throwWriteError(path, oiioError({}));
-        }
-        encode(*fileOutput, temporary.string());
-    });
+    detail::writeImageFile(path, encode);
 }
 
 Image readImage(const fs::path& path)
