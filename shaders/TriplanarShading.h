@@ -3,7 +3,7 @@
 
 /// \file
 /// Triplanar mapping and lighting math, written ONCE in the common subset of
-/// GLSL 4.50 and C++20 with GLM, and compiled as both (README.md, "Rendering":
+/// GLSL 4.50 and C++20 with GLM, and compiled as both (docs/rendering.md:
 /// the CPU sampler mirrors the shader). It is never included directly:
 ///  - GLSL: the build embeds it after ShadingPrelude.glsl (shaders/CMakeLists.txt);
 ///  - C++:  #include "ShadingPrelude.h", which puts it in strata::shading.

@@ -88,7 +88,7 @@ std::uint64_t peakResidentBytes()
 }
 
 /// The erode nodes' global passes: each worker runs them once, when it
-/// loads the scene (recomputing beats reading a stored grid: see the README).
+/// loads the scene (recomputing beats reading a stored grid: see docs/landforms.md).
 void printLandformPasses(const Scene& scene)
 {
     for (const LandformPass& pass : scene.landformPasses) {

@@ -2,7 +2,7 @@
 // SPDX-License-Identifier: MIT
 
 // The members World documents as thread-safe, called from several threads at
-// once (run this test under ThreadSanitizer: see README, "World library").
+// once (run this test under ThreadSanitizer: see docs/world-library.md).
 
 #include "WorldTestUtil.h"
 

@@ -5,7 +5,7 @@
 /// \file
 /// The density node types a scene can name, each with its keys: name, type,
 /// default, range, unit and a one-line description. Scene readers validate
-/// every node against it, `strata nodes` prints it and the README's node
+/// every node against it, `strata nodes` prints it and docs/nodes.md's node
 /// table is generated from it. Each node type registers itself beside its
 /// class (register*Nodes() in the node's .cpp), so adding a type is one class
 /// plus one registration.
