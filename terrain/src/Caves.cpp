@@ -321,7 +321,8 @@ std::shared_ptr<const WormCaves::Bucket> WormCaves::bucket(const Key& key) const
     auto bucket = std::make_shared<Bucket>();
     const double margin = mReach + CAP;
     if (hi.y > mOptions.minY - margin && lo.y < mOptions.maxY + margin) {
-        const auto cellOf = [&](double v) { return std::int64_t(std::floor(v / mOptions.cellSize)); };
+        // Saturating (detail::latticeIndex): a bucket beyond ±2^62 cells converts without undefined behaviour.
+        const auto cellOf = [&](double v) { return detail::latticeIndex(std::floor(v / mOptions.cellSize)); };
         for (std::int64_t cx = cellOf(lo.x - margin); cx <= cellOf(hi.x + margin); ++cx) {
             for (std::int64_t cz = cellOf(lo.z - margin); cz <= cellOf(hi.z + margin); ++cz) {
                 // Hold the cell while reading it: the cache may evict it meanwhile.
@@ -346,10 +347,13 @@ std::shared_ptr<const WormCaves::Bucket> WormCaves::bucket(const Key& key) const
 
 namespace {
 
+/// The bucket of `p`; beyond ±2^62 buckets (BlockEvaluation's 1e300 m
+/// column) the index saturates instead of overflowing the conversion
+/// (undefined behaviour, found by UBSan over terrain_tests).
 WormCaves::Key bucketKey(const glm::dvec3& p)
 {
-    return {std::int64_t(std::floor(p.x / BUCKET_SIZE)), std::int64_t(std::floor(p.y / BUCKET_SIZE)),
-            std::int64_t(std::floor(p.z / BUCKET_SIZE))};
+    return {detail::latticeIndex(std::floor(p.x / BUCKET_SIZE)), detail::latticeIndex(std::floor(p.y / BUCKET_SIZE)),
+            detail::latticeIndex(std::floor(p.z / BUCKET_SIZE))};
 }
 
 } // namespace
