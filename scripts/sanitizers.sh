@@ -17,13 +17,24 @@
 #     documented in docs/testing.md ("Longer fuzzing"), e.g.
 #       FUZZ_SECONDS=600 FUZZ_SEED=0 scripts/sanitizers.sh
 #       scripts/fuzz.sh 3600 vdb
-#  3. ThreadSanitizer (gcc) in build-tsan/ over every test of the suites
-#     that start threads: the World (world_tests), sampling and erosion on
-#     TBB (terrain_tests), the scene pipeline, the bake's tile pool and its
-#     CLI (scene_tests, which run the TSan-built `strata` too), after a
-#     canary (tests/world/TsanCanary.cpp) whose deliberate races in Strata
-#     functions must be reported under tests/world/tsan.supp. The same
-#     exclusions as ASan's apply, plus TSAN_EXCLUDE.
+#  3. ThreadSanitizer (gcc) in build-tsan/ over every test of world_tests
+#     (the World's workers, edits and queries, and its TBB sampling), after
+#     a canary (tests/world/TsanCanary.cpp) whose deliberate races in Strata
+#     functions must be reported under tests/world/tsan.supp.
+#     NOT YET under TSan: terrain_tests (sampling, erosion), scene_tests (the
+#     pipeline, the bake's tile pool and its CLI), meshing and the CPU
+#     renderer. Run over them (TSAN_SUITES below, issue 30), TSan reported
+#     69 races in 68 of their 255 tests, every one at a tbb::parallel_for's
+#     fork or join: a write before the parallel_for against a read in its
+#     body, or a body's write against a read after it returns. libtbb is not
+#     built with TSan, so the happens-before edges its scheduler provides
+#     are invisible; the World declares them itself (world/src/TsanHandOver.h)
+#     and is clean. Until the other libraries declare them too (the same
+#     annotations around their ~30 parallel_for calls, or an ITT-to-TSan
+#     bridge: TBB_USE_PROFILING_TOOLS=2 makes TBB's headers report spawn,
+#     join and wait to r1::call_itt_notify), those suites would only report
+#     TBB's invisible edges. By hand:
+#       TSAN_SUITES='world_tests|terrain_tests|scene_tests' scripts/sanitizers.sh
 # A sanitizer report fails the step; the reports stay in the build folders
 # (build-*/Testing/Temporary/LastTest.log).
 #   scripts/sanitizers.sh                          (CI: .ci/run runs it)
@@ -56,6 +67,8 @@ ASAN_EXCLUDE='^(InstalledPackage|GltfValidator|TilesClient|Slurm)\.|_NOT_BUILT$'
 #  ThreadSanitizer only (on top of the above):
 #  - none.
 TSAN_EXCLUDE=$ASAN_EXCLUDE
+# The GoogleTest executables run under ThreadSanitizer (ctest labels, see above).
+tsan_suites=${TSAN_SUITES:-world_tests}
 
 start=$(now)
 echo "== ASan + UBSan build ($san), every target"
@@ -82,9 +95,11 @@ fi
 start=$(now)
 echo "== ThreadSanitizer build ($tsan)"
 if [ ! -f "$tsan/CMakeCache.txt" ]; then
-  cmake -S "$root" -B "$tsan" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSTRATA_TSAN=ON >/dev/null
+  cmake -S "$root" -B "$tsan" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSTRATA_TSAN=ON -DSTRATA_BUILD_APPS=OFF >/dev/null
 fi
-nice -n 10 cmake --build "$tsan" --target world_tests terrain_tests scene_tests tsan_canary -j "$jobs"
+# scene_tests runs the strata executable: it needs the apps.
+case "$tsan_suites" in *scene_tests*) cmake -S "$root" -B "$tsan" -DSTRATA_BUILD_APPS=ON >/dev/null ;; esac
+nice -n 10 cmake --build "$tsan" --target $(echo "$tsan_suites" | tr '|' ' ') tsan_canary -j "$jobs"
 echo "   built in $(($(now) - start)) s"
 echo "== ThreadSanitizer canary: deliberate races must be reported"
 for kind in thread tbb; do
@@ -98,10 +113,9 @@ for kind in thread tbb; do
   echo "   $kind: reported, as it must be"
 done
 start=$(now)
-echo "== ThreadSanitizer: every test of world_tests, terrain_tests and scene_tests, except '$TSAN_EXCLUDE'"
+echo "== ThreadSanitizer: every test of $tsan_suites, except '$TSAN_EXCLUDE'"
 # Each GoogleTest executable labels its tests with its name (tests/CMakeLists.txt).
 TSAN_OPTIONS="suppressions=$root/tests/world/tsan.supp halt_on_error=1 ${TSAN_OPTIONS:-}" \
-  nice -n 10 ctest --test-dir "$tsan" --output-on-failure -j "$jobs" -L '^(world_tests|terrain_tests|scene_tests)$' \
-  -E "$TSAN_EXCLUDE"
+  nice -n 10 ctest --test-dir "$tsan" --output-on-failure -j "$jobs" -L "^($tsan_suites)\$" -E "$TSAN_EXCLUDE"
 echo "   ran in $(($(now) - start)) s"
 echo "== sanitizers and fuzzers: $(($(now) - begin)) s in all"
