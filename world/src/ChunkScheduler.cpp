@@ -87,8 +87,9 @@ void ChunkScheduler::launch(const ChunkKey& key, const Signature& signature, std
     // the annotations say the same to it at no cost in other builds.
     tsanHandOff(job);
     mArena.enqueue([job] {
-        tsanTakeOver(job);
-        std::unique_ptr<Job> owned(job);
+        Job* const mine = tsanUncheckedRead(job); // the capture lives in TBB's task memory
+        tsanTakeOver(mine);
+        std::unique_ptr<Job> owned(mine);
         owned->scheduler->runTask(*owned);
     });
 }
