@@ -64,6 +64,12 @@ begin=$(now)
 #  - Slurm.*: starts munge, slurmctld and slurmd as root for a real cluster;
 #    the bakes it runs are the bakes of Bake.* (run here); CI's main run has it.
 ASAN_EXCLUDE='^(InstalledPackage|GltfValidator|TilesClient|Slurm)\.|_NOT_BUILT$'
+# Run apart, under ASan + UBSan but without LeakSanitizer:
+#  - StrataView.*: the viewer under Xvfb leaks 240 bytes in 3 allocations made
+#    by the GLX driver that GLFW dlopens and unloads at glfwTerminate(); by
+#    LeakSanitizer's check at exit the module is gone, its frames are
+#    "<unknown module>", and no suppression can name an exact function there.
+NO_LEAK_CHECK='^StrataView\.'
 #  ThreadSanitizer only (on top of the above):
 #  - none.
 TSAN_EXCLUDE=$ASAN_EXCLUDE
@@ -82,7 +88,10 @@ echo "   built in $(($(now) - start)) s"
 start=$(now)
 echo "== ASan + UBSan: the tests matching '$tests', except '$ASAN_EXCLUDE'"
 ASAN_OPTIONS="detect_leaks=1:${ASAN_OPTIONS:-}" LSAN_OPTIONS="suppressions=$root/fuzz/lsan.supp:${LSAN_OPTIONS:-}" UBSAN_OPTIONS="print_stacktrace=1:${UBSAN_OPTIONS:-}" \
-  nice -n 10 ctest --test-dir "$san" --output-on-failure -j "$jobs" -R "$tests" -E "$ASAN_EXCLUDE"
+  nice -n 10 ctest --test-dir "$san" --output-on-failure -j "$jobs" -R "$tests" -E "$ASAN_EXCLUDE|$NO_LEAK_CHECK"
+echo "== ASan + UBSan without LeakSanitizer: the tests matching '$NO_LEAK_CHECK'"
+ASAN_OPTIONS="detect_leaks=0:${ASAN_OPTIONS:-}" UBSAN_OPTIONS="print_stacktrace=1:${UBSAN_OPTIONS:-}" \
+  nice -n 10 ctest --test-dir "$san" --output-on-failure -j "$jobs" -R "$NO_LEAK_CHECK"
 echo "   ran in $(($(now) - start)) s"
 
 if [ "$fuzz_seconds" -gt 0 ]; then
