@@ -101,7 +101,7 @@ TEST(ImageFileInput, PngGivesTheHeaderAndFloatsOpenImageIoGives)
         ASSERT_TRUE(mine) << what << ": " << error;
         auto theirs = OIIO::ImageInput::open(path.string(), &config);
         ASSERT_TRUE(theirs) << what;
-        const OIIO::ImageSpec& a = mine->spec();
+        const OIIO::ImageSpec a = mine->spec(); // a copy: `mine` is reopened below
         const OIIO::ImageSpec& b = theirs->spec();
         EXPECT_EQ(a.width, b.width) << what;
         EXPECT_EQ(a.height, b.height) << what;
