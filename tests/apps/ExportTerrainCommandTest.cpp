@@ -5,6 +5,7 @@
 // runs it: from a scene and from a bake folder, and its errors' exit codes.
 
 #include "RunStrata.h"
+#include "SmallScene.h"
 #include "TestDir.h"
 
 #include <gtest/gtest.h>
@@ -18,34 +19,10 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const char* CAVES = R"(
-seed = 7
-[terrain]
-root = "world"
-[terrain.nodes.world]
-type = "subtract"
-children = ["land", "tunnels"]
-[terrain.nodes.land]
-type = "heightfield"
-amplitude = 12.0
-wavelength = 30.0
-[terrain.nodes.tunnels]
-type = "worms"
-cell_size = 16.0
-min_y = -6.0
-max_y = 0.0
-radius = 2.0
-[region]
-min = [-12.0, -10.0, -12.0]
-max = [12.0, 10.0, 12.0]
-[sampling]
-voxel_size = 0.5
-)";
-
 fs::path writeScene(const fs::path& dir)
 {
     const fs::path path = dir / "caves.toml";
-    std::ofstream(path) << CAVES;
+    std::ofstream(path) << strata::test::SMALL_SCENE;
     return path;
 }
 

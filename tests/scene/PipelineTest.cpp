@@ -7,6 +7,7 @@
 
 #include <strata/scene/Pipeline.h>
 #include <strata/scene/Scene.h>
+#include "SmallScene.h"
 #include "TestDir.h"
 
 #include <strata/Error.h>
@@ -25,30 +26,7 @@ using namespace strata::scene;
 
 namespace {
 
-/// A small scene: hills minus worm tunnels over a 24 m region at 0.5 m.
-const char* SMALL_SCENE = R"(
-seed = 7
-[terrain]
-root = "world"
-[terrain.nodes.world]
-type = "subtract"
-children = ["land", "tunnels"]
-[terrain.nodes.land]
-type = "heightfield"
-amplitude = 12.0
-wavelength = 30.0
-[terrain.nodes.tunnels]
-type = "worms"
-cell_size = 16.0
-min_y = -6.0
-max_y = 0.0
-radius = 2.0
-[region]
-min = [-12.0, -10.0, -12.0]
-max = [12.0, 10.0, 12.0]
-[sampling]
-voxel_size = 0.5
-)";
+using strata::test::SMALL_SCENE;
 
 std::string readBytes(const std::filesystem::path& path)
 {
