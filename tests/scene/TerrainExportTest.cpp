@@ -142,6 +142,7 @@ TEST(TerrainExport, UnityRawHeightsMatchTheLevelSetAndNeighboursShareEdges)
     for (int z = 0; z < 2; ++z)
         for (int x = 0; x < 2; ++x) {
             raw[z * 2 + x] = readRaw16(dir / "heightmaps" / (plan.tileName(x, z) + ".raw"), n);
+            ASSERT_EQ(raw[z * 2 + x].size(), std::size_t(n) * n) << plan.tileName(x, z);
             // Within one quantisation step of the level set's top surface.
             // Unity's columns run from the tile's largest x down.
             const world::TerrainTile tile = latticeTile(scene, plan, x, z);
@@ -205,6 +206,7 @@ TEST(TerrainExport, UnrealWeightLayersSumTo255AndScalesAreExact)
     EXPECT_EQ(height.type, render::SampleType::UInt16);
     // The r16 RAW beside it holds the same values, little-endian.
     const std::vector<std::uint16_t> r16 = readRaw16(dir / "heightmaps" / (name + ".r16"), 64);
+    ASSERT_EQ(r16.size(), 64u * 64u);
     for (int y = 0; y < 64; ++y)
         for (int x = 0; x < 64; ++x) ASSERT_EQ(r16[std::size_t(y) * 64 + x], at16(height, x, y));
     std::vector<render::DataImage> layers;
