@@ -15,12 +15,15 @@ PACKAGES=(
   libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri libepoxy-dev libglfw3-dev
   libcli11-dev libtomlplusplus-dev nlohmann-json3-dev libfmt-dev
   libgtest-dev libbenchmark-dev libssl-dev
+  libcpp-httplib-dev
   clang libclang-rt-dev llvm
   slurm-wlm munge python3 python3-yaml
   python-matplotlib-data
   xvfb xauth
   reuse
 )
+# libcpp-httplib-dev: cpp-httplib, the HTTP server under `strata serve`
+# (serve/; Debian builds it as libcpp-httplib.so with zlib and brotli).
 # reuse runs `reuse lint` (ctest's ReuseLint): every file states its licence.
 # python-matplotlib-data ships a real DEM (sample_data/jacksboro_fault_dem.npz)
 # that tests/apps/BenchLandformsCommandTest.cpp measures (docs/landform-statistics.md).

@@ -77,6 +77,7 @@ Command registerMeshCommand(CLI::App& app);      // MeshCommand.cpp
 Command registerInfoCommand(CLI::App& app);      // InfoCommand.cpp
 Command registerBakeCommand(CLI::App& app);      // BakeCommand.cpp
 Command registerExportTerrainCommand(CLI::App& app); // ExportTerrainCommand.cpp
+Command registerServeCommand(CLI::App& app);      // ServeCommand.cpp
 Command registerBenchCommand(CLI::App& app);      // BenchCommand.cpp: `bench`, with `bench mesh` under it
 Command registerBenchMeshCommand(CLI::App& bench); // BenchMeshCommand.cpp: `bench mesh`, added to `bench`
 Command registerBenchNoiseCommand(CLI::App& bench); // BenchNoiseCommand.cpp: `bench noise`, added to `bench`

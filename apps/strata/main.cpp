@@ -28,6 +28,7 @@ int main(int argc, char** argv)
         registerExportTerrainCommand(app),
         registerMeshCommand(app),
         registerInfoCommand(app),
+        registerServeCommand(app),
         registerBenchCommand(app),
     };
 

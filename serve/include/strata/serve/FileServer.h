@@ -1,0 +1,79 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
+#pragma once
+/// \file
+/// A read-only HTTP server for one folder (a bake: tileset.json, tiles/,
+/// viewer/), on cpp-httplib. GET and HEAD only (others: 405); files only
+/// from inside the folder (RequestPath.h); Content-Type from the extension
+/// (MimeType.h); byte ranges (206 with Content-Range, several ranges as
+/// multipart/byteranges, 416 with `Content-Range: bytes *\/SIZE` when none
+/// is satisfiable); gzip (or brotli for text, where the client prefers it)
+/// when the client's Accept-Encoding asks and the type is compressible
+/// (never for a range, never for PNG/JPEG/KTX2). A folder serves its
+/// index.html, or 404: there is no listing.
+///
+/// Usage: construct (binds the port), print url(), run() on one thread,
+/// stop() from another (a signal watcher, a test).
+
+#include <cstddef>
+#include <filesystem>
+#include <memory>
+#include <string>
+
+namespace strata::serve {
+
+struct FileServerOptions
+{
+    /// The address to listen on: 127.0.0.1 keeps the folder on this machine;
+    /// 0.0.0.0 or :: serves it to the network.
+    std::string host = "127.0.0.1";
+    /// The TCP port; 0 picks a free one (port() says which).
+    int port = 8080;
+    /// Worker threads, one per open connection (a browser opens six).
+    std::size_t threads = 16;
+    /// zlib level of on-the-fly gzip, 1 (fastest, nginx's default) to 9.
+    int gzipLevel = 1;
+    /// Files larger than this are never compressed (they would be held in
+    /// memory whole); they are streamed as they are.
+    std::size_t maxCompressedFileBytes = std::size_t(64) << 20;
+};
+
+class FileServer
+{
+public:
+    /// Binds `options.host:options.port` for `root`. Throws strata::Error:
+    /// BadInput when `root` is not a folder or the port is not in
+    /// [0, 65535]; Io when the address cannot be bound (the port is in use,
+    /// the host is not an address of this machine), naming host and port.
+    explicit FileServer(const std::filesystem::path& root, const FileServerOptions& options = {});
+    /// Stops the server if it runs (run() must have returned before the
+    /// destructor runs, i.e. join the thread that called it).
+    ~FileServer();
+    FileServer(const FileServer&) = delete;
+    FileServer& operator=(const FileServer&) = delete;
+
+    /// The bound port (the free one chosen for port 0).
+    int port() const;
+    /// The address it listens on, as given.
+    const std::string& host() const;
+    /// "http://HOST:PORT/" (IPv6 hosts in brackets).
+    std::string url() const;
+    /// The served folder, canonical.
+    const std::filesystem::path& root() const;
+
+    /// Serves requests until stop(); returns once the listening socket is
+    /// closed and every connection has finished. Call once. Throws
+    /// strata::Error (Io) when accepting connections fails.
+    void run();
+    /// Asks run() to return; callable from any thread, before, during or
+    /// after run(), any number of times. Not async-signal-safe: call it from
+    /// a thread that waited for the signal (sigwait), not from a handler.
+    void stop();
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> mImpl;
+};
+
+} // namespace strata::serve

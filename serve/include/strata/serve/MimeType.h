@@ -1,0 +1,29 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
+#pragma once
+/// \file
+/// The Content-Type a file is served with, from its extension, and whether
+/// it is worth compressing on the way out.
+
+#include <filesystem>
+#include <string_view>
+
+namespace strata::serve {
+
+/// The MIME type of a file from its extension, case-insensitively:
+/// `.json` application/json, `.glb` model/gltf-binary, `.gltf`
+/// model/gltf+json, `.html` text/html, `.js`/`.mjs` text/javascript, `.css`
+/// text/css, `.png` image/png, `.jpg`/`.jpeg` image/jpeg, `.ktx2`
+/// image/ktx2, `.wasm` application/wasm, `.bin` application/octet-stream,
+/// and a few more (`.txt`, `.svg`, `.webp`, `.exr`, `.vdb`, `.toml`, `.md`);
+/// anything else application/octet-stream. Text types carry
+/// `; charset=utf-8`. Never empty.
+std::string_view mimeTypeFor(const std::filesystem::path& file);
+
+/// True for types that shrink under gzip (text, JSON, glTF, WebAssembly,
+/// raw binary buffers); false for types that are compressed already (PNG,
+/// JPEG, KTX2, WebP, gzip, zip) and not worth the CPU.
+bool isCompressible(std::string_view mimeType);
+
+} // namespace strata::serve

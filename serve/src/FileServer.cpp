@@ -1,0 +1,343 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
+// The one translation unit that includes cpp-httplib (Debian builds it as a
+// shared library, libcpp-httplib.so, with zlib, brotli and OpenSSL; its
+// pkg-config file gives the matching CPPHTTPLIB_*_SUPPORT defines).
+
+#include <strata/serve/FileServer.h>
+
+#include "ByteRanges.h"
+#include "Gzip.h"
+
+#include <strata/Error.h>
+#include <strata/serve/MimeType.h>
+#include <strata/serve/RequestPath.h>
+
+#include <httplib.h>
+
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <cerrno>
+#include <cstring>
+#include <mutex>
+
+#include <fcntl.h>
+#include <sys/socket.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+namespace strata::serve {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+// More ranges than this in one request are ignored (the whole file is
+// sent, as RFC 9110 allows): many small overlapping ranges would make a
+// tiny request cost a large multipart answer.
+constexpr std::size_t MAX_RANGES = 16;
+
+// httplib::Server with one addition: closing a socket that was bound but
+// never listened on (httplib closes it only when listen() ends).
+class HttpServer : public httplib::Server
+{
+public:
+    void closeUnlistenedSocket()
+    {
+        const socket_t sock = svr_sock_.exchange(INVALID_SOCKET);
+        if (sock != INVALID_SOCKET) ::close(sock);
+    }
+};
+
+// An open file shared by the content provider's calls; closed with the last one.
+struct OpenFile
+{
+    int fd = -1;
+    ~OpenFile()
+    {
+        if (fd >= 0) ::close(fd);
+    }
+};
+
+// cpp-httplib hands handlers the request as const, but it is a local,
+// non-const object of the connection loop (Server::process_request), and
+// apply_ranges() reads its `ranges` after the handler returns. Replacing
+// them with the validated ones (or none) is how a handler says which bytes
+// go out; see ByteRanges.h for why httplib's own slicing cannot be trusted.
+httplib::Ranges& rangesToSend(const httplib::Request& request)
+{
+    return const_cast<httplib::Request&>(request).ranges;
+}
+
+// A short text answer for an error status, with any Range dropped (httplib
+// would otherwise slice the error text).
+void answer(const httplib::Request& request, httplib::Response& response, int status, const std::string& text)
+{
+    rangesToSend(request).clear();
+    response.status = status;
+    response.set_content(text + "\n", "text/plain; charset=utf-8");
+}
+
+// Accept-Encoding names `coding` with a q-value above 0 (RFC 9110 12.5.3).
+bool accepts(const httplib::Request& request, std::string_view coding)
+{
+    const std::string header = request.get_header_value("Accept-Encoding");
+    std::size_t start = 0;
+    while (start < header.size()) {
+        std::size_t end = header.find(',', start);
+        if (end == std::string::npos) end = header.size();
+        std::string token = header.substr(start, end - start);
+        start = end + 1;
+        std::string params;
+        if (const std::size_t semi = token.find(';'); semi != std::string::npos) {
+            params = token.substr(semi + 1);
+            token.resize(semi);
+        }
+        token.erase(std::remove_if(token.begin(), token.end(), [](unsigned char c) { return std::isspace(c); }),
+                    token.end());
+        std::transform(token.begin(), token.end(), token.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+        if (token != coding) continue;
+        params.erase(std::remove_if(params.begin(), params.end(), [](unsigned char c) { return std::isspace(c); }),
+                     params.end());
+        if (params.starts_with("q=") || params.starts_with("Q=")) {
+            const std::string q = params.substr(2);
+            if (!q.empty() && std::strtod(q.c_str(), nullptr) <= 0.0) return false;
+        }
+        return true;
+    }
+    return false;
+}
+
+// The types cpp-httplib 0.11 compresses by itself when the client accepts
+// gzip or br (detail::can_compress_content_type): the server leaves those
+// to it and gzips the other compressible types (glTF, WebAssembly, .bin).
+bool httplibCompresses(std::string_view mimeType)
+{
+    if (mimeType.starts_with("text/")) return true;
+    constexpr std::array<std::string_view, 5> TYPES = {"image/svg+xml", "application/javascript", "application/json",
+                                                       "application/xml", "application/xhtml+xml"};
+    return std::find(TYPES.begin(), TYPES.end(), mimeType) != TYPES.end();
+}
+
+std::string readWhole(int fd, std::uint64_t size)
+{
+    std::string data(size, '\0');
+    std::uint64_t done = 0;
+    while (done < size) {
+        const ssize_t n = ::pread(fd, data.data() + done, size - done, off_t(done));
+        if (n <= 0) throw Error(ErrorKind::Io, std::string("read failed: ") + (n < 0 ? std::strerror(errno) : "file shrank"));
+        done += std::uint64_t(n);
+    }
+    return data;
+}
+
+} // namespace
+
+struct FileServer::Impl
+{
+    fs::path root;
+    FileServerOptions options;
+    int port = 0;
+    HttpServer server;
+
+    std::mutex mutex; // guards the three flags
+    bool listening = false;
+    bool stopRequested = false;
+    bool ran = false;
+
+    void handle(const httplib::Request& request, httplib::Response& response) const;
+};
+
+void FileServer::Impl::handle(const httplib::Request& request, httplib::Response& response) const
+{
+    const ResolvedPath resolved = resolveRequestPath(root, request.path);
+    switch (resolved.status) {
+    case 200: break;
+    case 301: {
+        rangesToSend(request).clear();
+        const std::string target = request.target.substr(0, request.target.find('?'));
+        response.set_redirect(target + "/", 301);
+        return;
+    }
+    case 400: answer(request, response, 400, "400 bad request path"); return;
+    case 403: answer(request, response, 403, "403 forbidden: outside the served folder"); return;
+    default: answer(request, response, 404, "404 not found"); return;
+    }
+
+    auto file = std::make_shared<OpenFile>();
+    file->fd = ::open(resolved.file.c_str(), O_RDONLY | O_CLOEXEC | O_NOFOLLOW);
+    struct stat info{};
+    if (file->fd < 0 || ::fstat(file->fd, &info) != 0 || !S_ISREG(info.st_mode)) {
+        answer(request, response, 404, "404 not found");
+        return;
+    }
+    const auto size = std::uint64_t(info.st_size);
+    const std::string mimeType(mimeTypeFor(resolved.file));
+    const bool compressible = isCompressible(mimeType);
+    response.set_header("Accept-Ranges", "bytes");
+    response.set_header("Cache-Control", "no-cache");
+    response.set_header("X-Content-Type-Options", "nosniff");
+    if (compressible) response.set_header("Vary", "Accept-Encoding");
+
+    httplib::Ranges& ranges = rangesToSend(request);
+    if (ranges.size() > MAX_RANGES) ranges.clear();
+    if (!ranges.empty()) {
+        std::vector<detail::ByteRange> requested(ranges.begin(), ranges.end());
+        const std::vector<detail::ByteRange> satisfiable = detail::satisfiableRanges(requested, size);
+        if (satisfiable.empty()) {
+            answer(request, response, 416, "416 range not satisfiable");
+            response.set_header("Content-Range", "bytes */" + std::to_string(size));
+            return;
+        }
+        ranges.assign(satisfiable.begin(), satisfiable.end());
+        if (ranges.size() > 1) {
+            // cpp-httplib 0.11 writes each part's Content-Range total from the
+            // body's size, which is 0 for a content provider: hand it the
+            // bytes instead, or, for a file too large to hold, ignore the
+            // Range and send it whole (RFC 9110 allows both).
+            if (size <= options.maxCompressedFileBytes) {
+                response.set_content(readWhole(file->fd, size), mimeType);
+                return;
+            }
+            ranges.clear();
+        }
+    } else if (size == 0) {
+        response.set_content("", mimeType);
+        return;
+    } else if (compressible && size <= options.maxCompressedFileBytes &&
+               (accepts(request, "gzip") || (httplibCompresses(mimeType) && accepts(request, "br")))) {
+        // Whole and compressible: held in memory and compressed, by httplib
+        // for its own types (gzip, or brotli where the client asks), by
+        // zlib here for the rest.
+        std::string body = readWhole(file->fd, size);
+        if (httplibCompresses(mimeType)) {
+            response.set_content(std::move(body), mimeType);
+        } else {
+            response.set_header("Content-Encoding", "gzip");
+            response.set_content(detail::gzipCompress(body, options.gzipLevel), mimeType);
+        }
+        return;
+    }
+
+    // Streamed from the file: the whole of it, or the ranges (httplib writes
+    // 206, Content-Range, or multipart/byteranges for several).
+    response.set_content_provider(
+        size, mimeType, [file](std::size_t offset, std::size_t length, httplib::DataSink& sink) {
+            std::array<char, 64 * 1024> buffer;
+            const ssize_t n = ::pread(file->fd, buffer.data(), std::min(length, buffer.size()), off_t(offset));
+            if (n <= 0) return false; // an error or a file that shrank: httplib drops the connection
+            return sink.write(buffer.data(), std::size_t(n));
+        });
+}
+
+FileServer::FileServer(const fs::path& root, const FileServerOptions& options) : mImpl(std::make_unique<Impl>())
+{
+    std::error_code ec;
+    if (!fs::is_directory(root, ec)) {
+        throw Error(ErrorKind::BadInput, "serve: '" + root.string() + "' is not a folder", ErrorPlace{root.string()});
+    }
+    if (options.port < 0 || options.port > 65535) {
+        throw Error(ErrorKind::BadInput, "serve: port " + std::to_string(options.port) + " is not in [0, 65535]",
+                    ErrorPlace{"", 0, "--port", std::to_string(options.port)});
+    }
+    if (options.gzipLevel < 1 || options.gzipLevel > 9) {
+        throw Error(ErrorKind::BadInput, "serve: gzip level " + std::to_string(options.gzipLevel) + " is not in [1, 9]");
+    }
+    mImpl->root = fs::canonical(root);
+    mImpl->options = options;
+
+    HttpServer& server = mImpl->server;
+    Impl* impl = mImpl.get();
+    server.set_keep_alive_max_count(1000); // a viewer fetches thousands of tiles over a few connections
+    // An idle connection is closed after 2 s (httplib: 5 s): stop() waits
+    // for it, and a new connection costs little on the loopback.
+    server.set_keep_alive_timeout(2);
+    // SO_REUSEADDR only: httplib's default adds SO_REUSEPORT, with which a
+    // second server binds the same port and the kernel splits the requests
+    // between the two; a port in use must be an error instead.
+    server.set_socket_options([](socket_t sock) {
+        int yes = 1;
+        ::setsockopt(sock, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof(yes));
+    });
+    server.set_payload_max_length(64 * 1024); // nothing is uploaded
+    server.set_pre_routing_handler([](const httplib::Request& request, httplib::Response& response) {
+        if (request.method == "GET" || request.method == "HEAD") return httplib::Server::HandlerResponse::Unhandled;
+        answer(request, response, 405, "405 method not allowed: this server is read-only (GET, HEAD)");
+        response.set_header("Allow", "GET, HEAD");
+        return httplib::Server::HandlerResponse::Handled;
+    });
+    // HEAD is answered by the GET handler; httplib sends the headers only.
+    server.Get(".*", [impl](const httplib::Request& request, httplib::Response& response) {
+        impl->handle(request, response);
+    });
+    // Called by listen() once it runs: from here on stop() can close the
+    // socket; a stop() that came earlier is honoured now.
+    server.new_task_queue = [impl] {
+        std::lock_guard lock(impl->mutex);
+        impl->listening = true;
+        if (impl->stopRequested) impl->server.stop();
+        return new httplib::ThreadPool(std::max<std::size_t>(1, impl->options.threads));
+    };
+
+    errno = 0;
+    const std::string address = options.host + ":" + std::to_string(options.port);
+    if (options.port == 0) {
+        mImpl->port = server.bind_to_any_port(options.host);
+    } else {
+        mImpl->port = server.bind_to_port(options.host, options.port) ? options.port : -1;
+    }
+    if (mImpl->port <= 0) {
+        const int error = errno;
+        std::string why = error == EADDRINUSE ? "the port is in use (another server? --port 0 picks a free one)"
+                          : error != 0       ? std::strerror(error)
+                                             : "not an address of this machine?";
+        throw Error(ErrorKind::Io, "serve: cannot listen on " + address + ": " + why,
+                    ErrorPlace{"", 0, "--port", std::to_string(options.port)});
+    }
+}
+
+FileServer::~FileServer()
+{
+    stop();
+    std::lock_guard lock(mImpl->mutex);
+    if (!mImpl->listening) mImpl->server.closeUnlistenedSocket();
+}
+
+int FileServer::port() const { return mImpl->port; }
+
+const std::string& FileServer::host() const { return mImpl->options.host; }
+
+std::string FileServer::url() const
+{
+    const std::string& host = mImpl->options.host;
+    const bool ipv6 = host.find(':') != std::string::npos;
+    return "http://" + (ipv6 ? "[" + host + "]" : host) + ":" + std::to_string(mImpl->port) + "/";
+}
+
+const fs::path& FileServer::root() const { return mImpl->root; }
+
+void FileServer::run()
+{
+    {
+        std::lock_guard lock(mImpl->mutex);
+        if (mImpl->ran) throw Error(ErrorKind::Internal, "serve: FileServer::run() called twice");
+        mImpl->ran = true;
+    }
+    errno = 0;
+    if (!mImpl->server.listen_after_bind()) {
+        const int error = errno;
+        throw Error(ErrorKind::Io, "serve: accepting connections on " + url() + " failed" +
+                                       (error ? std::string(": ") + std::strerror(error) : std::string()));
+    }
+}
+
+void FileServer::stop()
+{
+    std::lock_guard lock(mImpl->mutex);
+    mImpl->stopRequested = true;
+    if (mImpl->listening) mImpl->server.stop(); // no-op once stopped
+}
+
+} // namespace strata::serve

@@ -1,0 +1,70 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
+#include <strata/serve/MimeType.h>
+
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <string>
+#include <utility>
+
+namespace strata::serve {
+
+namespace {
+
+constexpr std::string_view OCTET_STREAM = "application/octet-stream";
+
+// Extension (lower case, with the dot) → type. glTF's types are the ones
+// registered with IANA (model/gltf-binary, model/gltf+json); JavaScript's
+// is text/javascript (RFC 9239), which module scripts accept.
+constexpr std::array<std::pair<std::string_view, std::string_view>, 22> TYPES = {{
+    {".json", "application/json"},
+    {".glb", "model/gltf-binary"},
+    {".gltf", "model/gltf+json"},
+    {".bin", "application/octet-stream"},
+    {".html", "text/html; charset=utf-8"},
+    {".htm", "text/html; charset=utf-8"},
+    {".js", "text/javascript; charset=utf-8"},
+    {".mjs", "text/javascript; charset=utf-8"},
+    {".css", "text/css; charset=utf-8"},
+    {".txt", "text/plain; charset=utf-8"},
+    {".md", "text/markdown; charset=utf-8"},
+    {".toml", "application/toml"},
+    {".svg", "image/svg+xml"},
+    {".png", "image/png"},
+    {".jpg", "image/jpeg"},
+    {".jpeg", "image/jpeg"},
+    {".webp", "image/webp"},
+    {".ktx2", "image/ktx2"},
+    {".exr", "image/x-exr"},
+    {".wasm", "application/wasm"},
+    {".map", "application/json"},
+    {".ico", "image/vnd.microsoft.icon"},
+}};
+
+} // namespace
+
+std::string_view mimeTypeFor(const std::filesystem::path& file)
+{
+    std::string extension = file.extension().string();
+    std::transform(extension.begin(), extension.end(), extension.begin(),
+                   [](unsigned char c) { return char(std::tolower(c)); });
+    for (const auto& [ext, type] : TYPES) {
+        if (ext == extension) return type;
+    }
+    return OCTET_STREAM;
+}
+
+bool isCompressible(std::string_view mimeType)
+{
+    const std::string_view base = mimeType.substr(0, mimeType.find(';'));
+    if (base.starts_with("text/")) return true;
+    constexpr std::array<std::string_view, 7> COMPRESSIBLE = {
+        "application/json", "model/gltf+json", "model/gltf-binary", "application/wasm",
+        "application/octet-stream", "image/svg+xml", "application/toml",
+    };
+    return std::find(COMPRESSIBLE.begin(), COMPRESSIBLE.end(), base) != COMPRESSIBLE.end();
+}
+
+} // namespace strata::serve

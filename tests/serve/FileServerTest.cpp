@@ -1,0 +1,385 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
+// The file server on a free port in this process, asked over real HTTP.
+
+#include <strata/Error.h>
+#include <strata/serve/FileServer.h>
+
+#include "HttpTestUtil.h"
+#include "TestDir.h"
+
+#include <httplib.h>
+
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cstring>
+#include <thread>
+
+namespace fs = std::filesystem;
+using strata::test::rawRequest;
+using strata::test::readFile;
+using strata::test::writeFile;
+
+namespace {
+
+// A compressible stand-in for a tile: a repeating float pattern, 100 kB.
+std::string tileBytes()
+{
+    std::string bytes;
+    for (int i = 0; i < 25000; ++i) {
+        const float value = float(i % 97) * 0.25f;
+        char raw[4];
+        std::memcpy(raw, &value, 4);
+        bytes.append(raw, 4);
+    }
+    return bytes;
+}
+
+class FileServerTest : public testing::Test
+{
+protected:
+    void SetUp() override
+    {
+        top = strata::test::freshTestDir();
+        root = top / "bake";
+        writeFile(root / "tileset.json", R"({"asset":{"version":"1.1"},"geometricError":10,"root":{}})");
+        writeFile(root / "tiles" / "0" / "0_0_0.glb", tileBytes());
+        writeFile(root / "viewer" / "index.html", "<!doctype html><title>viewer</title>" + std::string(2000, ' '));
+        writeFile(root / "viewer" / "main.js", "console.log('strata');\n" + std::string(2000, ' ') + "//");
+        writeFile(root / "viewer" / "style.css", "body { margin: 0; }" + std::string(2000, ' '));
+        writeFile(root / "scene.gltf", R"({"asset":{"version":"2.0"}})" + std::string(2000, ' '));
+        writeFile(root / "buffer.bin", std::string(5000, '\x01'));
+        writeFile(root / "decoder.wasm", std::string(5000, '\x02'));
+        writeFile(root / "albedo.png", std::string(5000, '\x03'));
+        writeFile(root / "albedo.ktx2", std::string(5000, '\x04'));
+        writeFile(root / "notes", "no extension");
+        writeFile(root / "empty.json", "");
+        fs::create_directories(root / "tiles" / "1");
+        writeFile(top / "secret.txt", "TOP SECRET");
+        fs::create_symlink("../secret.txt", root / "outside.txt");
+        fs::create_directory_symlink("..", root / "up");
+        fs::create_symlink("tiles/0/0_0_0.glb", root / "inside.glb");
+
+        startServer();
+    }
+
+    void TearDown() override { stopServer(); }
+
+    void startServer()
+    {
+        strata::serve::FileServerOptions options;
+        options.port = 0;
+        server = std::make_unique<strata::serve::FileServer>(root, options);
+        port = server->port();
+        thread = std::thread([this] { server->run(); });
+    }
+
+    void stopServer()
+    {
+        if (!server) return;
+        server->stop();
+        thread.join();
+        server.reset();
+    }
+
+    httplib::Client client() const
+    {
+        httplib::Client c("127.0.0.1", port);
+        c.set_decompress(false); // the tests look at the bytes on the wire
+        return c;
+    }
+
+    fs::path top, root;
+    std::unique_ptr<strata::serve::FileServer> server;
+    std::thread thread;
+    int port = 0;
+};
+
+const httplib::Headers IDENTITY = {{"Accept-Encoding", "identity"}};
+
+} // namespace
+
+TEST_F(FileServerTest, ServesFilesWithTheirMimeTypes)
+{
+    const std::vector<std::pair<std::string, std::string>> cases = {
+        {"/tileset.json", "application/json"},
+        {"/tiles/0/0_0_0.glb", "model/gltf-binary"},
+        {"/scene.gltf", "model/gltf+json"},
+        {"/viewer/index.html", "text/html; charset=utf-8"},
+        {"/viewer/main.js", "text/javascript; charset=utf-8"},
+        {"/viewer/style.css", "text/css; charset=utf-8"},
+        {"/albedo.png", "image/png"},
+        {"/albedo.ktx2", "image/ktx2"},
+        {"/decoder.wasm", "application/wasm"},
+        {"/buffer.bin", "application/octet-stream"},
+        {"/notes", "application/octet-stream"},
+        {"/empty.json", "application/json"},
+    };
+    auto c = client();
+    for (const auto& [path, type] : cases) {
+        SCOPED_TRACE(path);
+        const auto response = c.Get(path.c_str(), IDENTITY);
+        ASSERT_TRUE(response) << httplib::to_string(response.error());
+        EXPECT_EQ(response->status, 200);
+        EXPECT_EQ(response->get_header_value("Content-Type"), type);
+        EXPECT_FALSE(response->has_header("Content-Encoding"));
+        EXPECT_EQ(response->body, readFile(root / path.substr(1)));
+    }
+}
+
+TEST_F(FileServerTest, HeadSendsTheHeadersOfGetWithoutTheBody)
+{
+    const std::string bytes = readFile(root / "tiles/0/0_0_0.glb");
+    const auto response = client().Head("/tiles/0/0_0_0.glb", IDENTITY);
+    ASSERT_TRUE(response);
+    EXPECT_EQ(response->status, 200);
+    EXPECT_EQ(response->get_header_value("Content-Length"), std::to_string(bytes.size()));
+    EXPECT_EQ(response->get_header_value("Content-Type"), "model/gltf-binary");
+    EXPECT_EQ(response->get_header_value("Accept-Ranges"), "bytes");
+    EXPECT_TRUE(response->body.empty());
+    // On the wire: nothing after the headers.
+    const auto raw = rawRequest(port, "HEAD /tiles/0/0_0_0.glb HTTP/1.1\r\nHost: x\r\nConnection: close\r\n\r\n");
+    EXPECT_EQ(raw.status, 200);
+    EXPECT_TRUE(raw.body.empty());
+}
+
+TEST_F(FileServerTest, ByteRangesAre206WithContentRange)
+{
+    const std::string bytes = readFile(root / "tiles/0/0_0_0.glb");
+    const std::string total = "/" + std::to_string(bytes.size());
+    const std::size_t last = bytes.size() - 1;
+    struct Case
+    {
+        std::string range, contentRange;
+        std::size_t first, count;
+    };
+    const std::vector<Case> cases = {
+        {"bytes=10-19", "bytes 10-19" + total, 10, 10},
+        {"bytes=99990-", "bytes 99990-" + std::to_string(last) + total, 99990, 10},
+        {"bytes=-5", "bytes " + std::to_string(last - 4) + "-" + std::to_string(last) + total, last - 4, 5},
+        {"bytes=99995-200000", "bytes 99995-" + std::to_string(last) + total, 99995, 5}, // clamped to the end
+        {"bytes=0-0", "bytes 0-0" + total, 0, 1},
+    };
+    auto c = client();
+    for (const Case& test : cases) {
+        SCOPED_TRACE(test.range);
+        const auto response = c.Get("/tiles/0/0_0_0.glb", {{"Range", test.range}, {"Accept-Encoding", "gzip"}});
+        ASSERT_TRUE(response);
+        EXPECT_EQ(response->status, 206);
+        EXPECT_EQ(response->get_header_value("Content-Range"), test.contentRange);
+        EXPECT_FALSE(response->has_header("Content-Encoding")) << "a range is sent as it is, never compressed";
+        EXPECT_EQ(response->body, bytes.substr(test.first, test.count));
+    }
+}
+
+TEST_F(FileServerTest, SeveralRangesComeAsMultipart)
+{
+    const auto response = client().Get("/tileset.json", {{"Range", "bytes=0-4,10-14"}, {"Accept-Encoding", "gzip"}});
+    ASSERT_TRUE(response);
+    EXPECT_EQ(response->status, 206);
+    EXPECT_FALSE(response->has_header("Content-Encoding"));
+    EXPECT_TRUE(response->get_header_value("Content-Type").starts_with("multipart/byteranges; boundary="));
+    const std::string json = readFile(root / "tileset.json");
+    EXPECT_NE(response->body.find(json.substr(0, 5)), std::string::npos);
+    EXPECT_NE(response->body.find(json.substr(10, 5)), std::string::npos);
+    EXPECT_NE(response->body.find("Content-Range: bytes 10-14/" + std::to_string(json.size())), std::string::npos);
+}
+
+TEST_F(FileServerTest, UnsatisfiableRangesAre416)
+{
+    const std::size_t size = readFile(root / "tiles/0/0_0_0.glb").size();
+    auto c = client();
+    for (const std::string range : {"bytes=100000-100010", "bytes=200000-", "bytes=-0"}) {
+        SCOPED_TRACE(range);
+        const auto response = c.Get("/tiles/0/0_0_0.glb", {{"Range", range}});
+        ASSERT_TRUE(response);
+        EXPECT_EQ(response->status, 416);
+        EXPECT_EQ(response->get_header_value("Content-Range"), "bytes */" + std::to_string(size));
+    }
+    const auto empty = c.Get("/empty.json", {{"Range", "bytes=0-10"}});
+    ASSERT_TRUE(empty);
+    EXPECT_EQ(empty->status, 416);
+    // A range on a missing file is still a plain 404, not a slice of its text.
+    const auto missing = c.Get("/missing.glb", {{"Range", "bytes=0-1"}});
+    ASSERT_TRUE(missing);
+    EXPECT_EQ(missing->status, 404);
+    EXPECT_FALSE(missing->has_header("Content-Range"));
+}
+
+TEST_F(FileServerTest, GzipWhenTheClientAsksForIt)
+{
+    auto c = client();
+    for (const std::string path : {"/tileset.json", "/tiles/0/0_0_0.glb", "/scene.gltf", "/viewer/main.js",
+                                   "/viewer/style.css", "/viewer/index.html", "/buffer.bin", "/decoder.wasm"}) {
+        SCOPED_TRACE(path);
+        const std::string bytes = readFile(root / path.substr(1));
+        const auto zipped = c.Get(path.c_str(), {{"Accept-Encoding", "gzip"}});
+        ASSERT_TRUE(zipped);
+        EXPECT_EQ(zipped->status, 200);
+        EXPECT_EQ(zipped->get_header_value("Content-Encoding"), "gzip");
+        EXPECT_EQ(zipped->get_header_value("Vary"), "Accept-Encoding");
+        if (bytes.size() > 1000) {
+            EXPECT_LT(zipped->body.size(), bytes.size());
+        }
+        EXPECT_EQ(strata::test::gunzip(zipped->body), bytes);
+
+        const auto plain = c.Get(path.c_str(), {{"Accept-Encoding", "gzip;q=0, identity"}});
+        ASSERT_TRUE(plain);
+        EXPECT_FALSE(plain->has_header("Content-Encoding"));
+        EXPECT_EQ(plain->body, bytes);
+    }
+    for (const std::string path : {"/albedo.png", "/albedo.ktx2"}) {
+        SCOPED_TRACE(path);
+        const auto response = c.Get(path.c_str(), {{"Accept-Encoding", "gzip, deflate, br"}});
+        ASSERT_TRUE(response);
+        EXPECT_FALSE(response->has_header("Content-Encoding")) << "compressed images are sent as they are";
+        EXPECT_EQ(response->body, readFile(root / path.substr(1)));
+    }
+}
+
+TEST_F(FileServerTest, OnlyGetAndHeadAreAllowed)
+{
+    auto c = client();
+    const auto post = c.Post("/tileset.json", "x", "text/plain");
+    ASSERT_TRUE(post);
+    EXPECT_EQ(post->status, 405);
+    EXPECT_EQ(post->get_header_value("Allow"), "GET, HEAD");
+    const auto put = c.Put("/new.json", "{}", "application/json");
+    ASSERT_TRUE(put);
+    EXPECT_EQ(put->status, 405);
+    const auto del = c.Delete("/tileset.json");
+    ASSERT_TRUE(del);
+    EXPECT_EQ(del->status, 405);
+    const auto options = c.Options("/tileset.json");
+    ASSERT_TRUE(options);
+    EXPECT_EQ(options->status, 405);
+    EXPECT_FALSE(fs::exists(root / "new.json"));
+    EXPECT_TRUE(fs::exists(root / "tileset.json"));
+    for (const std::string method : {"PATCH", "TRACE", "CONNECT"}) {
+        const auto raw = rawRequest(port, method + " /tileset.json HTTP/1.1\r\nHost: x\r\nConnection: close\r\n\r\n");
+        EXPECT_EQ(raw.status, 405) << method;
+    }
+}
+
+TEST_F(FileServerTest, NoWayOutOfTheFolder)
+{
+    // Request lines as an attacker writes them (a client would normalise
+    // them), plain, percent-encoded, double-encoded, with NUL bytes.
+    const std::vector<std::string> targets = {
+        "/../secret.txt",
+        "/tiles/../../secret.txt",
+        "/%2e%2e/secret.txt",
+        "/%2E%2E/secret.txt",
+        "/%2e%2e%2fsecret.txt",
+        "/..%2fsecret.txt",
+        "/tiles%2f..%2f..%2fsecret.txt",
+        "/%252e%252e/secret.txt",
+        "/%252e%252e%252fsecret.txt",
+        "/..%5csecret.txt",
+        "/tileset.json%00.png",
+        "/%00",
+        "/../../../../../../etc/passwd",
+        "//etc/passwd",
+        "/" + (top / "secret.txt").string(),
+        "secret.txt",
+        "../secret.txt",
+        "/outside.txt",
+        "/up/secret.txt",
+    };
+    for (const std::string& target : targets) {
+        SCOPED_TRACE(target);
+        const auto raw = rawRequest(port, "GET " + target + " HTTP/1.1\r\nHost: x\r\nConnection: close\r\n\r\n");
+        EXPECT_TRUE(raw.status == 400 || raw.status == 403 || raw.status == 404) << raw.head;
+        EXPECT_EQ(raw.body.find("TOP SECRET"), std::string::npos);
+        EXPECT_EQ(raw.body.find("passwd"), std::string::npos);
+    }
+    // The specific answers: a way out is 403, a harmless odd name 404.
+    EXPECT_EQ(rawRequest(port, "GET /%2e%2e/secret.txt HTTP/1.1\r\nConnection: close\r\n\r\n").status, 403);
+    EXPECT_EQ(rawRequest(port, "GET /outside.txt HTTP/1.1\r\nConnection: close\r\n\r\n").status, 403);
+    EXPECT_EQ(rawRequest(port, "GET /%252e%252e/secret.txt HTTP/1.1\r\nConnection: close\r\n\r\n").status, 404);
+    // A NUL byte in the request line itself.
+    const auto nul = rawRequest(port, std::string("GET /tileset.json") + '\0' + "/../../secret.txt HTTP/1.1\r\nConnection: close\r\n\r\n");
+    EXPECT_NE(nul.status, 200);
+    EXPECT_EQ(nul.body.find("TOP SECRET"), std::string::npos);
+}
+
+TEST_F(FileServerTest, SymlinksInsideTheFolderAreServed)
+{
+    const auto response = client().Get("/inside.glb", IDENTITY);
+    ASSERT_TRUE(response);
+    EXPECT_EQ(response->status, 200);
+    EXPECT_EQ(response->get_header_value("Content-Type"), "model/gltf-binary");
+    EXPECT_EQ(response->body, readFile(root / "tiles/0/0_0_0.glb"));
+}
+
+TEST_F(FileServerTest, FoldersServeTheirIndexOr404)
+{
+    auto c = client();
+    const auto index = c.Get("/viewer/", IDENTITY);
+    ASSERT_TRUE(index);
+    EXPECT_EQ(index->status, 200);
+    EXPECT_EQ(index->body, readFile(root / "viewer/index.html"));
+    const auto slashless = c.Get("/viewer?x=1", IDENTITY);
+    ASSERT_TRUE(slashless);
+    EXPECT_EQ(slashless->status, 301);
+    EXPECT_EQ(slashless->get_header_value("Location"), "/viewer/");
+    const auto noIndex = c.Get("/tiles/1/", IDENTITY);
+    ASSERT_TRUE(noIndex);
+    EXPECT_EQ(noIndex->status, 404);
+    const auto top = c.Get("/", IDENTITY);
+    ASSERT_TRUE(top);
+    EXPECT_EQ(top->status, 404) << "no index.html at the top, and no listing";
+    const auto missing = c.Get("/tiles/0/9_9_9.glb", IDENTITY);
+    ASSERT_TRUE(missing);
+    EXPECT_EQ(missing->status, 404);
+}
+
+TEST_F(FileServerTest, StopEndsRunWithConnectionsOpen)
+{
+    // A keep-alive connection stays open while the server stops.
+    auto c = client();
+    c.set_keep_alive(true);
+    const auto response = c.Get("/tileset.json", IDENTITY);
+    ASSERT_TRUE(response);
+    EXPECT_EQ(response->status, 200);
+    const auto start = std::chrono::steady_clock::now();
+    stopServer();
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    EXPECT_LT(seconds, 4.0); // the 2 s keep-alive wait and a margin
+    EXPECT_FALSE(httplib::Client("127.0.0.1", port).Get("/tileset.json")) << "nobody listens after stop()";
+}
+
+TEST_F(FileServerTest, StopBeforeRunReturnsAtOnce)
+{
+    stopServer();
+    strata::serve::FileServerOptions options;
+    options.port = 0;
+    strata::serve::FileServer early(root, options);
+    early.stop();
+    std::thread runner([&] { early.run(); });
+    runner.join(); // hangs (and the test times out) if the early stop were lost
+    SUCCEED();
+}
+
+TEST_F(FileServerTest, PortInUseAndBadFolderAreClearErrors)
+{
+    strata::serve::FileServerOptions options;
+    options.port = port;
+    try {
+        strata::serve::FileServer second(root, options);
+        FAIL() << "a second server bound port " << port;
+    } catch (const strata::Error& e) {
+        EXPECT_EQ(e.kind(), strata::ErrorKind::Io);
+        EXPECT_NE(std::string(e.what()).find("127.0.0.1:" + std::to_string(port)), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("in use"), std::string::npos) << e.what();
+    }
+    options.port = 0;
+    try {
+        strata::serve::FileServer missing(root / "tileset.json", options);
+        FAIL() << "served a file as a folder";
+    } catch (const strata::Error& e) {
+        EXPECT_EQ(e.kind(), strata::ErrorKind::BadInput);
+    }
+}

@@ -1,0 +1,46 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
+#include <strata/serve/MimeType.h>
+
+#include <gtest/gtest.h>
+
+using strata::serve::isCompressible;
+using strata::serve::mimeTypeFor;
+
+TEST(MimeType, TheTypesABakeAndItsViewerUse)
+{
+    EXPECT_EQ(mimeTypeFor("tileset.json"), "application/json");
+    EXPECT_EQ(mimeTypeFor("tiles/0/1_2_3.glb"), "model/gltf-binary");
+    EXPECT_EQ(mimeTypeFor("a.gltf"), "model/gltf+json");
+    EXPECT_EQ(mimeTypeFor("viewer/index.html"), "text/html; charset=utf-8");
+    EXPECT_EQ(mimeTypeFor("viewer/main.js"), "text/javascript; charset=utf-8");
+    EXPECT_EQ(mimeTypeFor("viewer/style.css"), "text/css; charset=utf-8");
+    EXPECT_EQ(mimeTypeFor("albedo.png"), "image/png");
+    EXPECT_EQ(mimeTypeFor("albedo.jpg"), "image/jpeg");
+    EXPECT_EQ(mimeTypeFor("albedo.ktx2"), "image/ktx2");
+    EXPECT_EQ(mimeTypeFor("draco.wasm"), "application/wasm");
+    EXPECT_EQ(mimeTypeFor("buffer.bin"), "application/octet-stream");
+}
+
+TEST(MimeType, ExtensionsAreCaseInsensitiveAndUnknownOnesAreOctetStream)
+{
+    EXPECT_EQ(mimeTypeFor("TILE.GLB"), "model/gltf-binary");
+    EXPECT_EQ(mimeTypeFor("Index.Html"), "text/html; charset=utf-8");
+    EXPECT_EQ(mimeTypeFor("README"), "application/octet-stream");
+    EXPECT_EQ(mimeTypeFor("archive.xyz"), "application/octet-stream");
+    EXPECT_EQ(mimeTypeFor(".glb/x"), "application/octet-stream");
+}
+
+TEST(MimeType, CompressedFormatsAreNotCompressedAgain)
+{
+    EXPECT_TRUE(isCompressible("application/json"));
+    EXPECT_TRUE(isCompressible("model/gltf-binary"));
+    EXPECT_TRUE(isCompressible("model/gltf+json"));
+    EXPECT_TRUE(isCompressible("text/javascript; charset=utf-8"));
+    EXPECT_TRUE(isCompressible("application/wasm"));
+    EXPECT_FALSE(isCompressible("image/png"));
+    EXPECT_FALSE(isCompressible("image/jpeg"));
+    EXPECT_FALSE(isCompressible("image/ktx2"));
+    EXPECT_FALSE(isCompressible("image/webp"));
+}
