@@ -1,0 +1,48 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
+// Bundles the viewer (src/main.js, three.js, 3d-tiles-renderer and the
+// generated shaders) into one script with esbuild, so the page needs no
+// network, and copies index.html beside it. Run by web/CMakeLists.txt:
+//   node build.mjs --modules <node_modules from npm ci> --shaders <strata-shaders.js> --out <dir>
+
+import { copyFileSync, mkdirSync } from 'node:fs';
+import { dirname, join, resolve } from 'node:path';
+import { fileURLToPath, pathToFileURL } from 'node:url';
+
+const args = {};
+for ( let i = 2; i < process.argv.length; i += 2 ) args[ process.argv[ i ].replace( /^--/, '' ) ] = process.argv[ i + 1 ];
+for ( const key of [ 'modules', 'shaders', 'out' ] ) {
+
+	if ( ! args[ key ] ) {
+
+		console.error( `build.mjs: --${ key } is missing` );
+		process.exit( 2 );
+
+	}
+
+}
+const here = dirname( fileURLToPath( import.meta.url ) );
+const esbuild = await import( pathToFileURL( join( resolve( args.modules ), 'esbuild', 'lib', 'main.js' ) ).href );
+const shaders = resolve( args.shaders );
+mkdirSync( args.out, { recursive: true } );
+await esbuild.build( {
+	entryPoints: [ join( here, 'src', 'main.js' ) ],
+	bundle: true,
+	format: 'iife',
+	target: 'es2020',
+	minify: true,
+	legalComments: 'eof', // the bundled packages' licence notices stay in viewer.js
+	outfile: join( args.out, 'viewer.js' ),
+	nodePaths: [ resolve( args.modules ) ],
+	logLevel: 'warning',
+	plugins: [ {
+		name: 'strata-shaders',
+		setup( build ) {
+
+			build.onResolve( { filter: /^strata:shaders$/ }, () => ( { path: shaders } ) );
+
+		},
+	} ],
+} );
+copyFileSync( join( here, 'index.html' ), join( args.out, 'index.html' ) );

@@ -1,0 +1,233 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
+// The baked world's viewer: the tileset beside this page (../tileset.json)
+// drawn by 3d-tiles-renderer on three.js with Strata's own shading.
+//
+// URL parameters (a view can be shared and tested):
+//   pos=X,Y,Z target=X,Y,Z fov=DEG  the camera (scene metres, y up; default: the scene's camera as `strata render DIR` frames it)
+//   sse=PIXELS                      level of detail: the screen-space error target (default 2; 0 loads every level-0 tile)
+//   view=NAME                       a debug view: shaded, weights, normals, metallic, occlusion, height, smoothness, albedo, layers
+//   shadows=0                       shadows off (the browser draws none yet: see docs/web-viewer.md)
+//   controls=0                      no camera controls; ui=0: no text over the picture (tests)
+// Keys: 0-8 debug views, Tab orbit/fly, W A S D Q E move (shift: 5x), H shadows flag.
+// window.strataReady turns true once every tile the view needs is loaded and drawn;
+// window.strataStats holds timings and counts.
+
+import * as THREE from 'three';
+import { TilesRenderer } from '3d-tiles-renderer';
+import { GLTFExtensionsPlugin } from '3d-tiles-renderer/plugins';
+import { MeshoptDecoder } from 'three/examples/jsm/libs/meshopt_decoder.module.js';
+import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
+import { DEBUG_VIEWS, loadMaps, makeUniforms, makeTerrainMaterial, makeSky, updateFrameUniforms } from './material.js';
+
+const stats = { start: performance.now(), firstFrameMs: null, readyMs: null, tilesLoaded: 0, frames: 0 };
+window.strataReady = false;
+window.strataStats = stats;
+
+function parseVec3( params, key ) {
+
+	const text = params.get( key );
+	if ( text === null ) return null;
+	const v = text.split( ',' ).map( Number );
+	if ( v.length !== 3 || v.some( x => ! Number.isFinite( x ) ) ) throw new Error( `URL parameter ${ key }=${ text }: expected X,Y,Z` );
+	return new THREE.Vector3( ...v );
+
+}
+
+function status( text ) {
+
+	const el = document.getElementById( 'status' );
+	if ( el ) el.textContent = text;
+
+}
+
+async function main() {
+
+	const params = new URLSearchParams( location.search );
+	if ( params.get( 'ui' ) === '0' ) for ( const id of [ 'status', 'help' ] ) document.getElementById( id )?.remove();
+	const base = new URL( '.', location.href );
+	const response = await fetch( new URL( 'strata.json', base ) );
+	if ( ! response.ok ) throw new Error( `strata.json: HTTP ${ response.status }` );
+	const config = await response.json();
+
+	THREE.ColorManagement.enabled = false; // the shaders write sRGB bytes themselves
+	const renderer = new THREE.WebGLRenderer( { antialias: ( config.samples || 1 ) > 1, preserveDrawingBuffer: true } );
+	renderer.outputColorSpace = THREE.LinearSRGBColorSpace;
+	renderer.setPixelRatio( 1 );
+	renderer.setSize( window.innerWidth, window.innerHeight );
+	renderer.autoClear = true;
+	const c = config.clearColor.map( v => v <= 0.0031308 ? 12.92 * Math.max( v, 0 ) : 1.055 * Math.pow( Math.min( v, 1 ), 1 / 2.4 ) - 0.055 );
+	renderer.setClearColor( new THREE.Color( c[ 0 ], c[ 1 ], c[ 2 ] ), 1 );
+	document.body.appendChild( renderer.domElement );
+
+	const textures = await loadMaps( config, base, renderer );
+	const uniforms = makeUniforms( config, textures );
+	const material = makeTerrainMaterial( config, uniforms );
+	const viewName = params.get( 'view' );
+	if ( viewName !== null ) {
+
+		const index = DEBUG_VIEWS.indexOf( viewName );
+		if ( index < 0 ) throw new Error( `URL parameter view=${ viewName }: one of ${ DEBUG_VIEWS.join( ', ' ) }` );
+		uniforms.uFrame.value.debugView = index;
+
+	}
+	let shadows = params.get( 'shadows' ) !== '0' && config.shadows !== false;
+
+	const scene = new THREE.Scene();
+	if ( uniforms.uAtmosphere.value.enabled ) scene.add( makeSky( uniforms ) );
+
+	// The camera: URL, else the scene's (as `strata render DIR` frames the world).
+	const bounds = config.bounds;
+	const lo = new THREE.Vector3( ...( bounds ? bounds.min : [ 0, 0, 0 ] ) );
+	const hi = new THREE.Vector3( ...( bounds ? bounds.max : [ 1, 1, 1 ] ) );
+	const centre = lo.clone().add( hi ).multiplyScalar( 0.5 );
+	const extent = hi.distanceTo( lo );
+	const cam = config.camera || { position: [ centre.x, hi.y + extent, centre.z + extent ], target: centre.toArray(), up: [ 0, 1, 0 ], fov: 35, near: 0.1, far: 4 * extent };
+	const camera = new THREE.PerspectiveCamera( Number( params.get( 'fov' ) || cam.fov ), window.innerWidth / window.innerHeight, cam.near, cam.far );
+	const position = parseVec3( params, 'pos' );
+	const target = parseVec3( params, 'target' );
+	camera.position.set( ...cam.position );
+	camera.up.set( ...cam.up );
+	const lookAt = new THREE.Vector3( ...cam.target );
+	if ( position || target ) {
+
+		// snapshotCamera()'s rule for --camera-position/--camera-target
+		if ( position ) camera.position.copy( position );
+		if ( target ) lookAt.copy( target );
+		const forward = lookAt.clone().sub( camera.position ).normalize();
+		camera.up.set( ...( Math.abs( forward.y ) > 0.999 ? [ 0, 0, - 1 ] : [ 0, 1, 0 ] ) );
+		camera.near = Math.max( 1e-3, extent * 1e-4 );
+		camera.far = camera.position.distanceTo( centre ) + extent + 1;
+
+	}
+	camera.lookAt( lookAt );
+	camera.updateProjectionMatrix();
+
+	// The tiles: 3D Tiles is z-up with y-up glTF content; the group turns
+	// the tileset's frame back into the scene's (y up).
+	const tiles = new TilesRenderer( new URL( config.tileset || '../tileset.json', base ).href );
+	tiles.registerPlugin( new GLTFExtensionsPlugin( { meshoptDecoder: MeshoptDecoder } ) );
+	tiles.errorTarget = params.has( 'sse' ) ? Number( params.get( 'sse' ) ) : 2;
+	tiles.group.rotation.x = - Math.PI / 2;
+	tiles.setCamera( camera );
+	tiles.setResolutionFromRenderer( camera, renderer );
+	tiles.addEventListener( 'load-model', ( { scene: model } ) => {
+
+		stats.tilesLoaded ++;
+		model.traverse( o => {
+
+			if ( o.isMesh ) {
+
+				o.material.dispose?.();
+				o.material = material;
+
+			}
+
+		} );
+
+	} );
+	let loadErrors = 0;
+	tiles.addEventListener( 'load-error', e => {
+
+		loadErrors ++;
+		console.error( 'tile failed to load:', e.url || '', e.error || '' );
+
+	} );
+	scene.add( tiles.group );
+
+	let controls = null;
+	if ( params.get( 'controls' ) !== '0' ) {
+
+		controls = new OrbitControls( camera, renderer.domElement );
+		controls.target.copy( lookAt );
+		controls.update();
+
+	}
+	let fly = false;
+	const keys = new Set();
+	window.addEventListener( 'keydown', e => {
+
+		if ( e.key >= '0' && e.key <= '8' ) uniforms.uFrame.value.debugView = Number( e.key );
+		else if ( e.key === 'Tab' ) {
+
+			fly = ! fly;
+			if ( controls ) controls.enabled = ! fly;
+			e.preventDefault();
+
+		} else if ( e.key === 'h' || e.key === 'H' ) shadows = ! shadows;
+		keys.add( e.key.toLowerCase() );
+
+	} );
+	window.addEventListener( 'keyup', e => keys.delete( e.key.toLowerCase() ) );
+	window.addEventListener( 'resize', () => {
+
+		camera.aspect = window.innerWidth / window.innerHeight;
+		camera.updateProjectionMatrix();
+		renderer.setSize( window.innerWidth, window.innerHeight );
+		tiles.setResolutionFromRenderer( camera, renderer );
+
+	} );
+
+	const size = new THREE.Vector2();
+	let last = performance.now();
+	let quietFrames = 0;
+	function frame() {
+
+		const now = performance.now();
+		const dt = Math.min( 0.1, ( now - last ) / 1000 );
+		last = now;
+		if ( keys.size ) {
+
+			const speed = extent * 0.2 * dt * ( keys.has( 'shift' ) ? 5 : 1 );
+			const forward = new THREE.Vector3();
+			camera.getWorldDirection( forward );
+			const right = forward.clone().cross( camera.up ).normalize();
+			const move = new THREE.Vector3();
+			if ( keys.has( 'w' ) ) move.add( forward );
+			if ( keys.has( 's' ) ) move.sub( forward );
+			if ( keys.has( 'd' ) ) move.add( right );
+			if ( keys.has( 'a' ) ) move.sub( right );
+			if ( keys.has( 'e' ) ) move.y += 1;
+			if ( keys.has( 'q' ) ) move.y -= 1;
+			move.multiplyScalar( speed );
+			camera.position.add( move );
+			if ( controls ) controls.target.add( move );
+
+		}
+		if ( controls && controls.enabled ) controls.update();
+		camera.updateMatrixWorld();
+		tiles.update();
+		renderer.getDrawingBufferSize( size );
+		updateFrameUniforms( uniforms, camera, size.x, size.y );
+		renderer.render( scene, camera );
+		stats.frames ++;
+		let drawn = 0;
+		tiles.group.traverse( o => { if ( o.isMesh && o.visible ) drawn ++; } );
+		if ( stats.firstFrameMs === null && drawn > 0 ) stats.firstFrameMs = now - stats.start;
+		const busy = tiles.stats.downloading + tiles.stats.parsing + ( tiles.stats.queued || 0 );
+		quietFrames = busy === 0 && stats.tilesLoaded > 0 ? quietFrames + 1 : 0;
+		if ( ! window.strataReady && quietFrames >= 3 ) {
+
+			stats.readyMs = now - stats.start;
+			stats.meshesDrawn = drawn;
+			stats.loadErrors = loadErrors;
+			window.strataReady = true;
+			status( '' );
+
+		}
+		requestAnimationFrame( frame );
+
+	}
+	status( 'loading tiles…' );
+	requestAnimationFrame( frame );
+
+}
+
+main().catch( e => {
+
+	console.error( 'strata viewer:', e && e.stack ? e.stack : e );
+	status( `error: ${ e.message || e }` );
+	window.strataError = String( e && e.message || e );
+
+} );
