@@ -39,6 +39,7 @@ struct BakeArguments
     int threads = 0;
     std::string maxMemory = "8GiB";
     double skirtDepth = 0.0;
+    std::string tileFormat = "meshopt";
     bool quiet = false;
     bool worker = false;
     int tilesPerWorker = 1;
@@ -176,6 +177,10 @@ Command registerBakeCommand(CLI::App& app)
     bake->add_option("--skirt-depth", args->skirtDepth,
                      "Depth of the skirts that close seams between levels, metres (default: two coarsest cells)")
         ->check(CLI::NonNegativeNumber);
+    bake->add_option("--tile-format", args->tileFormat,
+                     "How tiles are stored: meshopt (default: quantized, EXT_meshopt_compression, several times "
+                     "smaller) or plain (float glTF any client reads)")
+        ->check(CLI::IsMember({"plain", "meshopt"}));
     bake->add_flag("-q,--quiet", args->quiet, "Print nothing but errors");
     bake->add_flag("--worker", args->worker,
                    "One worker of a scheduler's array: bakes tiles I·K to I·K+K−1 (K = --tiles-per-worker) into the "
@@ -219,6 +224,7 @@ Command registerBakeCommand(CLI::App& app)
                 options.threads = args->threads;
                 options.maxMemoryBytes = parseMemory(args->maxMemory);
                 options.skirtDepth = args->skirtDepth;
+                options.tileFormat = args->tileFormat == "plain" ? TileFormat::Plain : TileFormat::Meshopt;
                 options.worker = args->worker;
                 // Erode nodes run their global pass while the scene loads: once
                 // per worker, refused first when over --max-memory (exit 2).

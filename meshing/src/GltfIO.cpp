@@ -9,8 +9,10 @@
 #include "FilePlace.h"
 
 #include <glm/common.hpp>
+#include <glm/geometric.hpp>
 #include <tiny_gltf.h>
 
+#include "GltfMeshoptDecode.h"
 #include "MeshReadSupport.h"
 
 #include <algorithm>
@@ -109,6 +111,41 @@ std::vector<T> readAccessor(const tinygltf::Model& model, int index, int compone
     return values;
 }
 
+/// Accessor `index` as float vectors T (glm::vec2, vec3 or vec4, glTF
+/// `type` to match): FLOAT, or (KHR_mesh_quantization, and any type for an
+/// application-specific attribute) BYTE, UNSIGNED_BYTE, SHORT or
+/// UNSIGNED_SHORT, normalized (glTF's dequantization: c / (2^(n-1) − 1),
+/// at least −1, for signed types, c / (2^n − 1) for unsigned) or not.
+/// `quantized` (may be null) says whether it was an integer type.
+template <typename T>
+std::vector<T> readFloatAccessor(const tinygltf::Model& model, int index, int type, const std::string& what,
+                                 const std::string& name, bool* quantized = nullptr)
+{
+    if (index < 0 || std::size_t(index) >= model.accessors.size()) detail::failRead(name, 0, what + " accessor is missing");
+    const tinygltf::Accessor& accessor = model.accessors[std::size_t(index)];
+    if (quantized) *quantized = accessor.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT;
+    constexpr int N = T::length();
+    auto convert = [&](auto zero, double scale, double lowest) {
+        using C = decltype(zero);
+        // The element as N components of C (glm vectors of integers have the same layout).
+        using Element = glm::vec<N, C, glm::defaultp>;
+        const std::vector<Element> raw = readAccessor<Element>(model, index, accessor.componentType, type, what, name);
+        std::vector<T> values(raw.size());
+        const bool normalized = accessor.normalized;
+        for (std::size_t i = 0; i < raw.size(); ++i)
+            for (int c = 0; c < N; ++c)
+                values[i][c] = normalized ? float(std::max(double(raw[i][c]) / scale, lowest)) : float(raw[i][c]);
+        return values;
+    };
+    switch (accessor.componentType) {
+    case TINYGLTF_COMPONENT_TYPE_BYTE: return convert(std::int8_t(0), 127.0, -1.0);
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return convert(std::uint8_t(0), 255.0, 0.0);
+    case TINYGLTF_COMPONENT_TYPE_SHORT: return convert(std::int16_t(0), 32767.0, -1.0);
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return convert(std::uint16_t(0), 65535.0, 0.0);
+    default: return readAccessor<T>(model, index, TINYGLTF_COMPONENT_TYPE_FLOAT, type, what, name);
+    }
+}
+
 // Image data is never needed: do not decode it.
 bool skipImage(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int, void*)
 {
@@ -178,8 +215,16 @@ std::vector<T> readVertexAttribute(const tinygltf::Model& model, const tinygltf:
 {
     const auto found = primitive.attributes.find(key);
     if (found == primitive.attributes.end()) return {};
-    std::vector<T> values = readAccessor<T>(model, found->second, TINYGLTF_COMPONENT_TYPE_FLOAT, type, key, name);
+    bool quantized = false;
+    std::vector<T> values = readFloatAccessor<T>(model, found->second, type, key, name, &quantized);
     checkFinite(values, key, name);
+    // Quantized normals (KHR_mesh_quantization) are unit only to their precision.
+    if (quantized && key == "NORMAL") {
+        for (T& v : values) {
+            const float length = glm::length(v);
+            if (length > 0.0f) v /= length;
+        }
+    }
     if (values.size() != vertexCount) {
         detail::failRead(name, 0, key + " has " + std::to_string(values.size()) + " elements, POSITION " +
                                       std::to_string(vertexCount));
@@ -206,8 +251,8 @@ TriangleMesh primitiveMesh(const tinygltf::Model& model, const tinygltf::Primiti
 
     TriangleMesh mesh;
     const auto position = primitive.attributes.find("POSITION");
-    mesh.positions = readAccessor<glm::vec3>(model, position == primitive.attributes.end() ? -1 : position->second,
-                                             TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, "POSITION", name);
+    mesh.positions = readFloatAccessor<glm::vec3>(model, position == primitive.attributes.end() ? -1 : position->second,
+                                                  TINYGLTF_TYPE_VEC3, "POSITION", name);
     checkFinite(mesh.positions, "POSITION", name);
     if (mesh.positions.size() > std::numeric_limits<std::uint32_t>::max()) {
         detail::failRead(name, 0, "too many vertices");
@@ -271,13 +316,34 @@ TriangleMesh meshFromModel(const tinygltf::Model& model, const std::string& name
         appendWhileAll(landform, mesh.landform, part.landform, part.positions.size());
     }
     for (const tinygltf::Node& node : model.nodes) {
-        if (node.mesh == 0 && node.translation.size() == 3) {
+        if (node.mesh != 0) continue;
+        if (node.translation.size() == 3) {
             mesh.origin = glm::dvec3(node.translation[0], node.translation[1], node.translation[2]);
             if (!std::isfinite(mesh.origin.x) || !std::isfinite(mesh.origin.y) || !std::isfinite(mesh.origin.z)) {
                 detail::failRead(name, 0, "the mesh node's translation is not finite");
             }
-            break;
         }
+        // A scale dequantizes KHR_mesh_quantization positions (compact tiles:
+        // integer grid coordinates times the grid step).
+        if (node.scale.size() == 3) {
+            const glm::vec3 scale(float(node.scale[0]), float(node.scale[1]), float(node.scale[2]));
+            if (!std::isfinite(scale.x) || !std::isfinite(scale.y) || !std::isfinite(scale.z)) {
+                detail::failRead(name, 0, "the mesh node's scale is not finite");
+            }
+            for (glm::vec3& p : mesh.positions) p *= scale;
+            if (!mesh.normals.empty() && scale != glm::vec3(1.0f)) {
+                // Normals transform by the inverse transpose: 1/scale, renormalized.
+                for (glm::vec3& n : mesh.normals) {
+                    n /= scale;
+                    const float length = glm::length(n);
+                    if (length > 0.0f && std::isfinite(length)) n /= length;
+                }
+            }
+            if (scale.x * scale.y * scale.z < 0.0f) {
+                for (std::size_t t = 0; t + 2 < mesh.indices.size(); t += 3) std::swap(mesh.indices[t + 1], mesh.indices[t + 2]);
+            }
+        }
+        break;
     }
     return mesh;
 }
@@ -465,6 +531,13 @@ TriangleMesh parseGlb(std::string_view bytes, const std::string& name)
 {
     if (bytes.size() > std::numeric_limits<unsigned int>::max()) detail::failRead(name, 0, "file too large for glTF");
     checkGlbContainer(bytes, name);
+    // EXT_meshopt_compression (compact tiles) is decoded first: tinygltf does not know it.
+    std::string decoded;
+    if (detail::usesMeshoptCompression(bytes)) {
+        decoded = detail::decodeMeshoptGlb(bytes, name);
+        checkGlbContainer(decoded, name);
+        bytes = decoded;
+    }
     return loadModel(name, /*allowExternalFiles*/ false,
                      [&](tinygltf::TinyGLTF& loader, tinygltf::Model& model, std::string& error, std::string& warning) {
                          return loader.LoadBinaryFromMemory(&model, &error, &warning,

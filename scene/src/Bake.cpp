@@ -14,6 +14,7 @@
 #include <strata/OutputLock.h>
 #include <strata/Sha256.h>
 #include <strata/Stopwatch.h>
+#include <strata/meshing/GltfCompact.h>
 #include <strata/meshing/GltfIO.h>
 #include <strata/meshing/GridIO.h>
 #include <strata/meshing/MeshMetrics.h>
@@ -76,6 +77,28 @@ void addBounds(const meshing::TriangleMesh& mesh, glm::dvec3& lo, glm::dvec3& hi
     }
 }
 
+/// The grid step of compact tiles: the finest voxel·2^k over which a
+/// tile's widest reach (its size, skirts on both sides and a coarsest cell
+/// of slack each way) spans 16 bits. One step for every tile of the bake,
+/// and tile corners lie on the voxel lattice, so the grid is world-aligned
+/// and a seam vertex two tiles share decodes to the same point in both.
+double tilePositionStep(const BakePlan& plan)
+{
+    const double coarsest = plan.voxelSize * double(1 << (plan.lods - 1));
+    return meshing::compactPositionStep(plan.tileSize + 2.0 * (plan.skirtDepth + coarsest), plan.voxelSize);
+}
+
+/// One level of a tile as .glb bytes: the surface and the skirt.
+std::string encodeTile(const world::TileMeshData& mesh, const std::string& name, const BakePlan& plan)
+{
+    const std::vector<meshing::GlbPart> parts{meshing::GlbPart{&mesh.surface, "strata-terrain", false},
+                                              meshing::GlbPart{&mesh.skirt, "strata-skirt", true}};
+    if (plan.tileFormat == TileFormat::Plain) return meshing::encodeGlb(parts, mesh.surface.origin, name);
+    meshing::CompactGlbOptions options;
+    options.positionStep = tilePositionStep(plan);
+    return meshing::encodeCompactGlb(parts, mesh.surface.origin, name, options);
+}
+
 /// Where a tile's files go, relative to the bake folder.
 std::string tileFile(int level, const std::string& name) { return "tiles/" + std::to_string(level) + "/" + name + ".glb"; }
 std::string gridFile(const std::string& name) { return "grids/" + name + ".vdb"; }
@@ -127,10 +150,7 @@ TileRecord bakeTile(const terrain::DensityField& field, const Scene& scene, cons
             addBounds(mesh.surface, out.min, out.max);
             addBounds(mesh.skirt, out.min, out.max);
             const std::string name = "tile " + tile.name + " level " + std::to_string(level);
-            const std::string bytes =
-                meshing::encodeGlb({meshing::GlbPart{&mesh.surface, "strata-terrain", false},
-                                    meshing::GlbPart{&mesh.skirt, "strata-skirt", true}},
-                                   mesh.surface.origin, name);
+            const std::string bytes = encodeTile(mesh, name, plan);
             const std::string relative = tileFile(level, tile.name);
             out.file = dir ? writeBakeFile(*dir, relative, bytes) : BakeFile{relative, bytes.size(), ""};
         }
@@ -187,11 +207,12 @@ void checkSameBake(const BakeManifest& old, const BakeManifest& now, const fs::p
         differs = "seed " + std::to_string(old.seed) + " (this bake: " + std::to_string(now.seed) + ")";
     else if (old.tileSize != now.tileSize || old.lods != now.lods || old.voxelSize != now.voxelSize ||
              old.counts != now.counts || old.min != now.min || old.skirtDepth != now.skirtDepth ||
-             old.grids != now.grids)
+             old.grids != now.grids || old.tileFormat != now.tileFormat)
         differs = "other settings (tile size " + formatNumber(old.tileSize) + " m, " + std::to_string(old.lods) +
                   " levels, skirt depth " + formatNumber(old.skirtDepth) + " m, grids " + (old.grids ? "on" : "off") +
-                  "; this bake: " + formatNumber(now.tileSize) + " m, " + std::to_string(now.lods) + " levels, " +
-                  formatNumber(now.skirtDepth) + " m, grids " + (now.grids ? "on" : "off") + ")";
+                  ", " + old.tileFormat + " tiles; this bake: " + formatNumber(now.tileSize) + " m, " +
+                  std::to_string(now.lods) + " levels, " + formatNumber(now.skirtDepth) + " m, grids " +
+                  (now.grids ? "on" : "off") + ", " + now.tileFormat + " tiles)";
     if (differs.empty() || force) return;
     throw Error(ErrorKind::BadInput,
                 "output folder '" + dir.string() + "' holds a bake of " + differs + ": use another folder, or --force to replace it",
@@ -278,6 +299,11 @@ std::string indexRanges(const std::vector<int>& indices, const char* separator)
 }
 
 } // namespace
+
+const char* tileFormatName(TileFormat format)
+{
+    return format == TileFormat::Plain ? "plain" : "meshopt";
+}
 
 BakeSummary bake(const Scene& scene, const BakeOptions& options, const BakePlan& plan, PipelineObserver* observer)
 {

@@ -97,6 +97,7 @@ BakeManifest manifestFor(const BakePlan& plan, const Scene& scene, bool grids)
     m.skirtDepth = plan.skirtDepth;
     m.lods = plan.lods;
     m.grids = grids;
+    m.tileFormat = tileFormatName(plan.tileFormat);
     m.counts = plan.counts;
     for (int a = 0; a < 3; ++a) {
         m.min[a] = double(plan.minVoxel[a]) * plan.voxelSize;
@@ -136,6 +137,7 @@ json headerJson(const BakeManifest& m)
             {"levels", m.lods},
             {"skirt_depth", m.skirtDepth},
             {"grids", m.grids},
+            {"tile_format", m.tileFormat},
             {"tiles_per_axis", m.counts},
             {"tile_count", m.counts[0] * m.counts[1] * m.counts[2]},
             {"bounds", {{"min", vec(m.min)}, {"max", vec(m.max)}}}};
@@ -194,6 +196,9 @@ BakeManifest readHeader(const Reader& r, const json& j)
     m.lods = r.get<int>(j, "levels");
     m.skirtDepth = r.get<double>(j, "skirt_depth");
     m.grids = r.get<bool>(j, "grids");
+    // Bakes from before compact tiles have no key: their tiles are plain.
+    m.tileFormat = j.contains("tile_format") ? r.get<std::string>(j, "tile_format") : std::string("plain");
+    if (m.tileFormat != "plain" && m.tileFormat != "meshopt") r.fail("tile_format", "not plain or meshopt");
     m.counts = r.get<std::array<int, 3>>(j, "tiles_per_axis");
     m.min = r.vec3(r.at(j, "bounds"), "min");
     m.max = r.vec3(r.at(j, "bounds"), "max");

@@ -52,6 +52,7 @@ struct BakeManifest
     double voxelSize = 0.0, tileSize = 0.0, skirtDepth = 0.0;
     int lods = 0;
     bool grids = true;
+    std::string tileFormat = "meshopt"; ///< "plain" or "meshopt" (tileFormatName())
     std::array<int, 3> counts{1, 1, 1};
     glm::dvec3 min{0.0}, max{0.0}; ///< the baked box (metres)
     std::map<int, TileRecord> tiles;

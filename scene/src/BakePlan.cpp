@@ -164,6 +164,7 @@ BakePlan planBake(const Scene& scene, const BakeOptions& options)
         plan.counts[a] = int(n);
     }
     plan.skirtDepth = options.skirtDepth > 0.0 ? options.skirtDepth : 2.0 * double(coarse) * scene.voxelSize;
+    plan.tileFormat = options.tileFormat;
     plan.selected = detail::parseTileSelection(options.tiles, plan.tileCount());
 
     // Per tile: the level-0 sample array (the largest), and the grid's

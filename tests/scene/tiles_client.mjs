@@ -64,6 +64,8 @@ async function importPackage( name, subpath = '.' ) {
 		const pkg = JSON.parse( readFileSync( pkgJson, 'utf8' ) );
 		let target = pkg.exports ? pkg.exports[ subpath ] : ( subpath === '.' ? ( pkg.module || pkg.main ) : subpath );
 		if ( target && typeof target === 'object' ) target = target.import || target.default;
+		// A file the exports map only covers by a wildcard ("./examples/jsm/*"): by its path.
+		if ( typeof target !== 'string' && subpath !== '.' && existsSync( join( pkgDir, subpath ) ) ) target = subpath;
 		if ( typeof target !== 'string' ) continue;
 		return import( pathToFileURL( join( pkgDir, target ) ).href );
 
@@ -111,6 +113,12 @@ globalThis.cancelAnimationFrame = globalThis.cancelAnimationFrame || ( h => clea
 
 const { TilesRenderer, LOADED, FAILED } = await importPackage( '3d-tiles-renderer' );
 const THREE = await importPackage( 'three' );
+// Bakes write compact tiles by default (EXT_meshopt_compression, KHR_mesh_quantization):
+// a client decodes them with meshoptimizer's decoder, which three.js ships (WebAssembly,
+// no worker), registered through the renderer's GLTFExtensionsPlugin as a web page does.
+const { GLTFExtensionsPlugin } = await importPackage( '3d-tiles-renderer', './plugins' );
+const { MeshoptDecoder } = await importPackage( 'three', './examples/jsm/libs/meshopt_decoder.module.js' );
+await MeshoptDecoder.ready;
 const { PerspectiveCamera, Group, Vector3 } = THREE;
 const versionOf = name => {
 
@@ -441,6 +449,7 @@ async function runViewpoint( vp ) {
 	const loaded = new Set();
 	const events = { rootLoaded: false, errors: [] };
 	const tiles = new TilesRenderer( baseUrl + 'tileset.json' );
+	tiles.registerPlugin( new GLTFExtensionsPlugin( { meshoptDecoder: MeshoptDecoder } ) );
 	let shim = null;
 	if ( ! strict ) {
 

@@ -57,6 +57,19 @@
 
 namespace strata::scene {
 
+/// How tile .glb files are stored (docs/bake.md, "Tile format"): Plain
+/// float positions and normals; Meshopt (the default) KHR_mesh_quantization
+/// and EXT_meshopt_compression (meshing/GltfCompact.h), 16-bit positions on
+/// a grid shared by every tile of the bake, octahedral normals.
+enum class TileFormat
+{
+    Plain,
+    Meshopt,
+};
+
+/// "plain" or "meshopt".
+const char* tileFormatName(TileFormat format);
+
 struct BakeOptions
 {
     std::filesystem::path outputDir;
@@ -76,6 +89,7 @@ struct BakeOptions
     std::uint64_t maxMemoryBytes = 8ull << 30;
     /// Skirt depth in metres; 0 = two cells of the coarsest level.
     double skirtDepth = 0.0;
+    TileFormat tileFormat = TileFormat::Meshopt; ///< part of the bake's identity
 };
 
 /// One tile of a plan.
@@ -99,6 +113,7 @@ struct BakePlan
     std::array<std::int64_t, 3> maxVoxel{}; ///< the snapped far corner (voxels)
     std::array<int, 3> counts{1, 1, 1};     ///< tiles per axis
     double skirtDepth = 0.0;                ///< metres
+    TileFormat tileFormat = TileFormat::Meshopt;
     std::vector<int> selected;              ///< the indices to bake, ascending
     std::uint64_t tileMemoryBytes = 0;      ///< estimated peak per tile
     int tileCount() const { return counts[0] * counts[1] * counts[2]; }

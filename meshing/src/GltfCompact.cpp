@@ -1,0 +1,336 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
+#include <strata/meshing/GltfCompact.h>
+
+#include <strata/Error.h>
+
+#include <glm/geometric.hpp>
+#include <meshoptimizer.h>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <limits>
+#include <map>
+
+namespace strata::meshing {
+
+namespace {
+
+using nlohmann::json;
+
+constexpr int GL_ARRAY_BUFFER = 34962;
+constexpr int GL_ELEMENT_ARRAY_BUFFER = 34963;
+constexpr int GL_BYTE = 5120, GL_SHORT = 5122, GL_UNSIGNED_SHORT = 5123, GL_UNSIGNED_INT = 5125, GL_FLOAT = 5126;
+constexpr std::int64_t POSITION_RANGE = 65535;
+
+std::size_t align4(std::size_t n) { return (n + 3) & ~std::size_t(3); }
+
+/// The two buffers of a compact .glb: the compressed bytes (the GLB's BIN
+/// chunk, buffer 0) and the fallback buffer's length (buffer 1, no data).
+struct Buffers
+{
+    std::vector<unsigned char> bin;
+    std::size_t fallbackLength = 0;
+    json views = json::array();
+
+    /// Compresses `count` elements of `stride` bytes (`mode` ATTRIBUTES or
+    /// TRIANGLES, `filter` NONE or OCTAHEDRAL) and adds a buffer view for
+    /// them; returns its index.
+    int add(const void* data, std::size_t count, std::size_t stride, bool indices, const char* filter)
+    {
+        std::vector<unsigned char> packed;
+        if (indices) {
+            // The index codec takes 32-bit indices and decodes to 2 or 4 bytes.
+            const auto* source = static_cast<const std::uint32_t*>(data);
+            std::size_t vertices = 0;
+            for (std::size_t i = 0; i < count; ++i) vertices = std::max<std::size_t>(vertices, source[i] + 1);
+            packed.resize(meshopt_encodeIndexBufferBound(count, vertices));
+            packed.resize(meshopt_encodeIndexBuffer(packed.data(), packed.size(), source, count));
+        } else {
+            packed.resize(meshopt_encodeVertexBufferBound(count, stride));
+            packed.resize(meshopt_encodeVertexBuffer(packed.data(), packed.size(), data, count, stride));
+        }
+        if (packed.empty()) throw Error(ErrorKind::Internal, "meshoptimizer could not encode a glTF buffer view");
+
+        bin.resize(align4(bin.size()), 0);
+        json extension = {{"buffer", 0},
+                          {"byteOffset", bin.size()},
+                          {"byteLength", packed.size()},
+                          {"byteStride", stride},
+                          {"count", count},
+                          {"mode", indices ? "TRIANGLES" : "ATTRIBUTES"}};
+        if (std::strcmp(filter, "NONE") != 0) extension["filter"] = filter;
+        bin.insert(bin.end(), packed.begin(), packed.end());
+
+        fallbackLength = align4(fallbackLength);
+        json view = {{"buffer", 1}, {"byteOffset", fallbackLength}, {"byteLength", count * stride}};
+        if (!indices) view["byteStride"] = stride; // index views must not have one
+        view["target"] = indices ? GL_ELEMENT_ARRAY_BUFFER : GL_ARRAY_BUFFER;
+        view["extensions"] = {{"EXT_meshopt_compression", extension}};
+        fallbackLength += count * stride;
+        views.push_back(std::move(view));
+        return int(views.size() - 1);
+    }
+};
+
+/// The primitive with its triangles in vertex-cache order and its vertices
+/// in first-use order (meshoptimizer), every attribute remapped alike.
+TriangleMesh reorder(const TriangleMesh& mesh)
+{
+    TriangleMesh out = mesh;
+    const std::size_t n = mesh.positions.size();
+    meshopt_optimizeVertexCache(out.indices.data(), mesh.indices.data(), mesh.indices.size(), n);
+    std::vector<unsigned int> remap(n);
+    const std::size_t used = meshopt_optimizeVertexFetchRemap(remap.data(), out.indices.data(), out.indices.size(), n);
+    meshopt_remapIndexBuffer(out.indices.data(), out.indices.data(), out.indices.size(), remap.data());
+    auto apply = [&](auto& values, const auto& source) {
+        if (source.size() != n) return;
+        values.assign(used, {});
+        for (std::size_t i = 0; i < n; ++i)
+            if (remap[i] != ~0u) values[remap[i]] = source[i];
+    };
+    apply(out.positions, mesh.positions);
+    apply(out.normals, mesh.normals);
+    apply(out.surface, mesh.surface);
+    apply(out.landform, mesh.landform);
+    return out;
+}
+
+/// Grid coordinates of a position: round(p / step), in 64 bits.
+std::array<std::int64_t, 3> gridPoint(const glm::vec3& p, double step)
+{
+    return {std::llround(double(p.x) / step), std::llround(double(p.y) / step), std::llround(double(p.z) / step)};
+}
+
+json material(const std::string& name, bool doubleSided)
+{
+    json m = {{"name", name},
+              {"pbrMetallicRoughness", {{"baseColorFactor", {0.8, 0.8, 0.8, 1.0}}, {"metallicFactor", 0.0},
+                                        {"roughnessFactor", 0.9}}}};
+    if (doubleSided) m["doubleSided"] = true;
+    return m;
+}
+
+void appendU32(std::string& out, std::uint32_t v)
+{
+    char bytes[4];
+    std::memcpy(bytes, &v, 4); // little-endian, as glTF and this machine
+    out.append(bytes, 4);
+}
+
+/// The GLB container: header, JSON chunk (padded with spaces), BIN chunk
+/// (padded with zeros) when there is one.
+std::string assembleGlb(const std::string& text, const std::vector<unsigned char>& bin)
+{
+    std::string jsonChunk = text;
+    jsonChunk.resize(align4(jsonChunk.size()), ' ');
+    const std::size_t binLength = align4(bin.size());
+    const std::size_t total = 12 + 8 + jsonChunk.size() + (bin.empty() ? 0 : 8 + binLength);
+    if (total > std::numeric_limits<std::uint32_t>::max())
+        throw Error(ErrorKind::Internal, "compact glTF is larger than a GLB can hold (4 GiB)");
+    std::string out;
+    out.reserve(total);
+    out.append("glTF", 4);
+    appendU32(out, 2);
+    appendU32(out, std::uint32_t(total));
+    appendU32(out, std::uint32_t(jsonChunk.size()));
+    out.append("JSON", 4);
+    out += jsonChunk;
+    if (!bin.empty()) {
+        appendU32(out, std::uint32_t(binLength));
+        out.append("BIN\0", 4);
+        out.append(reinterpret_cast<const char*>(bin.data()), bin.size());
+        out.append(binLength - bin.size(), '\0');
+    }
+    return out;
+}
+
+} // namespace
+
+double compactPositionStep(double extent, double unit)
+{
+    if (!(unit > 0.0) || !std::isfinite(unit) || !(extent >= 0.0) || !std::isfinite(extent))
+        throw Error(ErrorKind::BadInput, "compact glTF: the position grid needs a positive unit and extent (unit " +
+                                             std::to_string(unit) + " m, extent " + std::to_string(extent) + " m)");
+    double step = unit;
+    while (extent / step > double(POSITION_RANGE)) step *= 2.0;
+    while (extent / (step * 0.5) <= double(POSITION_RANGE) && step > unit * 0x1p-20) step *= 0.5;
+    return step;
+}
+
+std::string encodeCompactGlb(const std::vector<GlbPart>& parts, const glm::dvec3& origin, const std::string& name,
+                             const CompactGlbOptions& options, CompactGlbStats* stats)
+{
+    if (!(options.positionStep > 0.0) || !std::isfinite(options.positionStep))
+        throw Error(ErrorKind::BadInput,
+                    "compact glTF: position step " + std::to_string(options.positionStep) + " m is not positive");
+    if (options.normalBits < 2 || options.normalBits > 16)
+        throw Error(ErrorKind::BadInput,
+                    "compact glTF: normal bits " + std::to_string(options.normalBits) + " is outside 2..16");
+
+    std::vector<TriangleMesh> meshes;
+    std::vector<const GlbPart*> used;
+    for (const GlbPart& part : parts) {
+        // glTF accessors cannot be empty: an empty part has no primitive.
+        if (part.mesh->indices.empty() || part.mesh->positions.empty()) continue;
+        meshes.push_back(options.optimizeOrder ? reorder(*part.mesh) : *part.mesh);
+        used.push_back(&part);
+    }
+
+    // The grid: one offset (the lowest grid point) for all primitives, the
+    // step doubled while any axis spans more than 16 bits.
+    double step = options.positionStep;
+    std::array<std::int64_t, 3> base{};
+    for (;;) {
+        std::array<std::int64_t, 3> lo{}, hi{};
+        lo.fill(std::numeric_limits<std::int64_t>::max());
+        hi.fill(std::numeric_limits<std::int64_t>::min());
+        for (const TriangleMesh& mesh : meshes)
+            for (const glm::vec3& p : mesh.positions) {
+                const auto g = gridPoint(p, step);
+                for (int a = 0; a < 3; ++a) {
+                    lo[a] = std::min(lo[a], g[a]);
+                    hi[a] = std::max(hi[a], g[a]);
+                }
+            }
+        bool fits = true;
+        for (int a = 0; a < 3; ++a) fits = fits && (meshes.empty() || hi[a] - lo[a] <= POSITION_RANGE);
+        if (fits) {
+            if (!meshes.empty()) base = lo;
+            break;
+        }
+        step *= 2.0;
+    }
+
+    json doc;
+    doc["asset"] = {{"version", "2.0"}, {"generator", "Strata"}};
+    const glm::dvec3 translation = origin + glm::dvec3(double(base[0]), double(base[1]), double(base[2])) * step;
+    json node = {{"name", name}};
+    Buffers buffers;
+    json accessors = json::array(), materials = json::array(), primitives = json::array();
+    std::map<std::pair<std::string, bool>, int> materialIndex;
+    CompactGlbStats measured;
+    measured.positionStep = step;
+
+    for (std::size_t k = 0; k < meshes.size(); ++k) {
+        const TriangleMesh& mesh = meshes[k];
+        const std::size_t n = mesh.positions.size();
+        json attributes;
+
+        std::vector<std::uint16_t> positions(4 * n, 0);
+        std::array<std::uint16_t, 3> lo{0xffff, 0xffff, 0xffff}, hi{0, 0, 0};
+        for (std::size_t i = 0; i < n; ++i) {
+            const auto g = gridPoint(mesh.positions[i], step);
+            for (int a = 0; a < 3; ++a) {
+                const auto q = std::uint16_t(g[a] - base[a]);
+                positions[4 * i + a] = q;
+                lo[a] = std::min(lo[a], q);
+                hi[a] = std::max(hi[a], q);
+                const double decoded = double(base[a] + q) * step;
+                measured.maxPositionError =
+                    std::max(measured.maxPositionError, std::abs(decoded - double(mesh.positions[i][a])));
+            }
+        }
+        accessors.push_back({{"bufferView", buffers.add(positions.data(), n, 8, false, "NONE")},
+                             {"componentType", GL_UNSIGNED_SHORT},
+                             {"count", n},
+                             {"type", "VEC3"},
+                             {"min", {lo[0], lo[1], lo[2]}},
+                             {"max", {hi[0], hi[1], hi[2]}}});
+        attributes["POSITION"] = accessors.size() - 1;
+
+        if (mesh.normals.size() == n) {
+            std::vector<float> unit(4 * n, 0.0f);
+            for (std::size_t i = 0; i < n; ++i) {
+                glm::vec3 v = mesh.normals[i];
+                const float length = glm::length(v);
+                v = length > 0.0f && std::isfinite(length) ? v / length : glm::vec3(0.0f, 1.0f, 0.0f);
+                for (int a = 0; a < 3; ++a) unit[4 * i + a] = v[a];
+            }
+            const bool wide = options.normalBits > 8;
+            const std::size_t stride = wide ? 8 : 4;
+            std::vector<unsigned char> packed(n * stride);
+            meshopt_encodeFilterOct(packed.data(), n, stride, options.normalBits, unit.data());
+            // Measure what a client decodes: the filter's inverse, then glTF's normalized dequantization.
+            std::vector<unsigned char> check = packed;
+            meshopt_decodeFilterOct(check.data(), n, stride);
+            for (std::size_t i = 0; i < n; ++i) {
+                glm::vec3 d;
+                for (int a = 0; a < 3; ++a) {
+                    if (wide) {
+                        std::int16_t c;
+                        std::memcpy(&c, check.data() + i * 8 + 2 * a, 2);
+                        d[a] = std::max(float(c) / 32767.0f, -1.0f);
+                    } else {
+                        d[a] = std::max(float(std::int8_t(check[i * 4 + a])) / 127.0f, -1.0f);
+                    }
+                }
+                const glm::vec3 v(unit[4 * i], unit[4 * i + 1], unit[4 * i + 2]);
+                const double c = std::clamp(double(glm::dot(glm::normalize(d), v)), -1.0, 1.0);
+                measured.maxNormalAngle = std::max(measured.maxNormalAngle, std::acos(c));
+            }
+            json accessor = {{"bufferView", buffers.add(packed.data(), n, stride, false, "OCTAHEDRAL")},
+                             {"componentType", wide ? GL_SHORT : GL_BYTE},
+                             {"normalized", true},
+                             {"count", n},
+                             {"type", "VEC3"}};
+            accessors.push_back(accessor);
+            attributes["NORMAL"] = accessors.size() - 1;
+        }
+        // Application-specific float attributes: lossless (no filter).
+        if (mesh.surface.size() == n) {
+            accessors.push_back({{"bufferView", buffers.add(mesh.surface.data(), n, sizeof(glm::vec2), false, "NONE")},
+                                 {"componentType", GL_FLOAT},
+                                 {"count", n},
+                                 {"type", "VEC2"}});
+            attributes[SURFACE_ATTRIBUTE] = accessors.size() - 1;
+        }
+        if (mesh.landform.size() == n) {
+            accessors.push_back({{"bufferView", buffers.add(mesh.landform.data(), n, sizeof(glm::vec4), false, "NONE")},
+                                 {"componentType", GL_FLOAT},
+                                 {"count", n},
+                                 {"type", "VEC4"}});
+            attributes[LANDFORM_ATTRIBUTE] = accessors.size() - 1;
+        }
+
+        const bool small = n <= 0xffff;
+        accessors.push_back({{"bufferView", buffers.add(mesh.indices.data(), mesh.indices.size(), small ? 2 : 4, true, "NONE")},
+                             {"componentType", small ? GL_UNSIGNED_SHORT : GL_UNSIGNED_INT},
+                             {"count", mesh.indices.size()},
+                             {"type", "SCALAR"}});
+        const std::size_t indices = accessors.size() - 1;
+
+        const GlbPart& part = *used[k];
+        const auto [found, added] =
+            materialIndex.emplace(std::make_pair(part.material, part.doubleSided), int(materials.size()));
+        if (added) materials.push_back(material(part.material, part.doubleSided));
+        primitives.push_back({{"attributes", attributes}, {"indices", indices}, {"material", found->second}, {"mode", 4}});
+    }
+
+    if (!meshes.empty()) {
+        doc["extensionsUsed"] = {"EXT_meshopt_compression", "KHR_mesh_quantization"};
+        doc["extensionsRequired"] = {"EXT_meshopt_compression", "KHR_mesh_quantization"};
+        doc["accessors"] = accessors;
+        doc["bufferViews"] = buffers.views;
+        doc["buffers"] = json::array(
+            {{{"byteLength", align4(buffers.bin.size())}},
+             {{"byteLength", align4(buffers.fallbackLength)},
+              {"extensions", {{"EXT_meshopt_compression", {{"fallback", true}}}}}}});
+        doc["materials"] = materials;
+        doc["meshes"] = json::array({{{"name", name}, {"primitives", primitives}}});
+        node["mesh"] = 0;
+        node["scale"] = {step, step, step};
+    }
+    if (translation != glm::dvec3(0.0)) node["translation"] = {translation.x, translation.y, translation.z};
+    doc["nodes"] = json::array({node});
+    doc["scene"] = 0;
+    doc["scenes"] = json::array({{{"nodes", {0}}}});
+    if (stats) *stats = measured;
+    return assembleGlb(doc.dump(), buffers.bin);
+}
+
+} // namespace strata::meshing
