@@ -2,6 +2,7 @@
 // SPDX-License-Identifier: MIT
 
 #include <strata/scene/Bake.h>
+#include <strata/scene/BakeViewer.h>
 #include <strata/world/LandformAttributes.h>
 #include <strata/scene/Pipeline.h>
 
@@ -283,6 +284,15 @@ void writeManifestAndTileset(const fs::path& dir, const BakeManifest& manifest)
     writeFileAtomically(dir / "tileset.json", detail::makeTileset(manifest).dump(1) + "\n");
 }
 
+/// DIR/viewer/ beside tileset.json (BakeViewer.h); a strata built without
+/// the web viewer (no node/npm) writes none and says so once.
+void writeViewer(const fs::path& dir, const Scene& scene, PipelineObserver* observer)
+{
+    if (!writeBakeViewer(dir, scene) && observer)
+        observer->notice("no web viewer: this strata was built without it (node and npm), so " +
+                         (dir / "viewer").string() + " was not written");
+}
+
 /// "3, 7-9, 12": ascending indices as ranges.
 std::string indexRanges(const std::vector<int>& indices, const char* separator)
 {
@@ -402,6 +412,7 @@ BakeSummary bake(const Scene& scene, const BakeOptions& options, const BakePlan&
                 if (std::optional<TileRecord> record = verifiedRecord(dir, index, manifest, /*hash*/ false))
                     manifest.tiles[index] = std::move(*record);
         writeManifestAndTileset(dir, manifest);
+        if (!stop && failures.empty()) writeViewer(dir, scene, observer);
     }
     summarise(manifest, summary);
     summary.seconds = clock.seconds();
@@ -455,6 +466,7 @@ BakeSummary finalizeBake(const fs::path& dir, PipelineObserver* observer)
                     {dir.string()});
     }
     writeManifestAndTileset(dir, manifest);
+    writeViewer(dir, loadBakedScene(dir), observer);
     BakeSummary summary;
     summarise(manifest, summary);
     summary.kept = count;
