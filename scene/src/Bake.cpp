@@ -93,7 +93,7 @@ double tilePositionStep(const BakePlan& plan)
 std::string encodeTile(const world::TileMeshData& mesh, const std::string& name, const BakePlan& plan)
 {
     const std::vector<meshing::GlbPart> parts{meshing::GlbPart{&mesh.surface, "strata-terrain", false},
-                                              meshing::GlbPart{&mesh.skirt, "strata-skirt", true}};
+                                              meshing::GlbPart{&mesh.skirt, "strata-skirt", false}};
     if (plan.tileFormat == TileFormat::Plain) return meshing::encodeGlb(parts, mesh.surface.origin, name);
     meshing::CompactGlbOptions options;
     options.positionStep = tilePositionStep(plan);

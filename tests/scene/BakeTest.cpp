@@ -16,6 +16,8 @@
 #include <strata/world/TileMesh.h>
 
 #include <OpenImageIO/imageio.h>
+#include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -247,6 +249,147 @@ TEST(Bake, SkirtsCoverTheGapBetweenLevelsOnASharedFace)
     EXPECT_GT(compared, 100);
     EXPECT_GT(worst, 0.0) << "the levels differ on the face";
     EXPECT_LT(worst, plan.skirtDepth) << "a gap deeper than the skirts";
+}
+
+/// Hills over two slabs cut at y = 0: the cut runs through nearly flat
+/// ground (hill tops and hollows) in places and through slopes in others.
+const char* FLAT_CUT_SCENE = R"(
+seed = 3
+[terrain]
+root = "land"
+[terrain.nodes.land]
+type = "heightfield"
+amplitude = 8.0
+wavelength = 30.0
+[region]
+min = [-16.0, -8.0, -16.0]
+max = [16.0, 8.0, 16.0]
+[sampling]
+voxel_size = 0.5
+)";
+
+TEST(Bake, WithEveryLevel0TilePresentNoSkirtIsVisibleOrOutsideTheWorld)
+{
+    // Level 0 everywhere: tiles meet exactly, so a skirt is needed nowhere
+    // and must hide in the rock (below this hill scene's single surface):
+    // a skirt in a horizontal slab cut through nearly flat ground used to
+    // stick out as a flap, made by both slabs; skirts on the world's sides
+    // used to hang outside the region.
+    const Scene scene = parseScene(FLAT_CUT_SCENE, "flat-cut.toml");
+    BakeOptions options;
+    options.tileSize = 8.0;
+    options.lods = 2;
+    const BakePlan plan = planBake(scene, options);
+    ASSERT_EQ(plan.counts[1], 2) << "two slabs, cut at y = 0";
+    const glm::dvec3 lo = glm::dvec3(plan.minVoxel[0], plan.minVoxel[1], plan.minVoxel[2]) * plan.voxelSize;
+    const glm::dvec3 hi = glm::dvec3(plan.maxVoxel[0], plan.maxVoxel[1], plan.maxVoxel[2]) * plan.voxelSize;
+    std::size_t skirts = 0, inCut = 0, flat = 0, outside = 0, visible = 0;
+    for (int i = 0; i < plan.tileCount(); ++i) {
+        world::TileMeshOptions mesh;
+        mesh.voxelSize = plan.voxelSize;
+        mesh.skirtDepth = plan.skirtDepth;
+        const world::TileMeshData tile = world::meshTile(*scene.field, plan.tile(i).box, mesh);
+        const meshing::TriangleMesh& s = tile.skirt;
+        for (std::size_t t = 0; t + 2 < s.indices.size(); t += 3) {
+            ++skirts;
+            glm::dvec3 p[3];
+            for (int k = 0; k < 3; ++k) p[k] = s.origin + glm::dvec3(s.positions[s.indices[t + k]]);
+            for (int k = 0; k < 3; ++k)
+                for (int a = 0; a < 3; ++a) outside += p[k][a] < lo[a] || p[k][a] > hi[a];
+            if (p[0].y == 0.0 && p[1].y == 0.0 && p[2].y == 0.0) {
+                ++inCut;
+                // The surface it hangs from (the vertex normals) lies within 30° of the cut.
+                const glm::vec3 n = s.normals[s.indices[t]];
+                flat += std::abs(n.y) > std::cos(glm::radians(30.0)) * 1.0001;
+            }
+            // Seen from above: any point of the skirt above the ground. The
+            // level-0 surface follows the field to a few hundredths of a metre.
+            for (const glm::dvec3& w : {glm::dvec3(1.0 / 3.0), glm::dvec3(0.1, 0.1, 0.8), glm::dvec3(0.45, 0.1, 0.45)}) {
+                const glm::dvec3 q = w.x * p[0] + w.y * p[1] + w.z * p[2];
+                visible += scene.field->density(q) > 0.03;
+            }
+        }
+    }
+    EXPECT_GT(skirts, 100u) << "skirts are still made on inner faces";
+    EXPECT_GT(inCut, 0u) << "and in the slab cut where the ground crosses it steeply";
+    EXPECT_EQ(flat, 0u) << "skirts in the cut plane where the ground lies nearly in it";
+    EXPECT_EQ(outside, 0u) << "skirt vertices outside the world's box";
+    EXPECT_EQ(visible, 0u) << "skirt points above the ground, of " << skirts << " skirt triangles";
+}
+
+TEST(Bake, SkirtsAreOneSidedWithTheSurfacesNormalsAndFaceOutOfTheirTile)
+{
+    // glTF clients flip a double-sided material's normals on back faces
+    // (black skirts seen from behind): skirts are one-sided, wound to face
+    // out of their tile (toward the air side of a seam), and carry the
+    // normal of the surface vertex they hang from, so they are lit like it.
+    const fs::path dir = test::freshTestDir();
+    const Scene scene = parseScene(HILL_SCENE, "hills.toml");
+    BakeOptions options = smallBake();
+    options.tileSize = 8.0; // 4 × 2 × 4 tiles
+    options.grids = false;
+    options.tiles = "5"; // (1, 0, 1): neighbours on all four sides and above
+    const BakePlan plan = planBake(scene, options);
+    ASSERT_EQ(plan.tile(5).box.neighbourFaces, 1u | 2u | 8u | 16u | 32u);
+    const BakeSummary summary = bakeInto(scene, dir, options);
+    ASSERT_EQ(summary.baked, 1);
+    const nlohmann::json manifest = readJson(dir / "manifest.json");
+    const nlohmann::json& record = manifest["tiles"][0];
+    const glm::dvec3 boxMin(record["box"]["min"][0], record["box"]["min"][1], record["box"]["min"][2]);
+    const glm::dvec3 boxMax(record["box"]["max"][0], record["box"]["max"][1], record["box"]["max"][2]);
+    for (int level = 0; level < 3; ++level) {
+        const std::string bytes = readBytes(dir / "tiles" / std::to_string(level) / "1_0_1.glb");
+        ASSERT_GT(bytes.size(), 20u);
+        const std::uint32_t jsonLength = std::uint32_t(std::uint8_t(bytes[12])) | std::uint32_t(std::uint8_t(bytes[13])) << 8 |
+                                         std::uint32_t(std::uint8_t(bytes[14])) << 16 | std::uint32_t(std::uint8_t(bytes[15])) << 24;
+        const nlohmann::json gltf = nlohmann::json::parse(bytes.substr(20, jsonLength));
+        ASSERT_EQ(gltf["materials"].size(), 2u);
+        for (const auto& material : gltf["materials"])
+            EXPECT_FALSE(material.value("doubleSided", false)) << material["name"] << " is double-sided";
+
+        world::TileMeshOptions mesh;
+        mesh.voxelSize = plan.voxelSize;
+        mesh.level = level;
+        mesh.skirtDepth = plan.skirtDepth;
+        const world::TileMeshData tile = world::meshTile(*scene.field, plan.tile(5).box, mesh);
+        std::map<std::array<float, 3>, glm::vec3> surfaceNormal;
+        for (std::size_t v = 0; v < tile.surface.positions.size(); ++v) {
+            const glm::vec3& p = tile.surface.positions[v];
+            surfaceNormal[{p.x, p.y, p.z}] = tile.surface.normals[v];
+        }
+        const meshing::TriangleMesh& s = tile.skirt;
+        ASSERT_GT(s.triangleCount(), 0u);
+        std::size_t outward = 0;
+        for (std::size_t t = 0; t + 2 < s.indices.size(); t += 3) {
+            glm::dvec3 p[3];
+            for (int k = 0; k < 3; ++k) p[k] = s.origin + glm::dvec3(s.positions[s.indices[t + k]]);
+            // The face it lies on and that face's outward normal.
+            glm::dvec3 face(0.0);
+            for (int a = 0; a < 3; ++a) {
+                if (p[0][a] == boxMin[a] && p[1][a] == boxMin[a] && p[2][a] == boxMin[a]) face[a] = -1.0;
+                if (p[0][a] == boxMax[a] && p[1][a] == boxMax[a] && p[2][a] == boxMax[a]) face[a] = 1.0;
+            }
+            ASSERT_NE(face, glm::dvec3(0.0)) << "a skirt triangle off the tile's faces";
+            outward += glm::dot(glm::cross(p[1] - p[0], p[2] - p[0]), face) > 0.0;
+            // The top edge repeats the surface's border vertices with their normals,
+            // and the whole skirt carries the surface normal it hangs from.
+            const glm::vec3 n = s.normals[s.indices[t]];
+            for (int k = 0; k < 3; ++k) {
+                const std::uint32_t v = s.indices[t + k];
+                const glm::vec3& q = s.positions[v];
+                const auto found = surfaceNormal.find({q.x, q.y, q.z});
+                if (found != surfaceNormal.end()) {
+                    EXPECT_EQ(s.normals[v], found->second) << "a skirt top vertex with another normal than the surface's";
+                } else {
+                    // A bottom vertex: the normal of its top (vertices come in top, bottom pairs).
+                    ASSERT_EQ(v % 2, 1u);
+                    EXPECT_EQ(s.normals[v], s.normals[v - 1]);
+                }
+            }
+            EXPECT_NEAR(glm::length(n), 1.0f, 1e-5f);
+        }
+        EXPECT_EQ(outward, s.triangleCount()) << "level " << level << ": skirt triangles facing into their tile";
+    }
 }
 
 TEST(Bake, TheTilesetIsValid3DTilesAndNamesEveryTileOnce)

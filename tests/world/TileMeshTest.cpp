@@ -12,10 +12,12 @@
 #include <strata/terrain/Primitives.h>
 
 #include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
 #include <gtest/gtest.h>
 
 #include <array>
 #include <map>
+#include <tuple>
 #include <vector>
 
 using namespace strata;
@@ -154,6 +156,56 @@ TEST(TileMesh, SkirtsHangFromFacesWithANeighbourIntoTheRock)
     const double deep = std::abs(top - surfaceY) < 1e-5 ? bottom : top;
     EXPECT_LT(ground.density(tile.skirt.origin + glm::dvec3(faceX, deep, 8.0)), 0.0)
         << "the skirt's far edge is in the rock";
+}
+
+TEST(TileMesh, SkirtsStayInsideTheBoxAndOffFacesWithoutANeighbour)
+{
+    // A slope whose skirts on the x faces lean toward −z (away from the
+    // air, within the face plane): near z = 0 they would leave the box
+    // through a face with no neighbour (the world's side here).
+    const terrain::PlaneField slope(glm::normalize(glm::dvec3(-0.4, 1.0, 0.5)), 0.2);
+    TileMeshOptions options;
+    options.voxelSize = 0.5;
+    options.skirtDepth = 3.0;
+    const unsigned xFaces = 1u | 2u;
+    const TileMeshData tile = meshTile(slope, box(0, -16, 0, 16, xFaces), options);
+    ASSERT_GT(tile.skirt.triangleCount(), 0u);
+    for (const glm::vec3& p : tile.skirt.positions) {
+        EXPECT_TRUE(p.x == 0.0f || p.x == 8.0f) << "a skirt off the faces with a neighbour, x " << p.x;
+        for (int a = 0; a < 3; ++a) {
+            EXPECT_GE(p[a], 0.0f) << "axis " << a;
+            EXPECT_LE(p[a], 8.0f) << "axis " << a;
+        }
+    }
+    // Every skirt triangle has an area (none collapsed by the clamp).
+    const meshing::TriangleMesh& s = tile.skirt;
+    for (std::size_t t = 0; t + 2 < s.indices.size(); t += 3) {
+        const glm::vec3 a = s.positions[s.indices[t]], b = s.positions[s.indices[t + 1]], c = s.positions[s.indices[t + 2]];
+        EXPECT_GT(glm::length(glm::cross(b - a, c - a)), 0.0f);
+    }
+}
+
+TEST(TileMesh, NoSkirtWhereTheSurfaceLiesNearlyInTheFacePlane)
+{
+    // A slab cut (the box's top face) through ground tilted 10°: a skirt
+    // there would lie in the cut plane, above the ground beyond a bump, and
+    // both slabs would make it. Tilted 45°, the cut needs its skirt.
+    const unsigned top = 1u << 3, side = 1u << 1;
+    TileMeshOptions options;
+    options.voxelSize = 0.5;
+    options.skirtDepth = 2.0;
+    // Ground tilted about z through (x0, y0, 0): through the top face y = 4 m
+    // at x = 6 m, or through the side face x = 8 m at y = 0.
+    for (const auto& [degrees, faces, x0, y0, made] :
+         {std::tuple{10.0, top, 6.0, 4.0, false}, std::tuple{45.0, top, 6.0, 4.0, true},
+          std::tuple{80.0, side, 8.0, 0.0, false}, std::tuple{45.0, side, 8.0, 0.0, true}}) {
+        const double r = glm::radians(degrees);
+        const glm::dvec3 normal(-std::sin(r), std::cos(r), 0.0);
+        const terrain::PlaneField ground(normal, glm::dot(normal, glm::dvec3(x0, y0, 0.0))); // n·p − offset
+        const TileMeshData tile = meshTile(ground, box(0, -8, 0, 16, faces), options);
+        ASSERT_GT(tile.surface.triangleCount(), 0u);
+        EXPECT_EQ(tile.skirt.triangleCount() > 0, made) << "ground tilted " << degrees << "°, faces " << faces;
+    }
 }
 
 TEST(TileMesh, RefusesBoxesOffTheLevelsLattice)

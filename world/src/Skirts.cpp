@@ -3,9 +3,11 @@
 
 #include "Skirts.h"
 
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <utility>
 
@@ -24,14 +26,25 @@ int sharedFace(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& lo, c
     return -1;
 }
 
-/// Away from the air within the plane of `axis`; zero where undefined.
+/// Away from the air within the plane of `axis`: along the in-plane axis on
+/// which the normal's in-plane part, reversed, is largest (y first: on the
+/// sides of a tile, terrain hangs its skirt straight down, a cliff across
+/// the face horizontally into the rock, a cave ceiling up); zero where the
+/// surface lies within SKIRT_MIN_SINE of the plane (that part shorter than
+/// its sine). One of four directions per face keeps neighbouring skirt
+/// vertices parallel, where the normals' own directions would twist a
+/// quad whose top edge is short.
 glm::dvec3 skirtDirection(const glm::dvec3& normal, int axis)
 {
     glm::dvec3 d = -normal;
     d[axis] = 0.0;
     const double len = glm::length(d);
-    if (len > 1e-3) return d / len;
-    return axis == 1 ? glm::dvec3(0.0) : glm::dvec3(0.0, -1.0, 0.0);
+    if (!(len >= SKIRT_MIN_SINE * glm::length(normal)) || len == 0.0) return glm::dvec3(0.0);
+    const int first = axis == 1 ? 0 : 1, second = axis == 2 ? 0 : 2;
+    const int along = std::abs(d[first]) >= std::abs(d[second]) ? first : second;
+    glm::dvec3 out(0.0);
+    out[along] = d[along] > 0.0 ? 1.0 : -1.0;
+    return out;
 }
 
 } // namespace
@@ -48,7 +61,8 @@ ClipMesh makeSkirts(const ClipMesh& surface, const glm::dvec3& lo, const glm::dv
     std::vector<std::pair<std::uint32_t, std::uint32_t>> sorted = edges;
     std::sort(sorted.begin(), sorted.end());
 
-    // Skirt vertices per (surface vertex, face): the top copy and the bottom.
+    // Skirt vertices per (surface vertex, face): the top copy and the bottom,
+    // both with the surface vertex's normal (lit like the surface above).
     std::map<std::pair<std::uint32_t, int>, std::pair<std::uint32_t, std::uint32_t>> made;
     const auto vertexPair = [&](std::uint32_t v, int face) -> std::pair<std::uint32_t, std::uint32_t> {
         const auto found = made.find({v, face});
@@ -59,11 +73,24 @@ ClipMesh makeSkirts(const ClipMesh& surface, const glm::dvec3& lo, const glm::dv
             pair = {std::uint32_t(skirt.positions.size()), std::uint32_t(skirt.positions.size() + 1)};
             skirt.positions.push_back(surface.positions[v]);
             skirt.normals.push_back(surface.normals[v]);
-            skirt.positions.push_back(surface.positions[v] + depth * d);
+            // Kept inside the box: never past the world's outer faces, and
+            // within the tile's bounding volume. The face's own coordinate
+            // is untouched (d has none), so the skirt stays in the face plane.
+            skirt.positions.push_back(glm::clamp(surface.positions[v] + depth * d, lo, hi));
             skirt.normals.push_back(surface.normals[v]);
         }
         made.emplace(std::make_pair(v, face), pair);
         return pair;
+    };
+    // A triangle that faces into the box is the folded-back half of a quad
+    // whose ends hang in different directions, or a fold over the air side
+    // (a vertex normal that disagrees with its triangle): dropped, as are
+    // triangles the clamp collapsed.
+    const auto addTriangle = [&](std::uint32_t a, std::uint32_t b, std::uint32_t c, int face) {
+        const glm::dvec3& p = skirt.positions[a];
+        const glm::dvec3 n = glm::cross(skirt.positions[b] - p, skirt.positions[c] - p);
+        const double outward = face % 2 ? n[face / 2] : -n[face / 2];
+        if (outward > 0.0) skirt.indices.insert(skirt.indices.end(), {a, b, c});
     };
 
     for (const auto& [a, b] : edges) {
@@ -73,9 +100,13 @@ ClipMesh makeSkirts(const ClipMesh& surface, const glm::dvec3& lo, const glm::dv
         const auto [aTop, aBottom] = vertexPair(a, face);
         const auto [bTop, bBottom] = vertexPair(b, face);
         if (aTop == UINT32_MAX || bTop == UINT32_MAX) continue;
-        // The surface runs a→b along this edge; the skirt runs b→a.
-        skirt.indices.insert(skirt.indices.end(), {bTop, aTop, aBottom, bTop, aBottom, bBottom});
+        // The surface runs a→b along this edge; the skirt runs b→a, so it
+        // continues the surface's orientation over the fold: its front faces
+        // out of the box, toward the air side of the seam.
+        addTriangle(bTop, aTop, aBottom, face);
+        addTriangle(bTop, aBottom, bBottom, face);
     }
+    // Vertices only dropped triangles used stay; they are harmless (and few).
     return skirt;
 }
 

@@ -16,11 +16,19 @@
 /// exact in float, and a power-of-two voxel size keeps them exact in metres.
 /// Two tiles of different levels cut the same face plane along different
 /// polylines; the gap between them lies in that plane. Each tile hangs a
-/// skirt from its border on every face with a neighbour: a strip in the face
-/// plane, `skirtDepth` deep, pointing away from the air (along the surface
-/// normal's component within the plane, reversed), so the skirt of the
-/// upper polyline covers the gap from any viewpoint. Skirts are kept apart
-/// from the surface, so the surface stays a clean manifold patch.
+/// skirt from its border on every face with a neighbour (never on the
+/// world's outer faces): a strip in the face plane, `skirtDepth` deep,
+/// pointing away from the air (along the in-plane axis where the surface
+/// normal's in-plane part, reversed, is largest: straight down under
+/// terrain on a tile's side), clamped into the box, so the skirt of the
+/// upper polyline covers the gap. No skirt where the surface meets the face
+/// within 30° of its plane (a slab cut through nearly flat ground, a cliff
+/// along a tile's side): it would lie in the surface's own plane and show
+/// as a flap or fight it for pixels. Skirt vertices carry the normal of the
+/// surface vertex they hang from and face out of the box (continuing the
+/// surface's orientation), so a one-sided material shows them from the air
+/// side lit like the surface. Skirts are kept apart from the surface, so
+/// the surface stays a clean manifold patch.
 
 #include <strata/meshing/TriangleMesh.h>
 #include <strata/terrain/DensityField.h>
@@ -56,7 +64,8 @@ struct TileMeshData
     /// normals from the samples' gradient; origin = box minimum in metres.
     meshing::TriangleMesh surface;
     /// The skirts, same origin; their top vertices repeat the surface's
-    /// border vertices (position and normal).
+    /// border vertices (position and normal), their bottom vertices the
+    /// normal of the top; front faces out of the box.
     meshing::TriangleMesh skirt;
 };
 
