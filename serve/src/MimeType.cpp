@@ -56,15 +56,17 @@ std::string_view mimeTypeFor(const std::filesystem::path& file)
     return OCTET_STREAM;
 }
 
-bool isCompressible(std::string_view mimeType)
+Compressibility compressibilityOf(std::string_view mimeType)
 {
     const std::string_view base = mimeType.substr(0, mimeType.find(';'));
-    if (base.starts_with("text/")) return true;
-    constexpr std::array<std::string_view, 7> COMPRESSIBLE = {
-        "application/json", "model/gltf+json", "model/gltf-binary", "application/wasm",
-        "application/octet-stream", "image/svg+xml", "application/toml",
-    };
-    return std::find(COMPRESSIBLE.begin(), COMPRESSIBLE.end(), base) != COMPRESSIBLE.end();
+    if (base.starts_with("text/")) return Compressibility::Text;
+    constexpr std::array<std::string_view, 4> TEXT = {"application/json", "model/gltf+json", "image/svg+xml",
+                                                      "application/toml"};
+    if (std::find(TEXT.begin(), TEXT.end(), base) != TEXT.end()) return Compressibility::Text;
+    constexpr std::array<std::string_view, 3> BINARY = {"model/gltf-binary", "application/wasm",
+                                                        "application/octet-stream"};
+    if (std::find(BINARY.begin(), BINARY.end(), base) != BINARY.end()) return Compressibility::Binary;
+    return Compressibility::None;
 }
 
 } // namespace strata::serve

@@ -67,10 +67,11 @@ protected:
 
     void TearDown() override { stopServer(); }
 
-    void startServer()
+    void startServer(strata::serve::Compression compression = strata::serve::Compression::Text)
     {
         strata::serve::FileServerOptions options;
         options.port = 0;
+        options.compression = compression;
         server = std::make_unique<strata::serve::FileServer>(root, options);
         port = server->port();
         thread = std::thread([this] { server->run(); });
@@ -210,6 +211,8 @@ TEST_F(FileServerTest, UnsatisfiableRangesAre416)
 
 TEST_F(FileServerTest, GzipWhenTheClientAsksForIt)
 {
+    stopServer();
+    startServer(strata::serve::Compression::All);
     auto c = client();
     for (const std::string path : {"/tileset.json", "/tiles/0/0_0_0.glb", "/scene.gltf", "/viewer/main.js",
                                    "/viewer/style.css", "/viewer/index.html", "/buffer.bin", "/decoder.wasm"}) {
@@ -237,6 +240,34 @@ TEST_F(FileServerTest, GzipWhenTheClientAsksForIt)
         EXPECT_FALSE(response->has_header("Content-Encoding")) << "compressed images are sent as they are";
         EXPECT_EQ(response->body, readFile(root / path.substr(1)));
     }
+}
+
+TEST_F(FileServerTest, BinaryTilesAreSentAsTheyAreUnlessAllIsCompressed)
+{
+    // The default (Compression::Text, for the loopback): text is gzipped,
+    // binary glTF is not (sending it costs less than compressing it there).
+    auto c = client();
+    const auto json = c.Get("/tileset.json", {{"Accept-Encoding", "gzip"}});
+    ASSERT_TRUE(json);
+    EXPECT_EQ(json->get_header_value("Content-Encoding"), "gzip");
+    EXPECT_EQ(strata::test::gunzip(json->body), readFile(root / "tileset.json"));
+    const auto gltf = c.Get("/scene.gltf", {{"Accept-Encoding", "gzip"}});
+    ASSERT_TRUE(gltf);
+    EXPECT_EQ(gltf->get_header_value("Content-Encoding"), "gzip");
+    for (const std::string path : {"/tiles/0/0_0_0.glb", "/buffer.bin", "/decoder.wasm"}) {
+        SCOPED_TRACE(path);
+        const auto response = c.Get(path.c_str(), {{"Accept-Encoding", "gzip, br"}});
+        ASSERT_TRUE(response);
+        EXPECT_FALSE(response->has_header("Content-Encoding"));
+        EXPECT_EQ(response->body, readFile(root / path.substr(1)));
+    }
+
+    stopServer();
+    startServer(strata::serve::Compression::None);
+    const auto plain = client().Get("/tileset.json", {{"Accept-Encoding", "gzip, br"}});
+    ASSERT_TRUE(plain);
+    EXPECT_FALSE(plain->has_header("Content-Encoding"));
+    EXPECT_EQ(plain->body, readFile(root / "tileset.json"));
 }
 
 TEST_F(FileServerTest, OnlyGetAndHeadAreAllowed)

@@ -5,7 +5,7 @@
 
 #include <gtest/gtest.h>
 
-using strata::serve::isCompressible;
+using strata::serve::compressibilityOf;
 using strata::serve::mimeTypeFor;
 
 TEST(MimeType, TheTypesABakeAndItsViewerUse)
@@ -34,13 +34,15 @@ TEST(MimeType, ExtensionsAreCaseInsensitiveAndUnknownOnesAreOctetStream)
 
 TEST(MimeType, CompressedFormatsAreNotCompressedAgain)
 {
-    EXPECT_TRUE(isCompressible("application/json"));
-    EXPECT_TRUE(isCompressible("model/gltf-binary"));
-    EXPECT_TRUE(isCompressible("model/gltf+json"));
-    EXPECT_TRUE(isCompressible("text/javascript; charset=utf-8"));
-    EXPECT_TRUE(isCompressible("application/wasm"));
-    EXPECT_FALSE(isCompressible("image/png"));
-    EXPECT_FALSE(isCompressible("image/jpeg"));
-    EXPECT_FALSE(isCompressible("image/ktx2"));
-    EXPECT_FALSE(isCompressible("image/webp"));
+    using strata::serve::Compressibility;
+    EXPECT_EQ(compressibilityOf("application/json"), Compressibility::Text);
+    EXPECT_EQ(compressibilityOf("model/gltf+json"), Compressibility::Text);
+    EXPECT_EQ(compressibilityOf("text/javascript; charset=utf-8"), Compressibility::Text);
+    EXPECT_EQ(compressibilityOf("model/gltf-binary"), Compressibility::Binary);
+    EXPECT_EQ(compressibilityOf("application/wasm"), Compressibility::Binary);
+    EXPECT_EQ(compressibilityOf("application/octet-stream"), Compressibility::Binary);
+    EXPECT_EQ(compressibilityOf("image/png"), Compressibility::None);
+    EXPECT_EQ(compressibilityOf("image/jpeg"), Compressibility::None);
+    EXPECT_EQ(compressibilityOf("image/ktx2"), Compressibility::None);
+    EXPECT_EQ(compressibilityOf("image/webp"), Compressibility::None);
 }

@@ -9,8 +9,8 @@
 /// (MimeType.h); byte ranges (206 with Content-Range, several ranges as
 /// multipart/byteranges, 416 with `Content-Range: bytes *\/SIZE` when none
 /// is satisfiable); gzip (or brotli for text, where the client prefers it)
-/// when the client's Accept-Encoding asks and the type is compressible
-/// (never for a range, never for PNG/JPEG/KTX2). A folder serves its
+/// when the client's Accept-Encoding asks and options.compression covers
+/// the type (never for a range, never for PNG/JPEG/KTX2). A folder serves its
 /// index.html, or 404: there is no listing.
 ///
 /// Usage: construct (binds the port), print url(), run() on one thread,
@@ -23,6 +23,15 @@
 
 namespace strata::serve {
 
+/// Which files are gzipped when the client accepts it.
+enum class Compression
+{
+    None, ///< nothing: every file as it is
+    Text, ///< text, JSON and glTF JSON (Compressibility::Text): on the loopback, where
+          ///< sending a binary tile as it is costs less than compressing it
+    All,  ///< also binary glTF, .bin and WebAssembly (Compressibility::Binary): for a network
+};
+
 struct FileServerOptions
 {
     /// The address to listen on: 127.0.0.1 keeps the folder on this machine;
@@ -32,6 +41,8 @@ struct FileServerOptions
     int port = 8080;
     /// Worker threads, one per open connection (a browser opens six).
     std::size_t threads = 16;
+    /// What is compressed (never a range, never PNG/JPEG/KTX2).
+    Compression compression = Compression::Text;
     /// zlib level of on-the-fly gzip, 1 (fastest, nginx's default) to 9.
     int gzipLevel = 1;
     /// Files larger than this are never compressed (they would be held in

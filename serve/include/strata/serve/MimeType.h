@@ -21,9 +21,17 @@ namespace strata::serve {
 /// `; charset=utf-8`. Never empty.
 std::string_view mimeTypeFor(const std::filesystem::path& file);
 
-/// True for types that shrink under gzip (text, JSON, glTF, WebAssembly,
-/// raw binary buffers); false for types that are compressed already (PNG,
-/// JPEG, KTX2, WebP, gzip, zip) and not worth the CPU.
-bool isCompressible(std::string_view mimeType);
+/// How a type takes to gzip.
+enum class Compressibility
+{
+    None,   ///< compressed already (PNG, JPEG, KTX2, WebP, EXR): sent as it is
+    Text,   ///< text, JSON, glTF JSON, SVG: shrinks 5-10x, cheap to compress
+    Binary, ///< binary glTF, .bin buffers, WebAssembly: shrinks less (a plain
+            ///< tile to 0.72 at zlib level 1), costs about 17 ms a MB
+};
+
+/// The compressibility of a type as mimeTypeFor() gives it (parameters
+/// such as `; charset=utf-8` are ignored).
+Compressibility compressibilityOf(std::string_view mimeType);
 
 } // namespace strata::serve
