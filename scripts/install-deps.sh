@@ -20,10 +20,13 @@ PACKAGES=(
   slurm-wlm munge python3 python3-yaml
   python-matplotlib-data
   xvfb xauth
+  chromium
   reuse
 )
 # libcpp-httplib-dev: cpp-httplib, the HTTP server under `strata serve`
 # (serve/; Debian builds it as libcpp-httplib.so with zlib and brotli).
+# chromium: Debian's headless browser, driven by puppeteer-core (web/package-lock.json),
+# draws the bake's web viewer on software WebGL in tests/web (WebViewer.*).
 # reuse runs `reuse lint` (ctest's ReuseLint): every file states its licence.
 # python-matplotlib-data ships a real DEM (sample_data/jacksboro_fault_dem.npz)
 # that tests/apps/BenchLandformsCommandTest.cpp measures (docs/landform-statistics.md).

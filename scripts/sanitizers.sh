@@ -61,6 +61,9 @@ begin=$(now)
 #    the Strata programs they start (strata generate/mesh/bake,
 #    write_glb_samples) run under the sanitizers in the CLI, bake and mesher
 #    tests; and they would need a second npm install into each build folder.
+#  - WebViewer.*: the work is Chromium's and node's (not instrumented); the
+#    strata bake and render it runs are covered by Bake.*, BakeViewer.* and
+#    Cli.* here; and the npm packages would need a second npm ci per folder.
 #  - Slurm.*: starts munge, slurmctld and slurmd as root for a real cluster;
 #    the bakes it runs are the bakes of Bake.* (run here); CI's main run has it.
 #  - ReadmeFigures.*: it compares README.md's figures with the Release (gcc)
@@ -68,7 +71,7 @@ begin=$(now)
 #    (3,211,607 active voxels and 2.486 points per voxel against 3,151,246
 #    and 2.515: a gcc/clang difference not explained yet, see issue 30's
 #    note); its generate run is covered by Cli.* here.
-ASAN_EXCLUDE='^(InstalledPackage|GltfValidator|TilesClient|Slurm|ReadmeFigures)\.|_NOT_BUILT$'
+ASAN_EXCLUDE='^(InstalledPackage|GltfValidator|TilesClient|WebViewer|Slurm|ReadmeFigures)\.|_NOT_BUILT$'
 # Run apart, under ASan + UBSan but without LeakSanitizer:
 #  - StrataView.*: the viewer under Xvfb leaks 240 bytes in 3 allocations made
 #    by the GLX driver that GLFW dlopens and unloads at glfwTerminate(); by

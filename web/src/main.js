@@ -10,6 +10,7 @@
 //   view=NAME                       a debug view: shaded, weights, normals, metallic, occlusion, height, smoothness, albedo, layers
 //   shadows=0                       shadows off (the browser draws none yet: see docs/web-viewer.md)
 //   controls=0                      no camera controls; ui=0: no text over the picture (tests)
+//   tiles=0                         the sky alone (tests: which pixels are terrain)
 // Keys: 0-8 debug views, Tab orbit/fly, W A S D Q E move (shift: 5x), H shadows flag.
 // window.strataReady turns true once every tile the view needs is loaded and drawn;
 // window.strataStats holds timings and counts.
@@ -134,7 +135,8 @@ async function main() {
 		console.error( 'tile failed to load:', e.url || '', e.error || '' );
 
 	} );
-	scene.add( tiles.group );
+	const showTiles = params.get( 'tiles' ) !== '0';
+	if ( showTiles ) scene.add( tiles.group );
 
 	let controls = null;
 	if ( params.get( 'controls' ) !== '0' ) {
@@ -197,7 +199,7 @@ async function main() {
 		}
 		if ( controls && controls.enabled ) controls.update();
 		camera.updateMatrixWorld();
-		tiles.update();
+		if ( showTiles ) tiles.update();
 		renderer.getDrawingBufferSize( size );
 		updateFrameUniforms( uniforms, camera, size.x, size.y );
 		renderer.render( scene, camera );
@@ -206,11 +208,21 @@ async function main() {
 		tiles.group.traverse( o => { if ( o.isMesh && o.visible ) drawn ++; } );
 		if ( stats.firstFrameMs === null && drawn > 0 ) stats.firstFrameMs = now - stats.start;
 		const busy = tiles.stats.downloading + tiles.stats.parsing + ( tiles.stats.queued || 0 );
-		quietFrames = busy === 0 && stats.tilesLoaded > 0 ? quietFrames + 1 : 0;
+		quietFrames = ! showTiles || ( busy === 0 && stats.tilesLoaded > 0 ) ? quietFrames + 1 : 0;
 		if ( ! window.strataReady && quietFrames >= 3 ) {
 
 			stats.readyMs = now - stats.start;
 			stats.meshesDrawn = drawn;
+			// The contents drawn, by level (tiles/L/...): what the view loaded.
+			stats.visibleByLevel = {};
+			for ( const tile of tiles.visibleTiles ) {
+
+				const uri = tile.content && tile.content.uri || '';
+				const m = /tiles\/(\d+)\//.exec( uri );
+				const key = m ? m[ 1 ] : 'other';
+				stats.visibleByLevel[ key ] = ( stats.visibleByLevel[ key ] || 0 ) + 1;
+
+			}
 			stats.loadErrors = loadErrors;
 			window.strataReady = true;
 			status( '' );

@@ -1,0 +1,113 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
+// Opens a bake's web viewer (DIR/viewer/) in headless Chromium driven by
+// puppeteer-core (Debian's /usr/bin/chromium, software WebGL through
+// SwiftShader) and saves what it draws. Used by tests/web/WebViewerTest.cpp.
+//   node viewer_browser.mjs --modules <node_modules> --chromium <path> --dir <bake>
+//        --size WxH --out <png> [--query "pos=..&target=..&fov=.."] [--timeout-ms N]
+// Serves DIR on 127.0.0.1 (a small static server of its own), opens
+// viewer/index.html?QUERY, waits for window.strataReady (every tile the view
+// needs loaded and drawn) and screenshots the canvas. Prints one JSON line:
+// { ok, consoleErrors: [...], stats: window.strataStats, pageLoadMs }.
+// Exits 1 with a message on any failure (no Chromium, no page, a timeout).
+
+import { createServer } from 'node:http';
+import { readFile, stat } from 'node:fs/promises';
+import { existsSync } from 'node:fs';
+import { extname, join, normalize, resolve, sep } from 'node:path';
+import { pathToFileURL } from 'node:url';
+
+const args = {};
+for ( let i = 2; i < process.argv.length; i += 2 ) args[ process.argv[ i ].replace( /^--/, '' ) ] = process.argv[ i + 1 ];
+function fail( message ) {
+
+	console.error( `viewer_browser: ${ message }` );
+	process.exit( 1 );
+
+}
+for ( const key of [ 'modules', 'chromium', 'dir', 'size', 'out' ] ) if ( ! args[ key ] ) fail( `--${ key } is missing` );
+if ( ! existsSync( args.chromium ) ) fail( `no Chromium at ${ args.chromium }: install Debian's chromium (scripts/install-deps.sh)` );
+const root = resolve( args.dir );
+if ( ! existsSync( join( root, 'viewer', 'index.html' ) ) ) fail( `${ root }/viewer/index.html does not exist: the bake wrote no viewer` );
+const [ width, height ] = args.size.split( 'x' ).map( Number );
+const timeoutMs = Number( args[ 'timeout-ms' ] || 45000 );
+
+const puppeteerMain = join( resolve( args.modules ), 'puppeteer-core', 'lib', 'esm', 'puppeteer', 'puppeteer-core.js' );
+if ( ! existsSync( puppeteerMain ) ) fail( `puppeteer-core is not installed in ${ args.modules } (npm ci of web/package-lock.json)` );
+const puppeteer = ( await import( pathToFileURL( puppeteerMain ).href ) ).default;
+
+const TYPES = { '.html': 'text/html', '.js': 'text/javascript', '.json': 'application/json', '.png': 'image/png', '.glb': 'model/gltf-binary' };
+const server = createServer( async ( request, response ) => {
+
+	const path = normalize( join( root, decodeURIComponent( request.url.split( '?' )[ 0 ] ) ) );
+	try {
+
+		if ( path !== root && ! path.startsWith( root + sep ) ) throw new Error( 'outside' );
+		if ( ! ( await stat( path ) ).isFile() ) throw new Error( 'not a file' );
+		const body = await readFile( path );
+		response.writeHead( 200, { 'Content-Type': TYPES[ extname( path ) ] || 'application/octet-stream', 'Content-Length': body.length } );
+		response.end( body );
+
+	} catch {
+
+		response.writeHead( 404 );
+		response.end();
+
+	}
+
+} );
+await new Promise( r => server.listen( 0, '127.0.0.1', r ) );
+const url = `http://127.0.0.1:${ server.address().port }/viewer/index.html${ args.query ? '?' + args.query : '' }`;
+
+const consoleErrors = [];
+let browser;
+try {
+
+	browser = await puppeteer.launch( {
+		executablePath: args.chromium,
+		headless: true,
+		args: [ '--no-sandbox', '--use-angle=swiftshader', '--enable-unsafe-swiftshader', '--ignore-gpu-blocklist',
+			`--window-size=${ width },${ height }`, '--hide-scrollbars', '--force-device-scale-factor=1' ],
+	} );
+	const page = await browser.newPage();
+	await page.setViewport( { width, height, deviceScaleFactor: 1 } );
+	page.on( 'console', m => {
+
+		if ( m.type() === 'error' ) consoleErrors.push( m.text() );
+
+	} );
+	page.on( 'pageerror', e => consoleErrors.push( String( e ) ) );
+	page.on( 'requestfailed', r => consoleErrors.push( `request failed: ${ r.url() }` ) );
+	page.on( 'response', r => {
+
+		if ( r.status() >= 400 ) consoleErrors.push( `HTTP ${ r.status() }: ${ r.url() }` );
+
+	} );
+	const start = Date.now();
+	await page.goto( url, { waitUntil: 'load', timeout: timeoutMs } );
+	try {
+
+		await page.waitForFunction( 'window.strataReady === true || window.strataError !== undefined', { timeout: timeoutMs, polling: 100 } );
+
+	} catch {
+
+		fail( `the viewer was not ready within ${ timeoutMs } ms (${ url }); console errors (${ consoleErrors.length }, the first 10): ${ JSON.stringify( consoleErrors.slice( 0, 10 ) ) }` );
+
+	}
+	const stats = await page.evaluate( () => ( { ...window.strataStats, error: window.strataError } ) );
+	const canvas = await page.$( 'canvas' );
+	if ( ! canvas ) fail( 'the page has no canvas' );
+	await canvas.screenshot( { path: args.out, omitBackground: false } );
+	console.log( JSON.stringify( { ok: ! stats.error, url, consoleErrors, stats, pageLoadMs: Date.now() - start } ) );
+
+} catch ( e ) {
+
+	fail( String( e && e.stack || e ) );
+
+} finally {
+
+	if ( browser ) await browser.close();
+	server.close();
+
+}
