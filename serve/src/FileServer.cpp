@@ -20,6 +20,8 @@
 #include <array>
 #include <cctype>
 #include <cerrno>
+#include <cstdio>
+#include <initializer_list>
 #include <cstring>
 #include <mutex>
 
@@ -121,6 +123,39 @@ bool httplibCompresses(std::string_view mimeType)
     return std::find(TYPES.begin(), TYPES.end(), mimeType) != TYPES.end();
 }
 
+// A strong entity tag from size and modification time (nanoseconds), with
+// "-z" for the compressed representation.
+std::string entityTag(std::uint64_t size, const timespec& modified, bool compressed)
+{
+    char text[80];
+    std::snprintf(text, sizeof(text), "\"%llx-%llx%s\"", static_cast<unsigned long long>(size),
+                  static_cast<unsigned long long>(modified.tv_sec) * 1000000000ULL +
+                      static_cast<unsigned long long>(modified.tv_nsec),
+                  compressed ? "-z" : "");
+    return text;
+}
+
+// An If-None-Match list names one of `tags` (weak comparison: W/ ignored)
+// or is "*".
+bool matchesAny(const std::string& header, std::initializer_list<std::string> tags)
+{
+    std::size_t start = 0;
+    while (start < header.size()) {
+        std::size_t end = header.find(',', start);
+        if (end == std::string::npos) end = header.size();
+        std::string tag = header.substr(start, end - start);
+        start = end + 1;
+        tag.erase(0, tag.find_first_not_of(" \t"));
+        tag.erase(tag.find_last_not_of(" \t") + 1);
+        if (tag.starts_with("W/")) tag.erase(0, 2);
+        if (tag == "*") return true;
+        for (const std::string& candidate : tags) {
+            if (tag == candidate) return true;
+        }
+    }
+    return false;
+}
+
 std::string readWhole(int fd, std::uint64_t size)
 {
     std::string data(size, '\0');
@@ -179,12 +214,28 @@ void FileServer::Impl::handle(const httplib::Request& request, httplib::Response
     const bool compressible = (kind == Compressibility::Text && options.compression != Compression::None) ||
                               (kind == Compressibility::Binary && options.compression == Compression::All);
     response.set_header("Accept-Ranges", "bytes");
-    response.set_header("Cache-Control", "no-cache");
+    response.set_header("Cache-Control", "no-cache"); // revalidate with the ETag: a re-bake replaces tiles in place
     response.set_header("X-Content-Type-Options", "nosniff");
     if (compressible) response.set_header("Vary", "Accept-Encoding");
 
     httplib::Ranges& ranges = rangesToSend(request);
     if (ranges.size() > MAX_RANGES) ranges.clear();
+    // The validator: size and modification time, which a re-bake's atomic
+    // replace changes; the gzipped representation has its own.
+    const std::string etag = entityTag(size, info.st_mtim, false);
+    const std::string etagCompressed = entityTag(size, info.st_mtim, true);
+    if (request.has_header("If-Range") && request.get_header_value("If-Range") != etag) {
+        ranges.clear(); // the client's part is of another version (or a date, which is not checked): send it whole
+    }
+    const bool compressWhole = ranges.empty() && size > 0 && compressible && size <= options.maxCompressedFileBytes &&
+                               (accepts(request, "gzip") || (httplibCompresses(mimeType) && accepts(request, "br")));
+    response.set_header("ETag", compressWhole ? etagCompressed : etag);
+    if (matchesAny(request.get_header_value("If-None-Match"), {etag, etagCompressed})) {
+        ranges.clear();
+        response.status = 304;
+        return;
+    }
+
     if (!ranges.empty()) {
         std::vector<detail::ByteRange> requested(ranges.begin(), ranges.end());
         const std::vector<detail::ByteRange> satisfiable = detail::satisfiableRanges(requested, size);
@@ -208,8 +259,7 @@ void FileServer::Impl::handle(const httplib::Request& request, httplib::Response
     } else if (size == 0) {
         response.set_content("", mimeType);
         return;
-    } else if (compressible && size <= options.maxCompressedFileBytes &&
-               (accepts(request, "gzip") || (httplibCompresses(mimeType) && accepts(request, "br")))) {
+    } else if (compressWhole) {
         // Whole and compressible: held in memory and compressed, by httplib
         // for its own types (gzip, or brotli where the client asks), by
         // zlib here for the rest.

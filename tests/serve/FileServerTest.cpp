@@ -270,6 +270,42 @@ TEST_F(FileServerTest, BinaryTilesAreSentAsTheyAreUnlessAllIsCompressed)
     EXPECT_EQ(plain->body, readFile(root / "tileset.json"));
 }
 
+TEST_F(FileServerTest, ETagsRevalidateAndIfRangeChecksTheVersion)
+{
+    auto c = client();
+    const auto first = c.Get("/tiles/0/0_0_0.glb", IDENTITY);
+    ASSERT_TRUE(first);
+    const std::string etag = first->get_header_value("ETag");
+    ASSERT_FALSE(etag.empty());
+    EXPECT_EQ(first->get_header_value("Cache-Control"), "no-cache");
+
+    const auto again = c.Get("/tiles/0/0_0_0.glb", {{"If-None-Match", "\"x\", " + etag}});
+    ASSERT_TRUE(again);
+    EXPECT_EQ(again->status, 304);
+    EXPECT_TRUE(again->body.empty());
+    const auto range = c.Get("/tiles/0/0_0_0.glb", {{"Range", "bytes=0-9"}, {"If-Range", etag}});
+    ASSERT_TRUE(range);
+    EXPECT_EQ(range->status, 206);
+
+    // A re-bake replaces the tile: the old tag no longer matches.
+    writeFile(root / "tiles/0/0_0_0.glb", "a new tile");
+    const auto changed = c.Get("/tiles/0/0_0_0.glb", {{"If-None-Match", etag}, {"Accept-Encoding", "identity"}});
+    ASSERT_TRUE(changed);
+    EXPECT_EQ(changed->status, 200);
+    EXPECT_EQ(changed->body, "a new tile");
+    EXPECT_NE(changed->get_header_value("ETag"), etag);
+    const auto stale = c.Get("/tiles/0/0_0_0.glb", {{"Range", "bytes=0-2"}, {"If-Range", etag}});
+    ASSERT_TRUE(stale);
+    EXPECT_EQ(stale->status, 200) << "a part of the old version must not be mixed with the new one";
+    EXPECT_EQ(stale->body, "a new tile");
+
+    // The gzipped representation has a tag of its own.
+    const auto zipped = c.Get("/tileset.json", {{"Accept-Encoding", "gzip"}});
+    const auto plain = c.Get("/tileset.json", IDENTITY);
+    ASSERT_TRUE(zipped && plain);
+    EXPECT_NE(zipped->get_header_value("ETag"), plain->get_header_value("ETag"));
+}
+
 TEST_F(FileServerTest, OnlyGetAndHeadAreAllowed)
 {
     auto c = client();

@@ -10,7 +10,9 @@
 /// multipart/byteranges, 416 with `Content-Range: bytes *\/SIZE` when none
 /// is satisfiable); gzip (or brotli for text, where the client prefers it)
 /// when the client's Accept-Encoding asks and options.compression covers
-/// the type (never for a range, never for PNG/JPEG/KTX2). A folder serves its
+/// the type (never for a range, never for PNG/JPEG/KTX2). Each file has an
+/// ETag (size and modification time): If-None-Match gives 304, an If-Range
+/// that does not match sends the whole file. A folder serves its
 /// index.html, or 404: there is no listing.
 ///
 /// Usage: construct (binds the port), print url(), run() on one thread,
