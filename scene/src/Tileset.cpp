@@ -7,11 +7,14 @@
 // the coarsest down to level 0, each holding that level's .glb (one
 // `content` per node: 1.1's `contents` arrays are not read by every client,
 // e.g. 3d-tiles-renderer 0.5), with REPLACE refinement, so a client shows one level per column and refines it
-// as the camera comes closer. geometricError of a chain node is the level's
-// measured error (BakeManifest::geometricErrors(): the largest distance of
-// a vertex from the surface over all tiles), 0 at level 0; an inner node's
-// is its box's diagonal (a client refines it unless the whole node would
-// be a few pixels across), never less than its children's.
+// as the camera comes closer. geometricError of a chain node is that tile's
+// own measured error at that level (TileLevelRecord::error: the two-sided
+// Hausdorff distance to its level 0), made non-decreasing up the chain so a
+// parent's error is never below its child's (as 3D Tiles requires), 0 at
+// level 0: a flat tile refines late, a rough one early, instead of every
+// tile refining at the worst tile's error. An inner node's is its box's
+// diagonal (a client refines it unless the whole node would be a few pixels
+// across), never less than its children's.
 //
 // Frames: glTF content is y-up and 3D Tiles z-up; a client turns content by
 // x' = x, y' = −z, z' = y, so the bounding boxes here are given in that
@@ -89,7 +92,6 @@ class Builder
 public:
     explicit Builder(const BakeManifest& m)
         : mManifest(m)
-        , mErrors(m.geometricErrors())
     {
         for (const auto& [index, tile] : m.tiles) mColumns[{tile.cell[0], tile.cell[2]}].push_back(&tile);
     }
@@ -133,8 +135,11 @@ private:
             if (level.file) bounds.add(level.min, level.max);
         if (bounds.empty()) return nullptr;
         json below = nullptr;
+        double error = 0.0;
         for (int l = 0; l < mManifest.lods; ++l) {
-            json node = {{"boundingVolume", boxVolume(bounds)}, {"geometricError", mErrors[std::size_t(l)]}};
+            for (const TileLevelRecord& level : tile.levels)
+                if (level.level == l && l > 0) error = std::max(error, level.error);
+            json node = {{"boundingVolume", boxVolume(bounds)}, {"geometricError", error}};
             for (const TileLevelRecord& level : tile.levels)
                 if (level.level == l && level.file) node["content"] = {{"uri", level.file->path}};
             if (!below.is_null()) node["children"] = json::array({below});
@@ -144,7 +149,6 @@ private:
     }
 
     const BakeManifest& mManifest;
-    std::vector<double> mErrors;
     std::map<std::pair<int, int>, std::vector<const TileRecord*>> mColumns;
 };
 

@@ -404,6 +404,7 @@ TEST(Bake, TheTilesetIsValid3DTilesAndNamesEveryTileOnce)
     EXPECT_EQ(tileset["root"]["refine"], "REPLACE");
 
     std::multiset<std::string> uris;
+    std::map<std::string, double> nodeError; // content uri → the node's geometric error
     // Walks the tree: every node has a box (12 finite numbers, half axes
     // >= 0), a geometric error no larger than its parent's, and a box inside
     // its parent's (axis-aligned boxes: centre ± half extents).
@@ -427,7 +428,10 @@ TEST(Bake, TheTilesetIsValid3DTilesAndNamesEveryTileOnce)
                     EXPECT_GE(extent[a], (*parent)[a] - 1e-9);
                     EXPECT_LE(extent[3 + a], (*parent)[3 + a] + 1e-9);
                 }
-            if (node.contains("content")) uris.insert(node["content"]["uri"].get<std::string>());
+            if (node.contains("content")) {
+                uris.insert(node["content"]["uri"].get<std::string>());
+                nodeError[node["content"]["uri"].get<std::string>()] = error;
+            }
             if (node.contains("contents"))
                 for (const auto& c : node["contents"]) uris.insert(c["uri"].get<std::string>());
             if (node.contains("children"))
@@ -449,6 +453,28 @@ TEST(Bake, TheTilesetIsValid3DTilesAndNamesEveryTileOnce)
     EXPECT_EQ(errors[0], 0.0);
     EXPECT_GT(errors[1], 0.0);
     EXPECT_GE(errors[2], errors[1]);
+
+    // Each chain node carries its own tile's measured error (made
+    // non-decreasing up the chain), not the worst of its level: clients
+    // refine a smooth tile later than a rough one.
+    std::size_t belowWorst = 0, level1 = 0;
+    for (const auto& tile : manifest["tiles"]) {
+        double expected = 0.0;
+        for (const auto& level : tile["levels"]) {
+            const int l = level["level"].get<int>();
+            if (l > 0) expected = std::max(expected, level["error"].get<double>());
+            if (level["file"].is_null()) continue;
+            const std::string uri = level["file"]["path"].get<std::string>();
+            ASSERT_TRUE(nodeError.count(uri)) << uri;
+            EXPECT_EQ(nodeError[uri], l == 0 ? 0.0 : expected) << uri;
+            if (l == 1) {
+                ++level1;
+                belowWorst += nodeError[uri] < errors[1];
+            }
+        }
+    }
+    EXPECT_GT(level1, 5u);
+    EXPECT_GT(belowWorst, level1 / 2) << "most level-1 tiles err less than the worst one";
 }
 
 TEST(Bake, ResumeRedoesExactlyTheMissingAndDamagedTiles)
