@@ -192,8 +192,11 @@ void FileServer::Impl::handle(const httplib::Request& request, httplib::Response
     case 200: break;
     case 301: {
         rangesToSend(request).clear();
-        const std::string target = request.target.substr(0, request.target.find('?'));
-        response.set_redirect(target + "/", 301);
+        // The path as the client wrote it (still percent-encoded), with one
+        // leading slash: "//host/x" would be a link to another host.
+        std::string target = request.target.substr(0, request.target.find('?'));
+        target.erase(0, target.find_first_not_of('/'));
+        response.set_redirect("/" + target + "/", 301);
         return;
     }
     case 400: answer(request, response, 400, "400 bad request path"); return;

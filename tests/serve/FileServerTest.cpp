@@ -392,6 +392,10 @@ TEST_F(FileServerTest, FoldersServeTheirIndexOr404)
     ASSERT_TRUE(slashless);
     EXPECT_EQ(slashless->status, 301);
     EXPECT_EQ(slashless->get_header_value("Location"), "/viewer/");
+    // Never a link to another host ("//viewer/" would be one).
+    const auto doubled = rawRequest(port, "GET //viewer HTTP/1.1\r\nHost: x\r\nConnection: close\r\n\r\n");
+    EXPECT_EQ(doubled.status, 301);
+    EXPECT_NE((doubled.head + "\r\n").find("\r\nLocation: /viewer/\r\n"), std::string::npos) << doubled.head;
     const auto noIndex = c.Get("/tiles/1/", IDENTITY);
     ASSERT_TRUE(noIndex);
     EXPECT_EQ(noIndex->status, 404);
