@@ -100,10 +100,16 @@ TriangleMesh reorder(const TriangleMesh& mesh)
     return out;
 }
 
-/// Grid coordinates of a position: round(p / step), in 64 bits.
+/// The grid coordinate nearest to `x` (in steps), halves rounded up:
+/// floor(x + 1/2) commutes with adding an integer, so a point at a half step
+/// rounds the same relative to any corner on the grid (std::llround rounds
+/// halves away from zero, which differs on either side of the corner).
+std::int64_t roundToGrid(double x) { return std::int64_t(std::floor(x + 0.5)); }
+
+/// Grid coordinates of a position relative to the origin.
 std::array<std::int64_t, 3> gridPoint(const glm::vec3& p, double step)
 {
-    return {std::llround(double(p.x) / step), std::llround(double(p.y) / step), std::llround(double(p.z) / step)};
+    return {roundToGrid(double(p.x) / step), roundToGrid(double(p.y) / step), roundToGrid(double(p.z) / step)};
 }
 
 json material(const std::string& name, bool doubleSided)

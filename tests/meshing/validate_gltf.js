@@ -3,9 +3,10 @@
 
 // Validates .glb/.gltf files with the Khronos glTF validator (npm package
 // `gltf-validator`). Usage: node validate_gltf.js FILE_OR_FOLDER... (a folder:
-// every .glb under it, sorted).
-// Exit codes: 0 all valid (no errors), 1 a file has errors, 2 the validator
-// or a file is missing. Warnings and infos are printed, not fatal.
+// every .glb under it, sorted). --strict: a warning fails a file too.
+// Exit codes: 0 all valid (no errors), 1 a file has errors (or, with
+// --strict, warnings), 2 the validator or a file is missing. Infos (such as
+// an extension the validator cannot check) are printed, never fatal.
 'use strict';
 const fs = require('fs');
 const path = require('path');
@@ -18,6 +19,8 @@ try {
                   '(NODE_PATH=' + (process.env.NODE_PATH || '') + '): ' + e.message);
     process.exit(2);
 }
+
+let strict = false;
 
 async function validate(file) {
     const bytes = new Uint8Array(fs.readFileSync(file));
@@ -32,7 +35,7 @@ async function validate(file) {
     for (const m of issues.messages) {
         if (m.severity <= 1) console.log('  ' + ['error', 'warning'][m.severity] + ' ' + m.code + ' ' + m.pointer + ': ' + m.message);
     }
-    return issues.numErrors;
+    return issues.numErrors + (strict ? issues.numWarnings : 0);
 }
 
 (async () => {
@@ -45,6 +48,10 @@ async function validate(file) {
         }
     };
     for (const arg of process.argv.slice(2)) {
+        if (arg === '--strict') {
+            strict = true;
+            continue;
+        }
         if (fs.existsSync(arg) && fs.statSync(arg).isDirectory()) walk(arg);
         else files.push(arg);
     }

@@ -20,7 +20,8 @@ namespace strata::meshing {
 struct CompactGlbOptions
 {
     /// The position grid in metres (> 0). Every position p (relative to the
-    /// origin) is stored as the integer n = round(p / positionStep), so the
+    /// origin) is stored as the integer n = floor(p / positionStep + 1/2)
+    /// (halves rounded up, the same on either side of the origin), so the
     /// decoded point is origin + n·positionStep and its error is at most
     /// positionStep / 2 per axis. Meshes whose origins are multiples of
     /// `positionStep` share one world-aligned grid: a point two of them hold
