@@ -15,6 +15,7 @@
 #include <ctime>
 #include <iostream>
 #include <memory>
+#include <mutex>
 #include <thread>
 
 #include <pthread.h>
@@ -29,6 +30,7 @@ struct ServeFlags
     int port = 8080;
     std::string host = "127.0.0.1";
     std::string compress = "auto";
+    bool log = false;
 };
 
 // A loopback address: the folder stays on this machine, and bandwidth is
@@ -68,6 +70,13 @@ int serve(const ServeFlags& flags)
     options.host = flags.host;
     options.port = flags.port;
     options.compression = compressionFlag(flags);
+    auto logMutex = std::make_shared<std::mutex>();
+    if (flags.log) {
+        options.onRequest = [logMutex](const serve::RequestRecord& record) {
+            std::lock_guard lock(*logMutex);
+            std::cout << record.method << " " << record.target << " " << record.status << " " << record.bytes << std::endl;
+        };
+    }
     serve::FileServer server(flags.dir, options);
 
     const std::string url = server.url();
@@ -130,6 +139,7 @@ Command registerServeCommand(CLI::App& app)
                      ".wasm), none; auto: text on a loopback host, all otherwise. Never ranges, PNG, JPEG or KTX2")
         ->check(CLI::IsMember({"auto", "text", "all", "none"}))
         ->capture_default_str();
+    command->add_flag("--log", flags->log, "Print each request: method, target, status, bytes sent");
     return {command, [flags]() { return serve(*flags); }};
 }
 

@@ -327,6 +327,14 @@ FileServer::FileServer(const fs::path& root, const FileServerOptions& options) :
         response.set_header("Allow", "GET, HEAD");
         return httplib::Server::HandlerResponse::Handled;
     });
+    if (options.onRequest) {
+        server.set_logger([impl](const httplib::Request& request, const httplib::Response& response) {
+            RequestRecord record{request.method, request.target, response.status, 0};
+            const std::string length = response.get_header_value("Content-Length");
+            if (!length.empty()) record.bytes = std::strtoull(length.c_str(), nullptr, 10);
+            impl->options.onRequest(record);
+        });
+    }
     // HEAD is answered by the GET handler; httplib sends the headers only.
     server.Get(".*", [impl](const httplib::Request& request, httplib::Response& response) {
         impl->handle(request, response);
@@ -351,7 +359,7 @@ FileServer::FileServer(const fs::path& root, const FileServerOptions& options) :
         const int error = errno;
         std::string why = error == EADDRINUSE ? "the port is in use (another server? --port 0 picks a free one)"
                           : error != 0       ? std::strerror(error)
-                                             : "not an address of this machine?";
+                                             : "the host is not a name or address of this machine";
         throw Error(ErrorKind::Io, "serve: cannot listen on " + address + ": " + why,
                     ErrorPlace{"", 0, "--port", std::to_string(options.port)});
     }

@@ -15,6 +15,7 @@
 
 #include <chrono>
 #include <cstring>
+#include <mutex>
 #include <thread>
 
 namespace fs = std::filesystem;
@@ -304,6 +305,36 @@ TEST_F(FileServerTest, ETagsRevalidateAndIfRangeChecksTheVersion)
     const auto plain = c.Get("/tileset.json", IDENTITY);
     ASSERT_TRUE(zipped && plain);
     EXPECT_NE(zipped->get_header_value("ETag"), plain->get_header_value("ETag"));
+}
+
+TEST_F(FileServerTest, EveryAnswerIsLoggedWhenAsked)
+{
+    stopServer();
+    std::mutex mutex;
+    std::vector<strata::serve::RequestRecord> records;
+    strata::serve::FileServerOptions options;
+    options.port = 0;
+    options.onRequest = [&](const strata::serve::RequestRecord& record) {
+        std::lock_guard lock(mutex);
+        records.push_back(record);
+    };
+    server = std::make_unique<strata::serve::FileServer>(root, options);
+    port = server->port();
+    thread = std::thread([this] { server->run(); });
+    auto c = client();
+    ASSERT_TRUE(c.Get("/tiles/0/0_0_0.glb", IDENTITY));
+    ASSERT_TRUE(c.Get("/missing?x=1", IDENTITY));
+    ASSERT_TRUE(c.Post("/tileset.json", "x", "text/plain"));
+    stopServer();
+    ASSERT_EQ(records.size(), 3u);
+    EXPECT_EQ(records[0].method, "GET");
+    EXPECT_EQ(records[0].target, "/tiles/0/0_0_0.glb");
+    EXPECT_EQ(records[0].status, 200);
+    EXPECT_EQ(records[0].bytes, readFile(root / "tiles/0/0_0_0.glb").size());
+    EXPECT_EQ(records[1].target, "/missing?x=1");
+    EXPECT_EQ(records[1].status, 404);
+    EXPECT_EQ(records[2].method, "POST");
+    EXPECT_EQ(records[2].status, 405);
 }
 
 TEST_F(FileServerTest, OnlyGetAndHeadAreAllowed)

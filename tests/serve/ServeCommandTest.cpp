@@ -127,7 +127,7 @@ TEST(ServeCommand, PrintsItsAddressServesTheBakeAndStopsOnCtrlC)
     const fs::path dir = makeBake();
     for (const int sig : {SIGINT, SIGTERM}) {
         SCOPED_TRACE(sig == SIGINT ? "SIGINT" : "SIGTERM");
-        Child child({"serve", dir.string(), "--port", "0"});
+        Child child({"serve", dir.string(), "--port", "0", "--log"});
         const std::smatch address =
             child.waitFor(std::regex(R"(Serving \S+ at http://127\.0\.0\.1:(\d+)/  \(Ctrl-C stops\))"), 20);
         ASSERT_FALSE(address.empty()) << "printed: " << child.printed;
@@ -141,6 +141,9 @@ TEST(ServeCommand, PrintsItsAddressServesTheBakeAndStopsOnCtrlC)
         EXPECT_EQ(response->status, 200);
         EXPECT_EQ(response->get_header_value("Content-Type"), "application/json");
         EXPECT_EQ(response->body, strata::test::readFile(dir / "tileset.json"));
+
+        const std::string logLine = "GET /tileset.json 200 " + std::to_string(response->body.size());
+        EXPECT_FALSE(child.waitFor(std::regex(logLine), 5).empty()) << child.printed;
 
         ASSERT_EQ(::kill(child.pid, sig), 0);
         const int status = child.wait(15);

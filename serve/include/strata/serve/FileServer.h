@@ -19,6 +19,8 @@
 /// stop() from another (a signal watcher, a test).
 
 #include <cstddef>
+#include <cstdint>
+#include <functional>
 #include <filesystem>
 #include <memory>
 #include <string>
@@ -34,6 +36,15 @@ enum class Compression
     All,  ///< also binary glTF, .bin and WebAssembly (Compressibility::Binary): for a network
 };
 
+/// One answered request, for a log.
+struct RequestRecord
+{
+    std::string method;  ///< "GET", "HEAD", ... (others were answered 405)
+    std::string target;  ///< as the client sent it (percent-encoded, with the query)
+    int status = 0;      ///< the HTTP status sent
+    std::uint64_t bytes = 0; ///< the Content-Length sent (compressed size when compressed; for HEAD, a GET's)
+};
+
 struct FileServerOptions
 {
     /// The address to listen on: 127.0.0.1 keeps the folder on this machine;
@@ -47,6 +58,9 @@ struct FileServerOptions
     Compression compression = Compression::Text;
     /// zlib level of on-the-fly gzip, 1 (fastest, nginx's default) to 9.
     int gzipLevel = 1;
+    /// Called after each answer, on the worker thread that answered it
+    /// (several at once: synchronise inside); null: no log.
+    std::function<void(const RequestRecord&)> onRequest{};
     /// Files larger than this are never compressed (they would be held in
     /// memory whole); they are streamed as they are.
     std::size_t maxCompressedFileBytes = std::size_t(64) << 20;
