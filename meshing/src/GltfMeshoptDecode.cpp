@@ -88,7 +88,19 @@ std::string decodeMeshoptGlb(std::string_view glb, const std::string& name)
     }
     if (fallback[0]) failRead(name, 0, "EXT_meshopt_compression: buffer 0 is a fallback buffer");
 
-    std::string out(bin); // the new binary chunk: the old one, then every decoded view
+    // Pass 1: check every compressed view and give it a place after the old
+    // binary chunk; pass 2 decodes straight into the output .glb (one
+    // allocation, no intermediate copies: decoding is bound by memory).
+    struct Job
+    {
+        std::size_t at = 0;                   ///< offset in the new binary chunk
+        std::string_view source;              ///< the compressed bytes
+        std::uint64_t count = 0, stride = 0;
+        std::string mode, filter;
+        std::string where;
+    };
+    std::vector<Job> jobs;
+    std::size_t cursor = bin.size();
     for (std::size_t v = 0; v < views.size(); ++v) {
         json& view = views[v];
         const std::string where = "buffer view " + std::to_string(v);
@@ -101,76 +113,72 @@ std::string decodeMeshoptGlb(std::string_view glb, const std::string& name)
             continue;
         }
         const json& ext = view["extensions"][EXTENSION];
-        const std::string extWhere = where + "'s " + EXTENSION;
-        if (!ext.is_object()) failRead(name, 0, extWhere + " is not an object");
-        if (unsignedMember(ext, "buffer", extWhere, name) != 0)
-            failRead(name, 0, extWhere + " reads a buffer other than the binary chunk (not supported)");
-        const std::uint64_t offset = unsignedMember(ext, "byteOffset", extWhere, name, 0);
-        const std::uint64_t length = unsignedMember(ext, "byteLength", extWhere, name);
-        const std::uint64_t stride = unsignedMember(ext, "byteStride", extWhere, name);
-        const std::uint64_t count = unsignedMember(ext, "count", extWhere, name);
-        const std::string mode = ext.value("mode", std::string());
-        const std::string filter = ext.value("filter", std::string("NONE"));
+        Job job;
+        job.where = where + "'s " + EXTENSION;
+        if (!ext.is_object()) failRead(name, 0, job.where + " is not an object");
+        if (unsignedMember(ext, "buffer", job.where, name) != 0)
+            failRead(name, 0, job.where + " reads a buffer other than the binary chunk (not supported)");
+        const std::uint64_t offset = unsignedMember(ext, "byteOffset", job.where, name, 0);
+        const std::uint64_t length = unsignedMember(ext, "byteLength", job.where, name);
+        job.stride = unsignedMember(ext, "byteStride", job.where, name);
+        job.count = unsignedMember(ext, "count", job.where, name);
+        const auto mode = ext.find("mode");
+        job.mode = mode != ext.end() && mode->is_string() ? mode->get<std::string>() : std::string();
+        const auto filter = ext.find("filter");
+        job.filter = filter != ext.end() && filter->is_string() ? filter->get<std::string>() : std::string("NONE");
         if (offset > bin.size() || length > bin.size() - offset)
-            failRead(name, 0, extWhere + " (offset " + std::to_string(offset) + ", length " + std::to_string(length) +
+            failRead(name, 0, job.where + " (offset " + std::to_string(offset) + ", length " + std::to_string(length) +
                                   ") runs past the binary chunk (" + std::to_string(bin.size()) + " bytes)");
+        job.source = bin.substr(std::size_t(offset), std::size_t(length));
         const std::uint64_t viewLength = unsignedMember(view, "byteLength", where, name);
-        if (stride == 0 || count > viewLength / stride)
-            failRead(name, 0, extWhere + ": " + std::to_string(count) + " elements of " + std::to_string(stride) +
-                                  " bytes do not fit the view's " + std::to_string(viewLength) + " bytes");
         if (viewLength > std::numeric_limits<std::uint32_t>::max())
             failRead(name, 0, where + " is larger than a GLB can hold");
+        if (job.stride == 0 || job.count > viewLength / job.stride)
+            failRead(name, 0, job.where + ": " + std::to_string(job.count) + " elements of " +
+                                  std::to_string(job.stride) + " bytes do not fit the view's " +
+                                  std::to_string(viewLength) + " bytes");
         // No codec inflates more than 64 times (a vertex byte column costs at
         // least 2 bits per 16 vertices): a larger claim is a broken file, not
         // a reason to allocate gigabytes.
-        if (count * stride > 1024 * length + 4096)
-            failRead(name, 0, extWhere + ": " + std::to_string(count * stride) + " decoded bytes from " +
+        if (job.count * job.stride > 1024 * length + 4096)
+            failRead(name, 0, job.where + ": " + std::to_string(job.count * job.stride) + " decoded bytes from " +
                                   std::to_string(length) + " compressed is more than any codec yields");
-
-        std::vector<unsigned char> decoded(std::size_t(count * stride));
-        const auto* source = reinterpret_cast<const unsigned char*>(bin.data() + offset);
-        int rc = 0;
-        if (mode == "ATTRIBUTES") {
-            if (stride % 4 != 0 || stride > 256)
-                failRead(name, 0, extWhere + ": byteStride " + std::to_string(stride) + " is not a multiple of 4 up to 256");
-            rc = meshopt_decodeVertexBuffer(decoded.data(), count, stride, source, length);
-        } else if (mode == "TRIANGLES" || mode == "INDICES") {
-            if (stride != 2 && stride != 4)
-                failRead(name, 0, extWhere + ": byteStride " + std::to_string(stride) + " is not 2 or 4 for indices");
-            if (mode == "TRIANGLES" && count % 3 != 0)
-                failRead(name, 0, extWhere + ": TRIANGLES count " + std::to_string(count) + " is not a multiple of 3");
-            rc = mode == "TRIANGLES" ? meshopt_decodeIndexBuffer(decoded.data(), count, stride, source, length)
-                                     : meshopt_decodeIndexSequence(decoded.data(), count, stride, source, length);
+        if (job.mode == "ATTRIBUTES") {
+            if (job.stride % 4 != 0 || job.stride > 256)
+                failRead(name, 0, job.where + ": byteStride " + std::to_string(job.stride) +
+                                      " is not a multiple of 4 up to 256");
+        } else if (job.mode == "TRIANGLES" || job.mode == "INDICES") {
+            if (job.stride != 2 && job.stride != 4)
+                failRead(name, 0, job.where + ": byteStride " + std::to_string(job.stride) + " is not 2 or 4 for indices");
+            if (job.mode == "TRIANGLES" && job.count % 3 != 0)
+                failRead(name, 0, job.where + ": TRIANGLES count " + std::to_string(job.count) +
+                                      " is not a multiple of 3");
         } else {
-            failRead(name, 0, extWhere + ": mode '" + mode + "' is not ATTRIBUTES, TRIANGLES or INDICES");
+            failRead(name, 0, job.where + ": mode '" + job.mode + "' is not ATTRIBUTES, TRIANGLES or INDICES");
         }
-        if (rc != 0) failRead(name, 0, extWhere + ": meshoptimizer cannot decode it (error " + std::to_string(rc) + ")");
-        if (filter != "NONE" && mode != "ATTRIBUTES") failRead(name, 0, extWhere + ": a filter needs mode ATTRIBUTES");
-        if (filter == "OCTAHEDRAL") {
-            if (stride != 4 && stride != 8) failRead(name, 0, extWhere + ": OCTAHEDRAL needs byteStride 4 or 8");
-            meshopt_decodeFilterOct(decoded.data(), count, stride);
-        } else if (filter == "QUATERNION") {
-            if (stride != 8) failRead(name, 0, extWhere + ": QUATERNION needs byteStride 8");
-            meshopt_decodeFilterQuat(decoded.data(), count, stride);
-        } else if (filter == "EXPONENTIAL") {
-            meshopt_decodeFilterExp(decoded.data(), count, stride);
-        } else if (filter != "NONE") {
-            failRead(name, 0, extWhere + ": filter '" + filter + "' is not NONE, OCTAHEDRAL, QUATERNION or EXPONENTIAL");
-        }
+        if (job.filter != "NONE" && job.mode != "ATTRIBUTES")
+            failRead(name, 0, job.where + ": a filter needs mode ATTRIBUTES");
+        if (job.filter == "OCTAHEDRAL" && job.stride != 4 && job.stride != 8)
+            failRead(name, 0, job.where + ": OCTAHEDRAL needs byteStride 4 or 8");
+        else if (job.filter == "QUATERNION" && job.stride != 8)
+            failRead(name, 0, job.where + ": QUATERNION needs byteStride 8");
+        else if (job.filter != "NONE" && job.filter != "OCTAHEDRAL" && job.filter != "QUATERNION" &&
+                 job.filter != "EXPONENTIAL")
+            failRead(name, 0, job.where + ": filter '" + job.filter +
+                                  "' is not NONE, OCTAHEDRAL, QUATERNION or EXPONENTIAL");
 
-        out.resize(align4(out.size()), '\0');
-        const std::size_t at = out.size();
-        out.append(reinterpret_cast<const char*>(decoded.data()), decoded.size());
-        out.resize(at + std::size_t(viewLength), '\0'); // the view's full length, as declared
-        if (out.size() > std::numeric_limits<std::uint32_t>::max()) failRead(name, 0, "decoded data exceed 4 GiB");
+        job.at = align4(cursor);
+        cursor = job.at + std::size_t(viewLength); // the view's full length, as declared
+        if (cursor > std::numeric_limits<std::uint32_t>::max()) failRead(name, 0, "decoded data exceed 4 GiB");
         view["buffer"] = 0;
-        view["byteOffset"] = at;
+        view["byteOffset"] = job.at;
         view["extensions"].erase(EXTENSION);
         if (view["extensions"].empty()) view.erase("extensions");
+        jobs.push_back(std::move(job));
     }
-    out.resize(align4(out.size()), '\0');
+    const std::size_t binLength = align4(cursor);
     json kept = json::array({buffers[0]});
-    kept[0]["byteLength"] = out.size();
+    kept[0]["byteLength"] = binLength;
     buffers = kept;
     for (const char* list : {"extensionsUsed", "extensionsRequired"}) {
         if (!doc.contains(list) || !doc[list].is_array()) continue;
@@ -181,20 +189,38 @@ std::string decodeMeshoptGlb(std::string_view glb, const std::string& name)
 
     std::string text = doc.dump();
     text.resize(align4(text.size()), ' ');
-    const std::uint64_t total = 12 + 8 + text.size() + 8 + out.size();
+    const std::uint64_t total = 12 + 8 + text.size() + 8 + binLength;
     if (total > std::numeric_limits<std::uint32_t>::max()) failRead(name, 0, "decoded glTF exceeds 4 GiB");
-    std::string glbOut;
-    glbOut.reserve(std::size_t(total));
-    glbOut.append("glTF", 4);
-    appendU32(glbOut, 2);
-    appendU32(glbOut, std::uint32_t(total));
-    appendU32(glbOut, std::uint32_t(text.size()));
-    glbOut.append("JSON", 4);
-    glbOut += text;
-    appendU32(glbOut, std::uint32_t(out.size()));
-    glbOut.append("BIN\0", 4);
-    glbOut += out;
-    return glbOut;
+    std::string out;
+    out.reserve(std::size_t(total));
+    out.append("glTF", 4);
+    appendU32(out, 2);
+    appendU32(out, std::uint32_t(total));
+    appendU32(out, std::uint32_t(text.size()));
+    out.append("JSON", 4);
+    out += text;
+    appendU32(out, std::uint32_t(binLength));
+    out.append("BIN\0", 4);
+    const std::size_t binStart = out.size();
+    out += bin;
+    out.resize(std::size_t(total), '\0');
+
+    // Pass 2: decode in place.
+    for (const Job& job : jobs) {
+        auto* target = reinterpret_cast<unsigned char*>(out.data() + binStart + job.at);
+        const auto* source = reinterpret_cast<const unsigned char*>(job.source.data());
+        const auto count = std::size_t(job.count), stride = std::size_t(job.stride);
+        int rc = 0;
+        if (job.mode == "ATTRIBUTES") rc = meshopt_decodeVertexBuffer(target, count, stride, source, job.source.size());
+        else if (job.mode == "TRIANGLES") rc = meshopt_decodeIndexBuffer(target, count, stride, source, job.source.size());
+        else rc = meshopt_decodeIndexSequence(target, count, stride, source, job.source.size());
+        if (rc != 0)
+            failRead(name, 0, job.where + ": meshoptimizer cannot decode it (error " + std::to_string(rc) + ")");
+        if (job.filter == "OCTAHEDRAL") meshopt_decodeFilterOct(target, count, stride);
+        else if (job.filter == "QUATERNION") meshopt_decodeFilterQuat(target, count, stride);
+        else if (job.filter == "EXPONENTIAL") meshopt_decodeFilterExp(target, count, stride);
+    }
+    return out;
 }
 
 } // namespace strata::meshing::detail
