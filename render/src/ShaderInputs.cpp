@@ -7,6 +7,7 @@
 #include "LayerSetup.h"
 #include "MaterialMaps.h"
 #include "ShadingBridge.h"
+#include "ShadowSetup.h"
 
 #include <strata/render/Camera.h>
 
@@ -124,6 +125,28 @@ TerrainShaderInputs terrainShaderInputs(const Material& material, const Lighting
     const detail::LayerMaps maps = detail::resolveLayerMaps(material);
     r.maps = maps.slots;
     return r;
+}
+
+std::vector<ShaderUniform> shadowShaderUniforms(const glm::dvec3& boundsMin, const glm::dvec3& boundsMax,
+                                                const glm::dvec3& origin, const Lighting& lighting,
+                                                const ShadowOptions& shadows)
+{
+    detail::MeshBounds bounds;
+    bounds.lo = glm::vec3(boundsMin - origin);
+    bounds.hi = glm::vec3(boundsMax - origin);
+    const shading::ShadowParams sp = detail::makeShadowParams(bounds, lighting, shadows);
+    std::vector<ShaderUniform> out;
+    std::vector<double> matrix;
+    for (int c = 0; c < 4; ++c)
+        for (int r = 0; r < 4; ++r) matrix.push_back(sp.lightViewProjection[c][r]); // column-major, as GL and three.js
+    out.push_back({"uShadow.lightViewProjection", "mat4", matrix});
+    out.push_back({"uShadow.lightDirection", "vec3", {sp.lightDirection.x, sp.lightDirection.y, sp.lightDirection.z}});
+    out.push_back({"uShadow.texelSize", "float", {sp.texelSize}});
+    out.push_back({"uShadow.normalBias", "float", {sp.normalBias}});
+    out.push_back({"uShadow.depthBias", "float", {sp.depthBias}});
+    out.push_back({"uShadow.resolution", "int", {double(sp.resolution)}});
+    out.push_back({"uShadow.enabled", "int", {double(sp.enabled)}});
+    return out;
 }
 
 } // namespace strata::render

@@ -157,6 +157,12 @@ bool writeBakeViewer(const fs::path& bakeDir, const Scene& scene, const fs::path
                 }
         if (world.min.x <= world.max.x) {
             json["bounds"] = {{"min", vec3Json(world.min)}, {"max", vec3Json(world.max)}};
+            // The sun's shadow map over the world (the GL renderer fits it
+            // to the mesh it draws: the chosen levels' tiles).
+            for (const render::ShaderUniform& u :
+                 render::shadowShaderUniforms(world.min, world.max, glm::dvec3(0.0), scene.lighting, scene.snapshot.shadows))
+                json["uniforms"][u.name] = {{"type", u.type},
+                                            {"value", u.values.size() == 1 ? nlohmann::json(u.values[0]) : nlohmann::json(u.values)}};
             const render::Camera camera = snapshotCamera(scene, SnapshotRequest{}, world,
                                                          double(scene.snapshot.width) / double(scene.snapshot.height),
                                                          std::nullopt);

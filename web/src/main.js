@@ -8,7 +8,7 @@
 //   pos=X,Y,Z target=X,Y,Z fov=DEG  the camera (scene metres, y up; default: the scene's camera as `strata render DIR` frames it)
 //   sse=PIXELS                      level of detail: the screen-space error target (default 2; 0 loads every level-0 tile)
 //   view=NAME                       a debug view: shaded, weights, normals, metallic, occlusion, height, smoothness, albedo, layers
-//   shadows=0                       shadows off (the browser draws none yet: see docs/web-viewer.md)
+//   shadows=0                       sun shadows off (on where the scene has them)
 //   controls=0                      no camera controls; ui=0: no text over the picture (tests)
 //   tiles=0                         the sky alone (tests: which pixels are terrain)
 // Keys: 0-8 debug views, Tab orbit/fly, W A S D Q E move (shift: 5x), H shadows flag.
@@ -20,7 +20,7 @@ import { TilesRenderer } from '3d-tiles-renderer';
 import { GLTFExtensionsPlugin } from '3d-tiles-renderer/plugins';
 import { MeshoptDecoder } from 'three/examples/jsm/libs/meshopt_decoder.module.js';
 import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
-import { DEBUG_VIEWS, loadMaps, makeUniforms, makeTerrainMaterial, makeSky, updateFrameUniforms } from './material.js';
+import { DEBUG_VIEWS, loadMaps, makeUniforms, makeTerrainMaterial, makeSky, makeShadowPass, updateFrameUniforms } from './material.js';
 
 const stats = { start: performance.now(), firstFrameMs: null, readyMs: null, tilesLoaded: 0, frames: 0 };
 window.strataReady = false;
@@ -76,7 +76,12 @@ async function main() {
 	let shadows = params.get( 'shadows' ) !== '0' && config.shadows !== false;
 
 	const scene = new THREE.Scene();
-	if ( uniforms.uAtmosphere.value.enabled ) scene.add( makeSky( uniforms ) );
+	const sky = uniforms.uAtmosphere.value.enabled ? makeSky( uniforms ) : null;
+	if ( sky ) scene.add( sky );
+	const shadowPass = makeShadowPass( uniforms );
+	let shadowDirty = true;
+	let lastShadow = - Infinity;
+	const dummyShadowMap = uniforms.uShadowMap.value;
 
 	// The camera: URL, else the scene's (as `strata render DIR` frames the world).
 	const bounds = config.bounds;
@@ -110,7 +115,26 @@ async function main() {
 	const tiles = new TilesRenderer( new URL( config.tileset || '../tileset.json', base ).href );
 	tiles.registerPlugin( new GLTFExtensionsPlugin( { meshoptDecoder: MeshoptDecoder } ) );
 	tiles.errorTarget = params.has( 'sse' ) ? Number( params.get( 'sse' ) ) : 2;
-	tiles.group.rotation.x = - Math.PI / 2;
+	// A georeferenced tileset (--georeference) has a root transform from its
+	// east-north-up frame to the Earth's: undone, so the scene's metres stay
+	// the frame here.
+	const placeGroup = () => {
+
+		const m = new THREE.Matrix4().makeRotationX( - Math.PI / 2 );
+		const t = tiles.root && tiles.root.transform;
+		if ( t ) m.multiply( new THREE.Matrix4().fromArray( t ).invert() );
+		tiles.group.matrixAutoUpdate = false;
+		tiles.group.matrix.copy( m );
+		tiles.group.matrixWorldNeedsUpdate = true;
+
+	};
+	placeGroup();
+	tiles.addEventListener( 'load-tileset', placeGroup );
+	for ( const event of [ 'load-model', 'dispose-model', 'tile-visibility-change' ] ) tiles.addEventListener( event, () => {
+
+		shadowDirty = true;
+
+	} );
 	tiles.setCamera( camera );
 	tiles.setResolutionFromRenderer( camera, renderer );
 	tiles.addEventListener( 'load-model', ( { scene: model } ) => {
@@ -122,6 +146,7 @@ async function main() {
 
 				o.material.dispose?.();
 				o.material = material;
+				o.frustumCulled = false; // the tiles renderer culls tiles; the shadow pass needs those outside the view
 
 			}
 
@@ -173,7 +198,35 @@ async function main() {
 
 	const size = new THREE.Vector2();
 	let last = performance.now();
-	let quietFrames = 0;
+	// Frames are drawn only when something changed: the view (controls,
+	// keys, resize, debug view) at once; the drawn tiles while they stream
+	// at most once a second, since a frame of the layered material can take
+	// a second on software WebGL, while tiles.update() runs every animation
+	// frame so that streaming never waits for drawing.
+	let viewChanged = true;
+	let tilesChanged = true;
+	let lastRender = - Infinity;
+	let quietSince = null;
+	if ( controls ) controls.addEventListener( 'change', () => {
+
+		viewChanged = true;
+
+	} );
+	window.addEventListener( 'keydown', () => {
+
+		viewChanged = true;
+
+	} );
+	window.addEventListener( 'resize', () => {
+
+		viewChanged = true;
+
+	} );
+	for ( const event of [ 'load-model', 'dispose-model', 'tile-visibility-change' ] ) tiles.addEventListener( event, () => {
+
+		tilesChanged = true;
+
+	} );
 	function frame() {
 
 		const now = performance.now();
@@ -195,24 +248,60 @@ async function main() {
 			move.multiplyScalar( speed );
 			camera.position.add( move );
 			if ( controls ) controls.target.add( move );
+			viewChanged = true;
 
 		}
 		if ( controls && controls.enabled ) controls.update();
 		camera.updateMatrixWorld();
 		if ( showTiles ) tiles.update();
-		renderer.getDrawingBufferSize( size );
-		updateFrameUniforms( uniforms, camera, size.x, size.y );
-		renderer.render( scene, camera );
-		stats.frames ++;
-		let drawn = 0;
-		tiles.group.traverse( o => { if ( o.isMesh && o.visible ) drawn ++; } );
-		if ( stats.firstFrameMs === null && drawn > 0 ) stats.firstFrameMs = now - stats.start;
-		const busy = tiles.stats.downloading + tiles.stats.parsing + ( tiles.stats.queued || 0 );
-		quietFrames = ! showTiles || ( busy === 0 && stats.tilesLoaded > 0 ) ? quietFrames + 1 : 0;
-		if ( ! window.strataReady && quietFrames >= 3 ) {
+		const busy = showTiles ? tiles.stats.downloading + tiles.stats.parsing + ( tiles.stats.queued || 0 ) : 0;
+		const streaming = busy > 0;
+		const render = stats.frames === 0 || viewChanged || ( tilesChanged && ( ! streaming || now - lastRender > 1000 ) );
+		if ( render ) {
+
+			viewChanged = false;
+			tilesChanged = false;
+			lastRender = now;
+			renderer.getDrawingBufferSize( size );
+			updateFrameUniforms( uniforms, camera, size.x, size.y );
+			const shadowsOn = shadows && shadowPass !== null && showTiles;
+			// The shadow map follows the drawn tiles; while they stream at
+			// most every 2 s (a 2048² depth pass is slow on software WebGL).
+			if ( shadowsOn && shadowDirty && ( ! streaming || now - lastShadow > 2000 ) ) {
+
+				lastShadow = now;
+				if ( sky ) sky.visible = false;
+				scene.overrideMaterial = shadowPass.material;
+				renderer.setRenderTarget( shadowPass.target );
+				renderer.clear( false, true, false );
+				renderer.render( scene, camera );
+				renderer.setRenderTarget( null );
+				scene.overrideMaterial = null;
+				if ( sky ) sky.visible = true;
+				shadowDirty = false;
+
+			}
+			if ( shadowsOn && shadowDirty ) tilesChanged = true; // draw again with the new map
+			uniforms.uShadow.value.enabled = shadowsOn ? 1 : 0;
+			uniforms.uShadowMap.value = shadowsOn ? shadowPass.depthTexture : dummyShadowMap;
+			renderer.render( scene, camera );
+			stats.frames ++;
+			let drawn = 0;
+			tiles.group.traverse( o => {
+
+				if ( o.isMesh && o.visible ) drawn ++;
+
+			} );
+			stats.meshesDrawn = drawn;
+			if ( stats.firstFrameMs === null && ( drawn > 0 || ! showTiles ) ) stats.firstFrameMs = performance.now() - stats.start;
+
+		}
+		// Ready: nothing streaming or changed for 3 animation frames after a frame drew it all.
+		const settled = ( ! showTiles || stats.tilesLoaded > 0 ) && ! streaming && ! render && ! tilesChanged && ! viewChanged;
+		quietSince = settled ? ( quietSince ?? 0 ) + 1 : null;
+		if ( ! window.strataReady && quietSince >= 3 ) {
 
 			stats.readyMs = now - stats.start;
-			stats.meshesDrawn = drawn;
 			// The contents drawn, by level (tiles/L/...): what the view loaded.
 			stats.visibleByLevel = {};
 			for ( const tile of tiles.visibleTiles ) {

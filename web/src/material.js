@@ -7,7 +7,7 @@
 // set as the GL renderer sets them (render/src/GlRenderer.cpp).
 
 import * as THREE from 'three';
-import { TERRAIN_VERT, TERRAIN_FRAG, FULLSCREEN_VERT, SKY_FRAG } from 'strata:shaders';
+import { TERRAIN_VERT, TERRAIN_FRAG, FULLSCREEN_VERT, SKY_FRAG, SHADOW_DEPTH_FRAG } from 'strata:shaders';
 import { decodePng } from './png.js';
 
 /** Debug views by name (DEBUG_VIEW_* of shaders/TriplanarMaterial.h). */
@@ -174,6 +174,30 @@ export function makeSky( uniforms ) {
 	mesh.frustumCulled = false;
 	mesh.renderOrder = - 1;
 	return mesh;
+
+}
+
+/**
+ * The sun's shadow map (shaders/Shadow.h, step 1) as the GL renderer draws it:
+ * the terrain vertex stage with the sun's view-projection, both windings,
+ * depth GL_LESS into a 32-bit float depth texture cleared to 1, read texel
+ * by texel by the terrain program. Null when the bake's scene has shadows off.
+ */
+export function makeShadowPass( uniforms ) {
+
+	const shadow = uniforms.uShadow.value;
+	if ( ! shadow.enabled ) return null;
+	const resolution = shadow.resolution;
+	const depthTexture = new THREE.DepthTexture( resolution, resolution, THREE.FloatType );
+	depthTexture.minFilter = depthTexture.magFilter = THREE.NearestFilter;
+	const target = new THREE.WebGLRenderTarget( resolution, resolution, { depthTexture, depthBuffer: true } );
+	const frame = { ...uniforms.uFrame.value, viewProjection: new THREE.Matrix4().fromArray( shadow.lightViewProjection ) };
+	const material = new THREE.RawShaderMaterial( {
+		name: 'strata-shadow-depth', glslVersion: THREE.GLSL3, vertexShader: TERRAIN_VERT, fragmentShader: SHADOW_DEPTH_FRAG,
+		uniforms: { uFrame: { value: frame }, uWorldOrigin: uniforms.uWorldOrigin }, side: THREE.DoubleSide,
+		depthFunc: THREE.LessDepth, colorWrite: false,
+	} );
+	return { target, material, depthTexture };
 
 }
 

@@ -9,6 +9,7 @@
 /// programs web/GenerateShaders.cmake generates from shaders/).
 
 #include <strata/render/Material.h>
+#include <strata/render/SnapshotOptions.h>
 #include <strata/render/Texture.h>
 
 #include <glm/vec3.hpp>
@@ -25,8 +26,8 @@ namespace strata::render {
 struct ShaderUniform
 {
     std::string name;
-    std::string type;           ///< "float", "int", "uint", "vec3" or "vec4"
-    std::vector<double> values; ///< 1, 3 or 4 components (floats as the GL renderer rounds them)
+    std::string type;           ///< "float", "int", "uint", "vec3", "vec4" or "mat4"
+    std::vector<double> values; ///< 1, 3, 4 or 16 (column-major) components (floats as the GL renderer rounds them)
 };
 
 /// The terrain program's inputs for `material` under `lighting` with
@@ -50,5 +51,13 @@ struct TerrainShaderInputs
 /// Throws strata::Error as checkMaterial() and for an atmosphere out of range.
 TerrainShaderInputs terrainShaderInputs(const Material& material, const Lighting& lighting,
                                         const glm::dvec3& origin, std::uint32_t featureMask = feature::ALL);
+
+/// uShadow (shaders/Shadow.h) as the GL renderer sets it for a mesh whose
+/// vertices lie in [boundsMin, boundsMax] (metres), positions relative to
+/// `origin`: the sun's orthographic view fitted to the box; enabled = 0
+/// when `shadows` is off.
+std::vector<ShaderUniform> shadowShaderUniforms(const glm::dvec3& boundsMin, const glm::dvec3& boundsMax,
+                                                const glm::dvec3& origin, const Lighting& lighting,
+                                                const ShadowOptions& shadows);
 
 } // namespace strata::render
