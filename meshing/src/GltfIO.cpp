@@ -21,6 +21,7 @@
 #include <fstream>
 #include <limits>
 #include <map>
+#include <optional>
 #include <sstream>
 
 namespace strata::meshing {
@@ -454,8 +455,11 @@ namespace {
 
 /// Runs one tinygltf load (`load(model, error, warning)`) and turns any
 /// failure, reported or thrown, into one BadInput error naming the file.
+/// `meshopt` (may be null): the compressed views of an
+/// EXT_meshopt_compression file, decoded into buffer 1 after parsing.
 template <typename LoadFn>
-TriangleMesh loadModel(const std::string& name, bool allowExternalFiles, LoadFn&& load)
+TriangleMesh loadModel(const std::string& name, bool allowExternalFiles, LoadFn&& load,
+                       const detail::MeshoptGlb* meshopt = nullptr)
 {
     tinygltf::Model model;
     tinygltf::TinyGLTF loader;
@@ -470,6 +474,12 @@ TriangleMesh loadModel(const std::string& name, bool allowExternalFiles, LoadFn&
     }
     if (!ok) {
         detail::failRead(name, 0, "cannot read glTF: " + (error.empty() ? std::string("unknown error") : oneLine(error)));
+    }
+    if (meshopt) {
+        if (model.buffers.size() != 1) detail::failRead(name, 0, "EXT_meshopt_compression: expected one buffer after rewriting");
+        tinygltf::Buffer decoded;
+        detail::decodeMeshoptViews(*meshopt, model.buffers[0].data, decoded.data, name);
+        model.buffers.push_back(std::move(decoded));
     }
     return meshFromModel(model, name);
 }
@@ -531,19 +541,21 @@ TriangleMesh parseGlb(std::string_view bytes, const std::string& name)
 {
     if (bytes.size() > std::numeric_limits<unsigned int>::max()) detail::failRead(name, 0, "file too large for glTF");
     checkGlbContainer(bytes, name);
-    // EXT_meshopt_compression (compact tiles) is decoded first: tinygltf does not know it.
-    std::string decoded;
+    // EXT_meshopt_compression (compact tiles): tinygltf does not know it, so
+    // the JSON is rewritten for it first and the views decoded after.
+    std::optional<detail::MeshoptGlb> meshopt;
     if (detail::usesMeshoptCompression(bytes)) {
-        decoded = detail::decodeMeshoptGlb(bytes, name);
-        checkGlbContainer(decoded, name);
-        bytes = decoded;
+        meshopt = detail::decodeMeshoptGlb(bytes, name);
+        checkGlbContainer(meshopt->glb, name);
+        bytes = meshopt->glb;
     }
-    return loadModel(name, /*allowExternalFiles*/ false,
-                     [&](tinygltf::TinyGLTF& loader, tinygltf::Model& model, std::string& error, std::string& warning) {
-                         return loader.LoadBinaryFromMemory(&model, &error, &warning,
-                                                            reinterpret_cast<const unsigned char*>(bytes.data()),
-                                                            unsigned(bytes.size()), "");
-                     });
+    return loadModel(
+        name, /*allowExternalFiles*/ false,
+        [&](tinygltf::TinyGLTF& loader, tinygltf::Model& model, std::string& error, std::string& warning) {
+            return loader.LoadBinaryFromMemory(&model, &error, &warning, reinterpret_cast<const unsigned char*>(bytes.data()),
+                                               unsigned(bytes.size()), "");
+        },
+        meshopt ? &*meshopt : nullptr);
 }
 
 } // namespace strata::meshing

@@ -61,7 +61,7 @@ bool usesMeshoptCompression(std::string_view glb)
     return glb.substr(20, std::min<std::size_t>(length, glb.size() - 20)).find(EXTENSION) != std::string_view::npos;
 }
 
-std::string decodeMeshoptGlb(std::string_view glb, const std::string& name)
+MeshoptGlb decodeMeshoptGlb(std::string_view glb, const std::string& name)
 {
     // The container is checked (checkGlbContainer): header, JSON, then BIN.
     const std::size_t jsonLength = readU32(glb, 12);
@@ -88,19 +88,12 @@ std::string decodeMeshoptGlb(std::string_view glb, const std::string& name)
     }
     if (fallback[0]) failRead(name, 0, "EXT_meshopt_compression: buffer 0 is a fallback buffer");
 
-    // Pass 1: check every compressed view and give it a place after the old
-    // binary chunk; pass 2 decodes straight into the output .glb (one
-    // allocation, no intermediate copies: decoding is bound by memory).
-    struct Job
-    {
-        std::size_t at = 0;                   ///< offset in the new binary chunk
-        std::string_view source;              ///< the compressed bytes
-        std::uint64_t count = 0, stride = 0;
-        std::string mode, filter;
-        std::string where;
-    };
-    std::vector<Job> jobs;
-    std::size_t cursor = bin.size();
+    // Check every compressed view and give it a place in the decoded buffer;
+    // decodeMeshoptViews() decodes them once tinygltf has parsed the rest
+    // (so the decoded bytes are written once, never copied).
+    MeshoptGlb result;
+    std::vector<MeshoptJob>& jobs = result.jobs;
+    std::size_t cursor = 0;
     for (std::size_t v = 0; v < views.size(); ++v) {
         json& view = views[v];
         const std::string where = "buffer view " + std::to_string(v);
@@ -113,7 +106,7 @@ std::string decodeMeshoptGlb(std::string_view glb, const std::string& name)
             continue;
         }
         const json& ext = view["extensions"][EXTENSION];
-        Job job;
+        MeshoptJob job;
         job.where = where + "'s " + EXTENSION;
         if (!ext.is_object()) failRead(name, 0, job.where + " is not an object");
         if (unsignedMember(ext, "buffer", job.where, name) != 0)
@@ -129,7 +122,8 @@ std::string decodeMeshoptGlb(std::string_view glb, const std::string& name)
         if (offset > bin.size() || length > bin.size() - offset)
             failRead(name, 0, job.where + " (offset " + std::to_string(offset) + ", length " + std::to_string(length) +
                                   ") runs past the binary chunk (" + std::to_string(bin.size()) + " bytes)");
-        job.source = bin.substr(std::size_t(offset), std::size_t(length));
+        job.sourceOffset = std::size_t(offset);
+        job.sourceLength = std::size_t(length);
         const std::uint64_t viewLength = unsignedMember(view, "byteLength", where, name);
         if (viewLength > std::numeric_limits<std::uint32_t>::max())
             failRead(name, 0, where + " is larger than a GLB can hold");
@@ -170,15 +164,15 @@ std::string decodeMeshoptGlb(std::string_view glb, const std::string& name)
         job.at = align4(cursor);
         cursor = job.at + std::size_t(viewLength); // the view's full length, as declared
         if (cursor > std::numeric_limits<std::uint32_t>::max()) failRead(name, 0, "decoded data exceed 4 GiB");
-        view["buffer"] = 0;
+        view["buffer"] = 1; // the decoded buffer, added after parsing
         view["byteOffset"] = job.at;
         view["extensions"].erase(EXTENSION);
         if (view["extensions"].empty()) view.erase("extensions");
         jobs.push_back(std::move(job));
     }
-    const std::size_t binLength = align4(cursor);
+    result.decodedBytes = align4(cursor);
     json kept = json::array({buffers[0]});
-    kept[0]["byteLength"] = binLength;
+    kept[0]["byteLength"] = bin.size();
     buffers = kept;
     for (const char* list : {"extensionsUsed", "extensionsRequired"}) {
         if (!doc.contains(list) || !doc[list].is_array()) continue;
@@ -187,11 +181,13 @@ std::string decodeMeshoptGlb(std::string_view glb, const std::string& name)
         if (names.empty()) doc.erase(list);
     }
 
+    // The same .glb with the new JSON and the compressed binary chunk.
     std::string text = doc.dump();
     text.resize(align4(text.size()), ' ');
+    const std::size_t binLength = align4(bin.size());
     const std::uint64_t total = 12 + 8 + text.size() + 8 + binLength;
-    if (total > std::numeric_limits<std::uint32_t>::max()) failRead(name, 0, "decoded glTF exceeds 4 GiB");
-    std::string out;
+    if (total > std::numeric_limits<std::uint32_t>::max()) failRead(name, 0, "glTF exceeds 4 GiB");
+    std::string& out = result.glb;
     out.reserve(std::size_t(total));
     out.append("glTF", 4);
     appendU32(out, 2);
@@ -201,26 +197,31 @@ std::string decodeMeshoptGlb(std::string_view glb, const std::string& name)
     out += text;
     appendU32(out, std::uint32_t(binLength));
     out.append("BIN\0", 4);
-    const std::size_t binStart = out.size();
     out += bin;
     out.resize(std::size_t(total), '\0');
+    return result;
+}
 
-    // Pass 2: decode in place.
-    for (const Job& job : jobs) {
-        auto* target = reinterpret_cast<unsigned char*>(out.data() + binStart + job.at);
-        const auto* source = reinterpret_cast<const unsigned char*>(job.source.data());
+void decodeMeshoptViews(const MeshoptGlb& glb, const std::vector<unsigned char>& bin, std::vector<unsigned char>& decoded,
+                        const std::string& name)
+{
+    decoded.assign(glb.decodedBytes, 0);
+    for (const MeshoptJob& job : glb.jobs) {
+        if (job.sourceOffset > bin.size() || job.sourceLength > bin.size() - job.sourceOffset)
+            failRead(name, 0, job.where + ": its compressed bytes run past the binary chunk");
+        unsigned char* target = decoded.data() + job.at;
+        const unsigned char* source = bin.data() + job.sourceOffset;
         const auto count = std::size_t(job.count), stride = std::size_t(job.stride);
         int rc = 0;
-        if (job.mode == "ATTRIBUTES") rc = meshopt_decodeVertexBuffer(target, count, stride, source, job.source.size());
-        else if (job.mode == "TRIANGLES") rc = meshopt_decodeIndexBuffer(target, count, stride, source, job.source.size());
-        else rc = meshopt_decodeIndexSequence(target, count, stride, source, job.source.size());
+        if (job.mode == "ATTRIBUTES") rc = meshopt_decodeVertexBuffer(target, count, stride, source, job.sourceLength);
+        else if (job.mode == "TRIANGLES") rc = meshopt_decodeIndexBuffer(target, count, stride, source, job.sourceLength);
+        else rc = meshopt_decodeIndexSequence(target, count, stride, source, job.sourceLength);
         if (rc != 0)
             failRead(name, 0, job.where + ": meshoptimizer cannot decode it (error " + std::to_string(rc) + ")");
         if (job.filter == "OCTAHEDRAL") meshopt_decodeFilterOct(target, count, stride);
         else if (job.filter == "QUATERNION") meshopt_decodeFilterQuat(target, count, stride);
         else if (job.filter == "EXPONENTIAL") meshopt_decodeFilterExp(target, count, stride);
     }
-    return out;
 }
 
 } // namespace strata::meshing::detail
