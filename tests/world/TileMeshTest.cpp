@@ -15,6 +15,7 @@
 #include <glm/trigonometric.hpp>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <map>
 #include <tuple>
@@ -206,6 +207,40 @@ TEST(TileMesh, NoSkirtWhereTheSurfaceLiesNearlyInTheFacePlane)
         ASSERT_GT(tile.surface.triangleCount(), 0u);
         EXPECT_EQ(tile.skirt.triangleCount() > 0, made) << "ground tilted " << degrees << "°, faces " << faces;
     }
+}
+
+TEST(TileMesh, SkirtsEndWhereTheyWouldLeaveTheRockIntoACave)
+{
+    // Flat ground with a cave 0.5 m under it at the tile's side: a 3 m skirt
+    // hanging from the side would show in the cave; it ends at the cave's roof.
+    struct GroundOverCave final : terrain::DensityField
+    {
+        glm::dvec3 centre{8.0, -2.0, 4.0};
+        double radius = 1.5;
+        double density(const glm::dvec3& p) const override
+        {
+            return std::max(p.y, radius - glm::length(p - centre)); // air positive
+        }
+        double lipschitz() const override { return 1.0; }
+        double distanceBound(const glm::dvec3& p) const override { return density(p); }
+    } field;
+    TileMeshOptions options;
+    options.voxelSize = 0.5;
+    options.skirtDepth = 3.0;
+    const TileMeshData tile = meshTile(field, box(0, -8, 0, 16, 1u << 1), options);
+    const meshing::TriangleMesh& s = tile.skirt;
+    ASSERT_GT(s.triangleCount(), 0u);
+    float deepest = 0.0f;
+    std::size_t inAir = 0;
+    for (std::size_t t = 0; t + 2 < s.indices.size(); t += 3) {
+        glm::dvec3 p[3];
+        for (int k = 0; k < 3; ++k) p[k] = s.origin + glm::dvec3(s.positions[s.indices[t + k]]);
+        for (int k = 0; k < 3; ++k)
+            if (std::abs(p[k].z - field.centre.z) > field.radius + 0.1) deepest = std::min(deepest, float(p[k].y));
+        inAir += field.density((p[0] + p[1] + p[2]) / 3.0) > 0.02;
+    }
+    EXPECT_EQ(inAir, 0u) << "skirt triangles in the cave";
+    EXPECT_NEAR(deepest, -3.0f, 0.05f) << "beside the cave the ground's skirt keeps its depth";
 }
 
 TEST(TileMesh, RefusesBoxesOffTheLevelsLattice)

@@ -7,6 +7,7 @@
 #include <glm/geometric.hpp>
 
 #include <algorithm>
+#include <functional>
 #include <cmath>
 #include <map>
 #include <utility>
@@ -49,7 +50,39 @@ glm::dvec3 skirtDirection(const glm::dvec3& normal, int axis)
 
 } // namespace
 
-ClipMesh makeSkirts(const ClipMesh& surface, const glm::dvec3& lo, const glm::dvec3& hi, unsigned faces, double depth)
+namespace {
+
+/// How far a skirt from `top` along `d` may reach: `depth`, or less where
+/// it would leave the rock again (into a cave, under an overhang's lip, out
+/// of a thin ridge) after having entered it: there it ends at the crossing.
+/// Marched in steps of a quarter cell; the crossing interpolated between
+/// the two densities around it.
+double rockDepth(const glm::dvec3& top, const glm::dvec3& d, double depth,
+                 const std::function<double(const glm::dvec3&)>& density)
+{
+    if (!density) return depth;
+    constexpr double STEP = 0.25; // cells
+    bool inRock = false;
+    double previous = 0.0;
+    const int steps = int(std::ceil(depth / STEP));
+    for (int s = 1; s <= steps; ++s) {
+        const double t = std::min(depth, s * STEP);
+        const double value = density(top + t * d);
+        if (value < 0.0) {
+            inRock = true;
+        } else if (inRock) {
+            const double t0 = (s - 1) * STEP;
+            return t0 + (t - t0) * previous / (previous - value); // previous < 0 <= value
+        }
+        previous = value;
+    }
+    return depth;
+}
+
+} // namespace
+
+ClipMesh makeSkirts(const ClipMesh& surface, const glm::dvec3& lo, const glm::dvec3& hi, unsigned faces, double depth,
+                    const std::function<double(const glm::dvec3&)>& density)
 {
     ClipMesh skirt;
     if (depth <= 0.0 || faces == 0) return skirt;
@@ -76,7 +109,8 @@ ClipMesh makeSkirts(const ClipMesh& surface, const glm::dvec3& lo, const glm::dv
             // Kept inside the box: never past the world's outer faces, and
             // within the tile's bounding volume. The face's own coordinate
             // is untouched (d has none), so the skirt stays in the face plane.
-            skirt.positions.push_back(glm::clamp(surface.positions[v] + depth * d, lo, hi));
+            const double reach = rockDepth(surface.positions[v], d, depth, density);
+            skirt.positions.push_back(glm::clamp(surface.positions[v] + reach * d, lo, hi));
             skirt.normals.push_back(surface.normals[v]);
         }
         made.emplace(std::make_pair(v, face), pair);

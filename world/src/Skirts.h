@@ -7,6 +7,8 @@
 
 #include "ClipToBox.h"
 
+#include <functional>
+
 namespace strata::world::detail {
 
 /// Skirts are not made where the surface meets the face plane at less than
@@ -25,7 +27,10 @@ constexpr double SKIRT_MIN_SINE = 0.5; // 30 degrees
 /// the in-plane axis on which its vertex normal's in-plane part, reversed,
 /// is largest (−y under terrain on a tile's side); none where that part is
 /// shorter than SKIRT_MIN_SINE (see above). The far edge is clamped into
-/// [lo, hi] (never outside the box). Every skirt vertex has the normal of
+/// [lo, hi] (never outside the box) and, with `density` (the field in
+/// the mesh's coordinates, negative in rock; may be empty), ends where the
+/// skirt would leave the rock again after entering it (a cave under a thin
+/// roof), so a skirt stays hidden in the rock. Every skirt vertex has the normal of
 /// the surface vertex it hangs from. Wound to continue the surface's
 /// orientation, so the front faces out of the box (a one-sided material
 /// shows it from the air side of the seam, lit like the surface); a
@@ -33,6 +38,6 @@ constexpr double SKIRT_MIN_SINE = 0.5; // 30 degrees
 /// or the vertex normal disagrees with its triangle) or that the clamp
 /// collapsed is dropped. Returns the skirt mesh.
 ClipMesh makeSkirts(const ClipMesh& surface, const glm::dvec3& lo, const glm::dvec3& hi, unsigned faces,
-                    double depth);
+                    double depth, const std::function<double(const glm::dvec3&)>& density = {});
 
 } // namespace strata::world::detail

@@ -11,8 +11,10 @@
 #include <strata/Error.h>
 #include <strata/meshing/DualMesh.h>
 
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -122,8 +124,24 @@ TileMeshData meshTile(const terrain::DensityField& field, const TileBox& box, co
 
     const detail::ClipMesh mesh = detail::meshSampledBox(samples, cells);
     const glm::dvec3 hi{double(cells[0]), double(cells[1]), double(cells[2])};
+    // The samples' trilinear field, in cells from the box minimum (sample
+    // index = cell + 2): the same field the level's surface was cut from.
+    const float* values = samples.data();
+    const auto density = [&](const glm::dvec3& c) {
+        const glm::dvec3 s = glm::clamp(c + 2.0, glm::dvec3(0.0), glm::dvec3(dims[0] - 1, dims[1] - 1, dims[2] - 1));
+        const int i = std::min(int(s.x), dims[0] - 2), j = std::min(int(s.y), dims[1] - 2), k = std::min(int(s.z), dims[2] - 2);
+        const double fx = s.x - i, fy = s.y - j, fz = s.z - k;
+        const auto at = [&](int di, int dj, int dk) {
+            return double(values[(std::size_t(k + dk) * std::size_t(dims[1]) + std::size_t(j + dj)) * std::size_t(dims[0]) +
+                                 std::size_t(i + di)]);
+        };
+        const double x00 = at(0, 0, 0) + fx * (at(1, 0, 0) - at(0, 0, 0)), x10 = at(0, 1, 0) + fx * (at(1, 1, 0) - at(0, 1, 0));
+        const double x01 = at(0, 0, 1) + fx * (at(1, 0, 1) - at(0, 0, 1)), x11 = at(0, 1, 1) + fx * (at(1, 1, 1) - at(0, 1, 1));
+        const double y0 = x00 + fy * (x10 - x00), y1 = x01 + fy * (x11 - x01);
+        return y0 + fz * (y1 - y0);
+    };
     const detail::ClipMesh skirt =
-        detail::makeSkirts(mesh, glm::dvec3(0.0), hi, box.neighbourFaces, options.skirtDepth / cellMetres);
+        detail::makeSkirts(mesh, glm::dvec3(0.0), hi, box.neighbourFaces, options.skirtDepth / cellMetres, density);
 
     out.surface = detail::toTriangleMesh(mesh, cellMetres, origin);
     out.skirt = detail::toTriangleMesh(skirt, cellMetres, origin);

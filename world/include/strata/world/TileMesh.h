@@ -20,8 +20,10 @@
 /// world's outer faces): a strip in the face plane, `skirtDepth` deep,
 /// pointing away from the air (along the in-plane axis where the surface
 /// normal's in-plane part, reversed, is largest: straight down under
-/// terrain on a tile's side), clamped into the box, so the skirt of the
-/// upper polyline covers the gap. No skirt where the surface meets the face
+/// terrain on a tile's side), clamped into the box and ended where it
+/// would leave the rock again (a cave under a thin roof; the level's own
+/// samples decide), so the skirt of the upper polyline covers the gap and
+/// stays hidden in the rock. No skirt where the surface meets the face
 /// within 30° of its plane (a slab cut through nearly flat ground, a cliff
 /// along a tile's side): it would lie in the surface's own plane and show
 /// as a flap or fight it for pixels. Skirt vertices carry the normal of the
