@@ -3,10 +3,10 @@
 
 // The web viewer `strata bake` writes, in a real browser: Debian's headless
 // Chromium on software WebGL (SwiftShader), driven by puppeteer-core
-// (viewer_browser.mjs; web/package-lock.json) opens DIR/viewer/ served from
-// 127.0.0.1 with the camera of `strata render DIR` given by URL parameters,
-// every level-0 tile (sse=0) and shadows off on both sides (the scene says
-// so), and checks: no console errors; every level-0 content drawn and no
+// (viewer_browser.mjs; web/package-lock.json) opens DIR/viewer/ served by
+// `strata serve DIR --port 0` with the camera of `strata render DIR` given by
+// URL parameters, every level-0 tile (sse=0) and shadows off on both sides
+// (the scene says so; a second test with them on), and checks: no console errors; every level-0 content drawn and no
 // other; the picture is terrain, not the clear colour; and it matches `strata
 // render DIR --backend cpu` from the same camera on the terrain's pixels.
 // Fails, never skips, where Chromium, node or the npm packages are missing.
@@ -125,7 +125,7 @@ void browserParity(bool shadows, double& db)
     // The browser: the terrain, then the sky alone (which pixels are terrain).
     const std::string query = "pos=" + position + "&target=" + target + "&fov=" + fov.str() + "&sse=0&ui=0&controls=0" + (shadows ? "" : "&shadows=0");
     auto browse = [&](const std::string& extra, const fs::path& out) {
-        const std::string command = std::string(STRATA_NODE) + " " + STRATA_WEB_TEST_SCRIPT + " --modules " +
+        const std::string command = std::string(STRATA_NODE) + " " + STRATA_WEB_TEST_SCRIPT + " --serve " + STRATA_EXECUTABLE + " --modules " +
                                     STRATA_WEB_MODULES + "/node_modules --chromium " + STRATA_CHROMIUM + " --dir " +
                                     bake.string() + " --size 480x270 --out " + out.string() + " --query '" + query +
                                     extra + "'";

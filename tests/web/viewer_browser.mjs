@@ -5,14 +5,16 @@
 // puppeteer-core (Debian's /usr/bin/chromium, software WebGL through
 // SwiftShader) and saves what it draws. Used by tests/web/WebViewerTest.cpp.
 //   node viewer_browser.mjs --modules <node_modules> --chromium <path> --dir <bake>
-//        --size WxH --out <png> [--query "pos=..&target=..&fov=.."] [--timeout-ms N]
-// Serves DIR on 127.0.0.1 (a small static server of its own), opens
+//        --size WxH --out <png> [--query "pos=..&target=..&fov=.."] [--timeout-ms N] [--serve <strata>]
+// Serves DIR on 127.0.0.1 with `strata serve DIR --port 0` (--serve; else a
+// small static server of its own, for trying a bake by hand), opens
 // viewer/index.html?QUERY, waits for window.strataReady (every tile the view
 // needs loaded and drawn) and screenshots the canvas. Prints one JSON line:
 // { ok, consoleErrors: [...], stats: window.strataStats, pageLoadMs }.
 // Exits 1 with a message on any failure (no Chromium, no page, a timeout).
 
 import { createServer } from 'node:http';
+import { spawn } from 'node:child_process';
 import { readFile, stat } from 'node:fs/promises';
 import { existsSync } from 'node:fs';
 import { extname, join, normalize, resolve, sep } from 'node:path';
@@ -37,28 +39,61 @@ const puppeteerMain = join( resolve( args.modules ), 'puppeteer-core', 'lib', 'e
 if ( ! existsSync( puppeteerMain ) ) fail( `puppeteer-core is not installed in ${ args.modules } (npm ci of web/package-lock.json)` );
 const puppeteer = ( await import( pathToFileURL( puppeteerMain ).href ) ).default;
 
+// `strata serve DIR --port 0` prints "Serving DIR at http://127.0.0.1:PORT/".
+async function strataServe( strata ) {
+
+	const child = spawn( strata, [ 'serve', root, '--port', '0' ], { stdio: [ 'ignore', 'pipe', 'inherit' ] } );
+	let text = '';
+	const base = await new Promise( ( resolveBase, reject ) => {
+
+		const timer = setTimeout( () => reject( new Error( `strata serve printed no address in 10 s: ${ text }` ) ), 10000 );
+		child.stdout.on( 'data', chunk => {
+
+			text += chunk;
+			const m = / at (http:\/\/[^ \n]+\/)/.exec( text );
+			if ( m ) {
+
+				clearTimeout( timer );
+				resolveBase( m[ 1 ] );
+
+			}
+
+		} );
+		child.on( 'exit', code => reject( new Error( `strata serve exited (${ code }): ${ text }` ) ) );
+
+	} ).catch( e => fail( String( e.message ) ) );
+	return { base, close: () => child.kill( 'SIGINT' ) };
+
+}
+
 const TYPES = { '.html': 'text/html', '.js': 'text/javascript', '.json': 'application/json', '.png': 'image/png', '.glb': 'model/gltf-binary' };
-const server = createServer( async ( request, response ) => {
+async function ownServer() {
 
-	const path = normalize( join( root, decodeURIComponent( request.url.split( '?' )[ 0 ] ) ) );
-	try {
+	const server = createServer( async ( request, response ) => {
 
-		if ( path !== root && ! path.startsWith( root + sep ) ) throw new Error( 'outside' );
-		if ( ! ( await stat( path ) ).isFile() ) throw new Error( 'not a file' );
-		const body = await readFile( path );
-		response.writeHead( 200, { 'Content-Type': TYPES[ extname( path ) ] || 'application/octet-stream', 'Content-Length': body.length } );
-		response.end( body );
+		const path = normalize( join( root, decodeURIComponent( request.url.split( '?' )[ 0 ] ) ) );
+		try {
 
-	} catch {
+			if ( path !== root && ! path.startsWith( root + sep ) ) throw new Error( 'outside' );
+			if ( ! ( await stat( path ) ).isFile() ) throw new Error( 'not a file' );
+			const body = await readFile( path );
+			response.writeHead( 200, { 'Content-Type': TYPES[ extname( path ) ] || 'application/octet-stream', 'Content-Length': body.length } );
+			response.end( body );
 
-		response.writeHead( 404 );
-		response.end();
+		} catch {
 
-	}
+			response.writeHead( 404 );
+			response.end();
 
-} );
-await new Promise( r => server.listen( 0, '127.0.0.1', r ) );
-const url = `http://127.0.0.1:${ server.address().port }/viewer/index.html${ args.query ? '?' + args.query : '' }`;
+		}
+
+	} );
+	await new Promise( r => server.listen( 0, '127.0.0.1', r ) );
+	return { base: `http://127.0.0.1:${ server.address().port }/`, close: () => server.close() };
+
+}
+const server = args.serve ? await strataServe( args.serve ) : await ownServer();
+const url = `${ server.base }viewer/index.html${ args.query ? '?' + args.query : '' }`;
 
 const consoleErrors = [];
 let browser;

@@ -293,7 +293,7 @@ async function main() {
 
 			} );
 			stats.meshesDrawn = drawn;
-			if ( stats.firstFrameMs === null && ( drawn > 0 || ! showTiles ) ) stats.firstFrameMs = performance.now() - stats.start;
+			if ( stats.firstFrameMs === null && ( drawn > 0 || ! showTiles ) ) stats.firstFrameMs = performance.now(); // since navigation start
 
 		}
 		// Ready: nothing streaming or changed for 3 animation frames after a frame drew it all.
@@ -301,7 +301,7 @@ async function main() {
 		quietSince = settled ? ( quietSince ?? 0 ) + 1 : null;
 		if ( ! window.strataReady && quietSince >= 3 ) {
 
-			stats.readyMs = now - stats.start;
+			stats.readyMs = now; // since navigation start
 			// The contents drawn, by level (tiles/L/...): what the view loaded.
 			stats.visibleByLevel = {};
 			for ( const tile of tiles.visibleTiles ) {
