@@ -145,9 +145,10 @@ TEST(BakeTileFormat, CompactTilesHoldThePlainTrianglesInAFractionOfTheBytes)
     EXPECT_EQ(b.plain["tile_format"], "plain");
     EXPECT_EQ(b.compact["tile_format"], "meshopt");
     ASSERT_EQ(b.plain["tiles"].size(), b.compact["tiles"].size());
-    // The grid: 1/128 voxel here (16 m tiles + skirts and slack in 16 bits at
-    // 0.5 m voxels): every decoded vertex lies within half of it of a plain one.
-    const double bound = 0.5 * b.plan.voxelSize / 128.0;
+    // The grid: 1/1024 voxel here (16 m tiles, 4 m skirts and a 2 m coarsest
+    // cell of slack each side are 28 m, 56 voxels, in 16 bits): every decoded
+    // vertex lies within half a step of a plain one.
+    const double bound = 0.5 * b.plan.voxelSize / 1024.0;
     std::map<int, std::uint64_t> plainBytes, compactBytes;
     std::size_t files = 0;
     for (std::size_t t = 0; t < b.plain["tiles"].size(); ++t) {
