@@ -18,11 +18,15 @@ PACKAGES=(
   libcpp-httplib-dev
   clang libclang-rt-dev llvm
   slurm-wlm munge python3 python3-yaml
+  python3-dev python3-pybind11 pybind11-dev python3-numpy python3-pytest blender
   python-matplotlib-data
   xvfb xauth
   chromium
   reuse
 )
+# python3-dev, python3-pybind11, pybind11-dev: build `import strata` (python/);
+# python3-numpy and python3-pytest run its tests; blender (Debian's, on the
+# system Python) runs the add-on's headless test (python/blender).
 # libcpp-httplib-dev: cpp-httplib, the HTTP server under `strata serve`
 # (serve/; Debian builds it as libcpp-httplib.so with zlib and brotli).
 # chromium: Debian's headless browser, driven by puppeteer-core (web/package-lock.json),
