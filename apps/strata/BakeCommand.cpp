@@ -40,6 +40,7 @@ struct BakeArguments
     std::string maxMemory = "8GiB";
     double skirtDepth = 0.0;
     std::string tileFormat = "meshopt";
+    std::string georeference;
     bool quiet = false;
     bool worker = false;
     int tilesPerWorker = 1;
@@ -181,6 +182,10 @@ Command registerBakeCommand(CLI::App& app)
                      "How tiles are stored: meshopt (default: quantized, EXT_meshopt_compression, several times "
                      "smaller) or plain (float glTF any client reads)")
         ->check(CLI::IsMember({"plain", "meshopt"}));
+    bake->add_option("--georeference", args->georeference,
+                     "LAT,LON,HEIGHT: put the world on the Earth for globe clients (CesiumJS): the tileset's root "
+                     "transform is east-north-up at that WGS84 point (degrees, degrees, metres above the ellipsoid), "
+                     "the scene's origin there, +x east, -z north, +y up");
     bake->add_flag("-q,--quiet", args->quiet, "Print nothing but errors");
     bake->add_flag("--worker", args->worker,
                    "One worker of a scheduler's array: bakes tiles I·K to I·K+K−1 (K = --tiles-per-worker) into the "
@@ -225,6 +230,7 @@ Command registerBakeCommand(CLI::App& app)
                 options.maxMemoryBytes = parseMemory(args->maxMemory);
                 options.skirtDepth = args->skirtDepth;
                 options.tileFormat = args->tileFormat == "plain" ? TileFormat::Plain : TileFormat::Meshopt;
+                options.georeference = args->georeference;
                 options.worker = args->worker;
                 // Erode nodes run their global pass while the scene loads: once
                 // per worker, refused first when over --max-memory (exit 2).

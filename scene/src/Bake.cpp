@@ -344,7 +344,7 @@ BakeSummary bake(const Scene& scene, const BakeOptions& options, const BakePlan&
     // bake holds it.
     std::optional<OutputLock> lock;
     if (!options.worker) lock.emplace(dir);
-    const bool replace = old && options.force && detail::headerJson(*old) != detail::headerJson(manifest);
+    const bool replace = old && options.force && !detail::sameBake(*old, manifest);
     if (replace) removeOldBake(dir, *old);
     // Each folder is checked as it is made: one error code shared by all
     // would keep only the last call's result and lose an earlier failure.

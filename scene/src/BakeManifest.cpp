@@ -103,6 +103,7 @@ BakeManifest manifestFor(const BakePlan& plan, const Scene& scene, bool grids)
         m.min[a] = double(plan.minVoxel[a]) * plan.voxelSize;
         m.max[a] = double(plan.maxVoxel[a]) * plan.voxelSize;
     }
+    m.georeference = plan.georeference;
     return m;
 }
 
@@ -128,7 +129,7 @@ json recordJson(const TileRecord& t)
 
 json headerJson(const BakeManifest& m)
 {
-    return {{"format", "strata-bake"},
+    json out = {{"format", "strata-bake"},
             {"version", 1},
             {"scene", {{"source", m.sceneSource}, {"sha256", m.sceneHash}}},
             {"seed", m.seed},
@@ -141,6 +142,20 @@ json headerJson(const BakeManifest& m)
             {"tiles_per_axis", m.counts},
             {"tile_count", m.counts[0] * m.counts[1] * m.counts[2]},
             {"bounds", {{"min", vec(m.min)}, {"max", vec(m.max)}}}};
+    // Only when given: bakes without one keep their bytes.
+    if (m.georeference)
+        out["georeference"] = {{"latitude", m.georeference->latitude},
+                               {"longitude", m.georeference->longitude},
+                               {"height", m.georeference->height}};
+    return out;
+}
+
+bool sameBake(const BakeManifest& a, const BakeManifest& b)
+{
+    json x = headerJson(a), y = headerJson(b);
+    x.erase("georeference");
+    y.erase("georeference");
+    return x == y;
 }
 
 json toJson(const BakeManifest& m)
@@ -202,6 +217,15 @@ BakeManifest readHeader(const Reader& r, const json& j)
     m.counts = r.get<std::array<int, 3>>(j, "tiles_per_axis");
     m.min = r.vec3(r.at(j, "bounds"), "min");
     m.max = r.vec3(r.at(j, "bounds"), "max");
+    if (j.contains("georeference") && !j.at("georeference").is_null()) {
+        const json& g = j.at("georeference");
+        m.georeference = Georeference{r.get<double>(g, "latitude"), r.get<double>(g, "longitude"), r.get<double>(g, "height")};
+        try {
+            checkGeoreference(*m.georeference, "georeference");
+        } catch (const Error& e) {
+            r.fail("georeference", e.what());
+        }
+    }
     if (m.lods < 1 || m.lods > 8) r.fail("levels", "out of range");
     if (m.counts[0] < 1 || m.counts[1] < 1 || m.counts[2] < 1 ||
         std::int64_t(m.counts[0]) * m.counts[1] * m.counts[2] > (1 << 24))

@@ -55,6 +55,9 @@ struct BakeManifest
     std::string tileFormat = "meshopt"; ///< "plain" or "meshopt" (tileFormatName())
     std::array<int, 3> counts{1, 1, 1};
     glm::dvec3 min{0.0}, max{0.0}; ///< the baked box (metres)
+    /// The tileset's root transform is east-north-up here; not part of the
+    /// bake's identity (sameBake()).
+    std::optional<Georeference> georeference;
     std::map<int, TileRecord> tiles;
 
     /// Per level: the largest measured error over the tiles, made
@@ -70,6 +73,9 @@ BakeManifest manifestFor(const BakePlan& plan, const Scene& scene, bool grids);
 /// The bake's identity (every field but the tiles): DIR/bake.json, written
 /// by every run and worker with the same bytes.
 nlohmann::json headerJson(const BakeManifest& manifest);
+/// Whether two headers describe the same tiles (every field of headerJson()
+/// but the georeference, which changes only the tileset).
+bool sameBake(const BakeManifest& a, const BakeManifest& b);
 /// One tile's record: DIR/records/INDEX.json, written after its files.
 nlohmann::json recordJson(const TileRecord& tile);
 /// The header, the per-level errors and every tile: DIR/manifest.json.

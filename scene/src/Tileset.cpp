@@ -18,7 +18,8 @@
 //
 // Frames: glTF content is y-up and 3D Tiles z-up; a client turns content by
 // x' = x, y' = −z, z' = y, so the bounding boxes here are given in that
-// turned frame.
+// turned frame. With a georeference the root's transform is east-north-up
+// at that point (Georeference.h): the scene's x east, −z north, y up.
 
 #include "BakeManifest.h"
 
@@ -165,6 +166,9 @@ json makeTileset(const BakeManifest& manifest)
         root = {{"boundingVolume", boxVolume(bounds)}, {"geometricError", 0.0}};
     }
     root["refine"] = "REPLACE";
+    // East-north-up at the georeference: the tileset's z-up frame (x east,
+    // y north, z up) placed on the WGS84 ellipsoid for globe clients.
+    if (manifest.georeference) root["transform"] = eastNorthUpToEcef(*manifest.georeference);
     return {{"asset", {{"version", "1.1"}, {"generator", "Strata"}}},
             {"geometricError", root["geometricError"]},
             {"root", root}};

@@ -23,7 +23,8 @@
 ///   the tile, positions relative to the tile's corner (the node's
 ///   translation, double), normals, uint16 indices where they fit; two
 ///   primitives, the surface and the skirt (material "strata-skirt",
-///   double-sided). A tile with no surface at a level has no file.
+///   one-sided, facing out of the tile, with the surface's normals). A
+///   tile with no surface at a level has no file.
 /// - `grids/X_Z.vdb`: the tile's level-0 narrow-band level set (open box).
 /// - `records/I.json`: tile I's record (its files' paths, sizes and
 ///   SHA-256, triangles, bounds, measured error), written after its files.
@@ -43,6 +44,7 @@
 /// processes share one folder, each writing only its own tiles;
 /// finalizeBake() then checks every tile and writes manifest and tileset.
 
+#include <strata/scene/Georeference.h>
 #include <strata/scene/Pipeline.h>
 #include <strata/scene/Scene.h>
 
@@ -90,6 +92,11 @@ struct BakeOptions
     /// Skirt depth in metres; 0 = two cells of the coarsest level.
     double skirtDepth = 0.0;
     TileFormat tileFormat = TileFormat::Meshopt; ///< part of the bake's identity
+    /// Where the world lies on the Earth, "LAT,LON,HEIGHT" (parseGeoreference());
+    /// empty: nowhere (the tileset has no root transform). Not part of the
+    /// bake's identity: a rerun with another point keeps the tiles and
+    /// rewrites the tileset.
+    std::string georeference;
 };
 
 /// One tile of a plan.
@@ -114,6 +121,7 @@ struct BakePlan
     std::array<int, 3> counts{1, 1, 1};     ///< tiles per axis
     double skirtDepth = 0.0;                ///< metres
     TileFormat tileFormat = TileFormat::Meshopt;
+    std::optional<Georeference> georeference; ///< the tileset's root transform (east-north-up there)
     std::vector<int> selected;              ///< the indices to bake, ascending
     std::uint64_t tileMemoryBytes = 0;      ///< estimated peak per tile
     int tileCount() const { return counts[0] * counts[1] * counts[2]; }
@@ -125,7 +133,8 @@ struct BakePlan
 /// not a positive multiple of the coarsest cell (voxelSize · 2^(lods−1)) or
 /// holds more than 1024 voxels, a region smaller than one tile over x or z,
 /// `lods` out of range, a tile selection that does not parse or is out of
-/// range (naming the count), a tile over the memory budget.
+/// range (naming the count), a tile over the memory budget, a
+/// georeference that does not parse or is out of range.
 /// `options.tiles` is parsed against the tile count.
 BakePlan planBake(const Scene& scene, const BakeOptions& options);
 
