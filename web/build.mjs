@@ -6,7 +6,7 @@
 // network, and copies index.html beside it. Run by web/CMakeLists.txt:
 //   node build.mjs --modules <node_modules from npm ci> --shaders <strata-shaders.js> --out <dir>
 
-import { copyFileSync, mkdirSync } from 'node:fs';
+import { copyFileSync, existsSync, mkdirSync, readFileSync, readdirSync, writeFileSync } from 'node:fs';
 import { dirname, join, resolve } from 'node:path';
 import { fileURLToPath, pathToFileURL } from 'node:url';
 
@@ -26,7 +26,8 @@ const here = dirname( fileURLToPath( import.meta.url ) );
 const esbuild = await import( pathToFileURL( join( resolve( args.modules ), 'esbuild', 'lib', 'main.js' ) ).href );
 const shaders = resolve( args.shaders );
 mkdirSync( args.out, { recursive: true } );
-await esbuild.build( {
+const result = await esbuild.build( {
+	metafile: true,
 	entryPoints: [ join( here, 'src', 'main.js' ) ],
 	bundle: true,
 	format: 'iife',
@@ -46,3 +47,25 @@ await esbuild.build( {
 	} ],
 } );
 copyFileSync( join( here, 'index.html' ), join( args.out, 'index.html' ) );
+
+// The licences of the npm packages bundled into viewer.js, in one file
+// beside it (three.js' notice is also in the bundle; 3d-tiles-renderer,
+// Apache-2.0, has none in its sources).
+const packages = new Set();
+for ( const input of Object.keys( result.metafile.inputs ) ) {
+
+	const m = /node_modules\/((?:@[^/]+\/)?[^/]+)\//.exec( input );
+	if ( m ) packages.add( m[ 1 ] );
+
+}
+let notices = 'Third-party software bundled into viewer.js (from npm, pinned by web/package-lock.json).\n';
+for ( const name of [ ...packages ].sort() ) {
+
+	const dir = join( resolve( args.modules ), name );
+	const meta = JSON.parse( readFileSync( join( dir, 'package.json' ), 'utf8' ) );
+	const licence = existsSync( dir ) ? readdirSync( dir ).find( f => /^(licen[cs]e|copying)/i.test( f ) ) : undefined;
+	notices += `\n==== ${ name } ${ meta.version } (${ meta.license }) ====\n\n`;
+	notices += licence ? readFileSync( join( dir, licence ), 'utf8' ) : `(no licence file in the package; licence: ${ meta.license })\n`;
+
+}
+writeFileSync( join( args.out, 'THIRD_PARTY_LICENSES.txt' ), notices );
