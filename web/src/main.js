@@ -207,9 +207,28 @@ async function main() {
 	let tilesChanged = true;
 	let lastRender = - Infinity;
 	let quietSince = null;
+	// The address bar follows the camera (pos, target, fov), so the view
+	// can be shared by copying it.
+	let shareTimer = null;
+	const shareView = () => {
+
+		clearTimeout( shareTimer );
+		shareTimer = setTimeout( () => {
+
+			const p = new URLSearchParams( location.search );
+			const round = v => v.toArray().map( x => Number( x.toFixed( 3 ) ) ).join( ',' );
+			p.set( 'pos', round( camera.position ) );
+			p.set( 'target', round( controls.target ) );
+			p.set( 'fov', String( camera.fov ) );
+			history.replaceState( null, '', `?${ p.toString().replace( /%2C/g, ',' ) }` );
+
+		}, 500 );
+
+	};
 	if ( controls ) controls.addEventListener( 'change', () => {
 
 		viewChanged = true;
+		shareView();
 
 	} );
 	window.addEventListener( 'keydown', () => {
@@ -247,7 +266,12 @@ async function main() {
 			if ( keys.has( 'q' ) ) move.y -= 1;
 			move.multiplyScalar( speed );
 			camera.position.add( move );
-			if ( controls ) controls.target.add( move );
+			if ( controls ) {
+
+				controls.target.add( move );
+				shareView();
+
+			}
 			viewChanged = true;
 
 		}
