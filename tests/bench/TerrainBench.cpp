@@ -25,7 +25,9 @@
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <functional>
+#include <numeric>
 #include <memory>
 #include <vector>
 
@@ -145,6 +147,44 @@ void BM_DefaultFieldDensity(benchmark::State& state)
         benchmark::Counter(double(state.iterations()) * double(pts.size()) / threads, benchmark::Counter::kIsRate);
 }
 
+/// The default scene's field through the block path over 1 M points in
+/// its region (x, y, z rows, as a NumPy (N, 3) array holds them), in blocks
+/// of 512, one thread: the C++ side of `python/bench/evaluate_bench.py`,
+/// which times strata's Field.evaluate on the same points (the same
+/// generator) to measure what the binding costs (issue 28: at most 1.2×).
+void BM_DefaultFieldBlocks(benchmark::State& state)
+{
+    const auto field = defaultField();
+    constexpr std::size_t COUNT = 1'000'000, BLOCK = 512;
+    std::vector<double> rows(3 * COUNT);
+    std::uint64_t s = 1;
+    for (std::size_t i = 0; i < COUNT; ++i) {
+        const double extent[3] = {192.0, 88.0, 192.0};
+        for (int axis = 0; axis < 3; ++axis) {
+            s = s * 6364136223846793005ULL + 1442695040888963407ULL;
+            rows[3 * i + axis] = extent[axis] * (double(s >> 11) * 0x1.0p-53) - 0.5 * extent[axis];
+        }
+    }
+    std::vector<double> out(COUNT);
+    for (auto _ : state) {
+        double x[BLOCK], y[BLOCK], z[BLOCK];
+        for (std::size_t first = 0; first < COUNT; first += BLOCK) {
+            const std::size_t n = std::min(BLOCK, COUNT - first);
+            for (std::size_t i = 0; i < n; ++i) {
+                x[i] = rows[3 * (first + i)];
+                y[i] = rows[3 * (first + i) + 1];
+                z[i] = rows[3 * (first + i) + 2];
+            }
+            strata::terrain::PointBlock block{x, y, z, n, {}};
+            block.box = strata::terrain::spannedBox(block);
+            field->densities(block, out.data() + first);
+        }
+        benchmark::DoNotOptimize(out.data());
+    }
+    state.SetItemsProcessed(std::int64_t(state.iterations()) * std::int64_t(COUNT));
+    state.counters["checksum"] = std::accumulate(out.begin(), out.end(), 0.0);
+}
+
 /// bounds() of the default field over boxes of 2³ voxels (0.5 m voxels:
 /// 0.5 m between the first and last voxel centre) at the same points as
 /// BM_DefaultFieldDensity, one thread: the cost the sampler counts as one
@@ -258,6 +298,7 @@ BENCHMARK_CAPTURE(BM_Fractal, value_fbm5, NoiseType::VALUE, FractalType::FBM);
 BENCHMARK_CAPTURE(BM_Fractal, cellular_f1_fbm5, NoiseType::CELLULAR_F1, FractalType::FBM);
 BENCHMARK(BM_DomainWarp);
 BENCHMARK(BM_DefaultFieldDensity)->Arg(1)->Arg(2)->UseRealTime();
+BENCHMARK(BM_DefaultFieldBlocks)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_DefaultFieldBounds)->Arg(2)->Arg(4)->Arg(8);
 BENCHMARK(BM_SampleDefaultScene)->Args({1, 0})->Args({2, 0})->Args({2, 1})->Iterations(1)->UseRealTime()->Unit(benchmark::kSecond);
 BENCHMARK(BM_SampleWarpedHills)->Iterations(1)->UseRealTime()->Unit(benchmark::kSecond);
