@@ -87,8 +87,10 @@ tsan_suites=${TSAN_SUITES:-world_tests}
 start=$(now)
 echo "== ASan + UBSan build ($san), every target"
 if [ ! -f "$san/CMakeCache.txt" ]; then
+  # No web viewer here (-DSTRATA_BUILD_WEB_VIEWER=OFF): its npm ci and bundle are
+  # node's work, and its browser test is excluded above (WebViewer.*).
   cmake -S "$root" -B "$san" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSTRATA_FUZZ=ON \
-    -DCMAKE_CXX_COMPILER="$cxx" -DCMAKE_C_COMPILER="$cc" >/dev/null
+    -DSTRATA_BUILD_WEB_VIEWER=OFF -DCMAKE_CXX_COMPILER="$cxx" -DCMAKE_C_COMPILER="$cc" >/dev/null
 fi
 nice -n 10 cmake --build "$san" -j "$jobs"
 echo "   built in $(($(now) - start)) s"
@@ -112,7 +114,8 @@ fi
 start=$(now)
 echo "== ThreadSanitizer build ($tsan)"
 if [ ! -f "$tsan/CMakeCache.txt" ]; then
-  cmake -S "$root" -B "$tsan" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSTRATA_TSAN=ON -DSTRATA_BUILD_APPS=OFF >/dev/null
+  cmake -S "$root" -B "$tsan" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSTRATA_TSAN=ON -DSTRATA_BUILD_APPS=OFF \
+    -DSTRATA_BUILD_WEB_VIEWER=OFF >/dev/null
 fi
 # scene_tests runs the strata executable: it needs the apps.
 case "$tsan_suites" in *scene_tests*) cmake -S "$root" -B "$tsan" -DSTRATA_BUILD_APPS=ON >/dev/null ;; esac
