@@ -136,3 +136,13 @@ def test_sample_releases_the_gil():
 def test_memory_budget_is_bad_input(small_scene):
     with pytest.raises(strata.BadInputError, match="memory"):
         strata.sample(small_scene, max_memory=1000)
+
+
+def test_gl_backend_agrees_with_the_cpu_renderer(small_scene, small_mesh):
+    """OpenGL through EGL (llvmpipe where there is no GPU) against the CPU
+    reference renderer: the same picture within the renderers' parity."""
+    cpu = strata.render(small_scene, small_mesh, backend="cpu", size=(160, 96)).astype(np.float64)
+    gl = strata.render(small_scene, small_mesh, backend="gl", size=(160, 96)).astype(np.float64)
+    mse = np.mean((cpu[..., :3] - gl[..., :3]) ** 2)
+    psnr = 10.0 * np.log10(255.0 ** 2 / mse) if mse > 0 else np.inf
+    assert psnr >= 30.0, f"GL against CPU: {psnr:.1f} dB"
