@@ -25,6 +25,9 @@
 ///   primitives, the surface and the skirt (material "strata-skirt",
 ///   one-sided, facing out of the tile, with the surface's normals). A
 ///   tile with no surface at a level has no file.
+///   By default compact (BakeOptions::tileFormat): 16-bit positions on a
+///   grid every tile shares, octahedral normals, meshopt-compressed
+///   (meshing/GltfCompact.h); readGltf() reads both forms.
 /// - `grids/X_Z.vdb`: the tile's level-0 narrow-band level set (open box).
 /// - `records/I.json`: tile I's record (its files' paths, sizes and
 ///   SHA-256, triangles, bounds, measured error), written after its files.
