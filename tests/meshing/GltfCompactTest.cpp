@@ -292,3 +292,24 @@ TEST(GltfCompact, ABrokenCompressedViewIsAnErrorNamingIt)
     stride[st + 13] = '7';
     EXPECT_THROW(parseGlb(stride, "stride.glb"), strata::Error);
 }
+
+TEST(GltfCompact, WiderNormalsAreShortsAndCloser)
+{
+    const TriangleMesh mesh = sphereMesh(glm::dvec3(0.0));
+    CompactGlbOptions options;
+    options.positionStep = STEP;
+    options.optimizeOrder = false;
+    options.normalBits = 12; // 8 bytes a normal (SHORT)
+    CompactGlbStats stats;
+    const std::string bytes = encodeCompactGlb({GlbPart{&mesh}}, mesh.origin, "s", options, &stats);
+    const nlohmann::json gltf = glbJson(bytes);
+    const auto& normal = gltf["accessors"][gltf["meshes"][0]["primitives"][0]["attributes"]["NORMAL"].get<int>()];
+    EXPECT_EQ(normal["componentType"], 5122);
+    const TriangleMesh back = parseGlb(bytes, "s.glb");
+    ASSERT_EQ(back.normals.size(), mesh.normals.size());
+    double worst = 0.0;
+    for (std::size_t i = 0; i < mesh.normals.size(); ++i)
+        worst = std::max(worst, double(std::acos(std::clamp(glm::dot(back.normals[i], mesh.normals[i]), -1.0f, 1.0f))));
+    EXPECT_LT(worst, glm::radians(0.1));
+    EXPECT_LT(stats.maxNormalAngle, glm::radians(0.1));
+}
