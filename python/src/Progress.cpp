@@ -38,6 +38,11 @@ bool PythonProgress::operator()(double fraction)
     } catch (py::error_already_set& error) {
         mError.emplace(std::move(error));
         return false;
+    } catch (const py::cast_error&) {
+        // The callable's answer is not a truth value.
+        PyErr_SetString(PyExc_TypeError, "progress() must return None, True or False");
+        mError.emplace();
+        return false;
     }
 }
 

@@ -146,3 +146,15 @@ def test_gl_backend_agrees_with_the_cpu_renderer(small_scene, small_mesh):
     mse = np.mean((cpu[..., :3] - gl[..., :3]) ** 2)
     psnr = 10.0 * np.log10(255.0 ** 2 / mse) if mse > 0 else np.inf
     assert psnr >= 30.0, f"GL against CPU: {psnr:.1f} dB"
+
+
+def test_progress_must_be_callable_and_answer_a_truth_value(small_scene):
+    with pytest.raises(strata.BadInputError, match="callable"):
+        strata.sample(small_scene, progress=42)
+
+    class NoTruth:
+        def __bool__(self):
+            raise ValueError("no truth here")
+
+    with pytest.raises(TypeError, match="True or False"):
+        strata.sample(small_scene, progress=lambda f: NoTruth())
