@@ -8,6 +8,8 @@ import os
 import pathlib
 import re
 import subprocess
+import threading
+import time
 
 import pytest
 
@@ -54,3 +56,28 @@ def small_grid(small_scene):
 @pytest.fixture(scope="session")
 def small_mesh(small_grid):
     return strata.mesh(small_grid)
+
+
+def ticks_during(call):
+    """Runs call() while a second Python thread counts, sleeping 1 ms between
+    counts; returns (ticks, seconds). A call that holds the GIL leaves the
+    counter where it was when it started."""
+    ticks = 0
+    done = threading.Event()
+
+    def count():
+        nonlocal ticks
+        while not done.is_set():
+            ticks += 1
+            time.sleep(0.001)
+
+    thread = threading.Thread(target=count)
+    thread.start()
+    try:
+        start = time.perf_counter()
+        call()
+        seconds = time.perf_counter() - start
+    finally:
+        done.set()
+        thread.join()
+    return ticks, seconds

@@ -1,13 +1,11 @@
 # SPDX-FileCopyrightText: The Strata authors
 # SPDX-License-Identifier: MIT
 
-import threading
-import time
-
 import numpy as np
 import pytest
 
 import strata
+from conftest import ticks_during
 
 
 def test_evaluate_shape_dtype_and_bits(small_scene):
@@ -69,24 +67,7 @@ def test_bounds_hold_the_values(small_scene):
 def test_evaluate_releases_the_gil():
     field = strata.default_scene().field
     points = np.random.default_rng(1).uniform(-90.0, 90.0, (1_500_000, 3))
-    ticks = 0
-    done = threading.Event()
-
-    def count():
-        nonlocal ticks
-        while not done.is_set():
-            ticks += 1
-            time.sleep(0.001)
-
-    thread = threading.Thread(target=count)
-    thread.start()
-    try:
-        start = time.perf_counter()
-        field.evaluate(points, threads=1)
-        seconds = time.perf_counter() - start
-    finally:
-        done.set()
-        thread.join()
+    ticks, seconds = ticks_during(lambda: field.evaluate(points, threads=1))
     # With the GIL held the thread could not tick at all during the call.
     assert seconds > 0.05, "too fast to tell: use more points"
     assert ticks >= 10, f"the other thread ran {ticks} times in {seconds:.2f} s"

@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 import strata
-from conftest import run_cli
+from conftest import run_cli, ticks_during
 
 
 def test_render_is_the_terrain(small_scene, small_mesh):
@@ -114,23 +114,8 @@ def test_ctrl_c_stops_sampling():
 
 
 def test_sample_releases_the_gil():
-    ticks = 0
-    done = threading.Event()
-
-    def count():
-        nonlocal ticks
-        while not done.is_set():
-            ticks += 1
-            done.wait(0.001)
-
-    thread = threading.Thread(target=count)
-    thread.start()
-    try:
-        strata.sample(strata.default_scene())
-    finally:
-        done.set()
-        thread.join()
-    assert ticks >= 10
+    ticks, seconds = ticks_during(lambda: strata.sample(strata.default_scene()))
+    assert ticks >= 10, f"the other thread ran {ticks} times in {seconds:.2f} s"
 
 
 def test_memory_budget_is_bad_input(small_scene):
