@@ -62,7 +62,9 @@ async function main() {
 	renderer.setClearColor( new THREE.Color( c[ 0 ], c[ 1 ], c[ 2 ] ), 1 );
 	document.body.appendChild( renderer.domElement );
 
-	const textures = await loadMaps( config, base, renderer );
+	// The maps load while the tiles stream (nothing is drawn before both).
+	const textures = [];
+	let mapsReady = false;
 	const uniforms = makeUniforms( config, textures );
 	const material = makeTerrainMaterial( config, uniforms );
 	const viewName = params.get( 'view' );
@@ -280,7 +282,7 @@ async function main() {
 		if ( showTiles ) tiles.update();
 		const busy = showTiles ? tiles.stats.downloading + tiles.stats.parsing + ( tiles.stats.queued || 0 ) : 0;
 		const streaming = busy > 0;
-		const render = stats.frames === 0 || viewChanged || ( tilesChanged && ( ! streaming || now - lastRender > 1000 ) );
+		const render = mapsReady && ( stats.frames === 0 || viewChanged || ( tilesChanged && ( ! streaming || now - lastRender > 1000 ) ) );
 		if ( render ) {
 
 			viewChanged = false;
@@ -321,7 +323,7 @@ async function main() {
 
 		}
 		// Ready: nothing streaming or changed for 3 animation frames after a frame drew it all.
-		const settled = ( ! showTiles || stats.tilesLoaded > 0 ) && ! streaming && ! render && ! tilesChanged && ! viewChanged;
+		const settled = stats.frames > 0 && ( ! showTiles || stats.tilesLoaded > 0 ) && ! streaming && ! render && ! tilesChanged && ! viewChanged;
 		quietSince = settled ? ( quietSince ?? 0 ) + 1 : null;
 		if ( ! window.strataReady && quietSince >= 3 ) {
 
@@ -346,6 +348,13 @@ async function main() {
 	}
 	status( 'loading tiles…' );
 	requestAnimationFrame( frame );
+	const maps = await loadMaps( config, base, renderer );
+	maps.forEach( ( t, i ) => {
+
+		textures[ i ] = t;
+
+	} );
+	mapsReady = true;
 
 }
 
