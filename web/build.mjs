@@ -52,7 +52,9 @@ copyFileSync( join( here, 'index.html' ), join( args.out, 'index.html' ) );
 // beside it (three.js' notice is also in the bundle; 3d-tiles-renderer,
 // Apache-2.0, has none in its sources).
 const packages = new Set();
-for ( const input of Object.keys( result.metafile.inputs ) ) {
+for ( const output of Object.values( result.metafile.outputs ) ) for ( const [ input, use ] of Object.entries( output.inputs ) ) {
+
+	if ( use.bytesInOutput === 0 ) continue; // parsed but shaken out
 
 	const m = /node_modules\/((?:@[^/]+\/)?[^/]+)\//.exec( input );
 	if ( m ) packages.add( m[ 1 ] );
