@@ -246,7 +246,9 @@ TEST(BakeTileFormat, DecodedCompactTilesOfALevelWeldWithBoundaryOnlyOnTheRegionB
 TEST(BakeTileFormat, TheWorldRendersFromCompactTilesAsFromPlainOnes)
 {
     const TwoBakes& b = twoBakes();
-    const fs::path dir = test::freshTestDir();
+    // Beside the bakes (freshTestDir() would empty the folder they may be in).
+    const fs::path dir = b.dir / "renders";
+    fs::create_directories(dir);
     for (const char* format : {"plain", "meshopt"}) {
         const test::CommandResult render =
             test::runStrata("render " + (b.dir / format).string() + " -o " + (dir / (std::string(format) + ".png")).string() +
