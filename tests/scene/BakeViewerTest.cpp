@@ -12,7 +12,11 @@
 #include <strata/scene/Scene.h>
 #include <strata/scene/SceneMaterial.h>
 
+#include "../SmallScene.h"
 #include "../TestDir.h"
+#ifdef STRATA_EXECUTABLE
+#include "RunStrata.h"
+#endif
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -91,3 +95,24 @@ TEST(BakeViewer, WithoutAPageNothingIsWritten)
     EXPECT_FALSE(scene::writeBakeViewer(dir, s, dir / "no-such-page"));
     EXPECT_FALSE(fs::exists(dir / "viewer"));
 }
+
+#ifdef STRATA_EXECUTABLE
+// The CLI: a strata that finds no page bakes as before, writes no viewer/
+// and says so once.
+TEST(BakeViewer, ABakeWithoutThePageSaysSoOnce)
+{
+    const fs::path dir = test::freshTestDir();
+    writeText(dir / "small.toml", test::SMALL_SCENE);
+    const test::CommandResult r = test::runStrataWithEnvironment(
+        "STRATA_VIEWER_DIR=" + (dir / "no-page").string(),
+        "bake " + (dir / "small.toml").string() + " -o " + (dir / "bake").string() + " --tile-size 12 --lods 1 --no-grids",
+        dir);
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_TRUE(fs::exists(dir / "bake" / "tileset.json"));
+    EXPECT_FALSE(fs::exists(dir / "bake" / "viewer"));
+    const std::string notice = "no web viewer";
+    const std::size_t first = r.output.find(notice);
+    ASSERT_NE(first, std::string::npos) << r.output;
+    EXPECT_EQ(r.output.find(notice, first + 1), std::string::npos) << "said more than once: " << r.output;
+}
+#endif
