@@ -28,15 +28,6 @@
 ///   By default compact (BakeOptions::tileFormat): 16-bit positions on a
 ///   grid every tile shares, octahedral normals, meshopt-compressed
 ///   (meshing/GltfCompact.h); readGltf() reads both forms.
-///   By default compact (BakeOptions::tileFormat): 16-bit positions on a
-///   grid every tile shares, octahedral normals, meshopt-compressed
-///   (meshing/GltfCompact.h); readGltf() reads both forms.
-///   By default compact (BakeOptions::tileFormat): 16-bit positions on a
-///   grid every tile shares, octahedral normals, meshopt-compressed
-///   (meshing/GltfCompact.h); readGltf() reads both forms.
-///   By default compact (BakeOptions::tileFormat): 16-bit positions on a
-///   grid every tile shares, octahedral normals, meshopt-compressed
-///   (meshing/GltfCompact.h); readGltf() reads both forms.
 /// - `grids/X_Z.vdb`: the tile's level-0 narrow-band level set (open box).
 /// - `records/I.json`: tile I's record (its files' paths, sizes and
 ///   SHA-256, triangles, bounds, measured error), written after its files.
