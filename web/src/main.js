@@ -173,6 +173,7 @@ async function main() {
 		controls.update();
 
 	}
+	window.strataView = { camera, controls, tiles, uniforms }; // for the console and tests
 	let fly = false;
 	const keys = new Set();
 	window.addEventListener( 'keydown', e => {
@@ -181,7 +182,21 @@ async function main() {
 		else if ( e.key === 'Tab' ) {
 
 			fly = ! fly;
-			if ( controls ) controls.enabled = ! fly;
+			if ( controls ) {
+
+				controls.enabled = ! fly;
+				if ( ! fly ) {
+
+					// orbit again around the point ahead, at the old distance
+					const ahead = new THREE.Vector3();
+					camera.getWorldDirection( ahead );
+					const distance = Math.max( camera.position.distanceTo( controls.target ), 1e-3 );
+					controls.target.copy( camera.position ).addScaledVector( ahead, distance );
+					controls.update();
+
+				}
+
+			}
 			e.preventDefault();
 
 		} else if ( e.key === 'h' || e.key === 'H' ) shadows = ! shadows;
@@ -189,6 +204,30 @@ async function main() {
 
 	} );
 	window.addEventListener( 'keyup', e => keys.delete( e.key.toLowerCase() ) );
+	// Fly mode: drag to look around (yaw about +Y, pitch within ±89°).
+	let look = null;
+	renderer.domElement.addEventListener( 'pointerdown', e => {
+
+		if ( fly ) look = { x: e.clientX, y: e.clientY };
+
+	} );
+	window.addEventListener( 'pointerup', () => {
+
+		look = null;
+
+	} );
+	window.addEventListener( 'pointermove', e => {
+
+		if ( ! fly || ! look ) return;
+		const euler = new THREE.Euler().setFromQuaternion( camera.quaternion, 'YXZ' );
+		euler.y -= ( e.clientX - look.x ) * 0.004;
+		euler.x = Math.max( - 1.55, Math.min( 1.55, euler.x - ( e.clientY - look.y ) * 0.004 ) );
+		euler.z = 0;
+		camera.quaternion.setFromEuler( euler );
+		look = { x: e.clientX, y: e.clientY };
+		viewChanged = true;
+
+	} );
 	window.addEventListener( 'resize', () => {
 
 		camera.aspect = window.innerWidth / window.innerHeight;
