@@ -16,8 +16,12 @@ What is exact and what is approximated (docs/python.md says the same):
   (UDN; Strata defaults to whiteout, which differs little at these strengths);
 - MOHS: metallic from R, occlusion (G) multiplies the albedo (Strata darkens
   only the indirect light), smoothness from A: Roughness = 1 - A * smoothness.
-Left out: detail maps, emission, anti-tiling, biplanar, layer bands on cavity,
-cover, landform masks and noise, the layers' own normal maps.
+- layers: painter's order and the height blend exactly (two at a time);
+  bands on altitude and slope from the geometry, on cavity, cover and the
+  landform masks from the mesh's attributes; the noise mask is Blender's
+  Noise Texture at the same frequency (not Strata's pattern).
+Left out: detail maps, emission, anti-tiling, biplanar, the layers' own
+normal maps and top maps.
 """
 
 import math
@@ -193,13 +197,15 @@ def band_group():
     """bandWeight() of TerrainLayers.h: 1 inside [min, max], smoothstep ramps
     `softness` wide outside each bound, 0 beyond. The two ramps are Map Range
     nodes in smoothstep mode; the falling one maps [max, max + softness] to
-    [1, 0] (smoothstep(1 - u) = 1 - smoothstep(u))."""
+    [1, 0] (smoothstep(1 - u) = 1 - smoothstep(u)). An unbounded side (Has
+    Min or Has Max 0) is 1: Strata's +-1e30 would make Map Range's input
+    range empty in single precision, and Map Range gives 0 for that."""
     name = "Strata Band"
     if name in bpy.data.node_groups:
         return bpy.data.node_groups[name]
     group, b, gin, gout = new_group(name, [
         ("NodeSocketFloat", "Value"), ("NodeSocketFloat", "Min"), ("NodeSocketFloat", "Max"),
-        ("NodeSocketFloat", "Softness"),
+        ("NodeSocketFloat", "Softness"), ("NodeSocketFloat", "Has Min"), ("NodeSocketFloat", "Has Max"),
     ], [("NodeSocketFloat", "Weight")])
     soft = b.math("MAXIMUM", gin["Softness"], 1e-6, x=-600, y=-200)
     up = b.node("ShaderNodeMapRange", -200, 200, interpolation_type="SMOOTHSTEP")
@@ -212,7 +218,12 @@ def band_group():
     b.link(b.math("ADD", gin["Max"], soft, x=-400, y=-200), down.inputs["From Max"])
     down.inputs["To Min"].default_value = 1.0
     down.inputs["To Max"].default_value = 0.0
-    b.link(b.math("MULTIPLY", up.outputs[0], down.outputs[0], x=200, y=0), gout["Weight"])
+    # (ramp - 1) * has + 1: the ramp where the side is bounded, else 1.
+    up_or_one = b.math("MULTIPLY_ADD", b.math("SUBTRACT", up.outputs[0], 1.0, x=0, y=200), gin["Has Min"], 1.0,
+                       x=160, y=200)
+    down_or_one = b.math("MULTIPLY_ADD", b.math("SUBTRACT", down.outputs[0], 1.0, x=0, y=-200), gin["Has Max"],
+                         1.0, x=160, y=-200)
+    b.link(b.math("MULTIPLY", up_or_one, down_or_one, x=360, y=0), gout["Weight"])
     return group
 
 
@@ -328,22 +339,56 @@ def triplanar_normal(b, images, p, n, weights, top, strength, x, y):
     return world.outputs[0]
 
 
-def layer_coverage(b, rule, altitude, slope, x, y):
-    """layerCoverage(): opacity times the altitude and slope bands (the only
-    bands Blender's nodes can see; cavity, cover, landform and noise bands
-    are left at 1)."""
+# Rule keys read from a vertex attribute (terrain_mesh.py adds them).
+ATTRIBUTE_BANDS = {"cavity": "strata_cavity", "cover": "strata_cover", "flow": "strata_flow",
+                   "wear": "strata_wear", "deposition": "strata_deposition", "water": "strata_water"}
+
+
+def band_weight(b, band, value, x, y):
+    """One soft band of a rule; the scene gives unbounded sides as infinities."""
+    has_min, has_max = math.isfinite(band["min"]), math.isfinite(band["max"])
+    return group_node(b, band_group(), x, y, Value=value, Min=band["min"] if has_min else 0.0,
+                      Max=band["max"] if has_max else 0.0, Softness=band["softness"],
+                      Has_Min=float(has_min), Has_Max=float(has_max))[0]
+
+
+def noise_value(b, noise, position, x, y):
+    """The noise mask's value. Strata's is three octaves of its own value
+    noise (layerNoise()); Blender's Noise Texture with two extra octaves at
+    the same frequency is the nearest node: the same scale and range, not
+    the same pattern."""
+    tex = b.node("ShaderNodeTexNoise", x, y, noise_dimensions="3D")
+    b.link(position, tex.inputs["Vector"])
+    tex.inputs["Scale"].default_value = noise["frequency"]
+    tex.inputs["Detail"].default_value = 2.0
+    tex.inputs["Roughness"].default_value = 0.5
+    return tex.outputs["Fac"]
+
+
+def layer_coverage(b, rule, position, altitude, slope, x, y):
+    """layerCoverage(): opacity times every band of the rule: altitude and
+    slope from the geometry, cavity, cover and the landform masks from the
+    mesh's attributes, the noise mask from a Noise Texture (approximate)."""
     coverage = rule.get("opacity", 1.0)
-    for key, value in (("altitude", altitude), ("slope", slope)):
-        band = rule.get(key)
-        if not band:
+    for key, band in rule.items():
+        if key in ("opacity", "noise"):
             continue
-        big = 1e30  # TerrainLayers.h stores unbounded sides as +-1e30
-        lo = band["min"] if math.isfinite(band["min"]) else -big
-        hi = band["max"] if math.isfinite(band["max"]) else big
-        weight = group_node(b, band_group(), x, y, Value=value, Min=lo, Max=hi, Softness=band["softness"])[0]
+        if key == "altitude":
+            value = altitude
+        elif key == "slope":
+            value = slope
+        elif key in ATTRIBUTE_BANDS:
+            value = b.node("ShaderNodeAttribute", x - 200, y, attribute_type="GEOMETRY",
+                           attribute_name=ATTRIBUTE_BANDS[key]).outputs["Fac"]
+        else:
+            continue  # a band this add-on does not know: left at 1
+        coverage = b.math("MULTIPLY", band_weight(b, band, value, x, y), coverage, x=x + 200, y=y)
         y -= 200
-        coverage = b.math("MULTIPLY", coverage, weight, x=x + 200, y=y) if not isinstance(coverage, float) \
-            else b.math("MULTIPLY", weight, coverage, x=x + 200, y=y)
+    if "noise" in rule:
+        noise = rule["noise"]
+        band = {"min": noise["threshold"], "max": math.inf, "softness": noise["softness"]}
+        value = noise_value(b, noise, position, x - 200, y)
+        coverage = b.math("MULTIPLY", band_weight(b, band, value, x, y), coverage, x=x + 200, y=y)
     return coverage
 
 
@@ -417,7 +462,7 @@ def build_material(settings, name):
             layer_height = b.separate(layer_rgb, -800, y - 300)[2]
         else:
             layer_rgb, layer_alpha, layer_height = (0.0, 1.0, 0.5, 1.0), 0.5, 0.5
-        coverage = layer_coverage(b, layer["rule"], altitude, slope, -1300, y - 500)
+        coverage = layer_coverage(b, layer["rule"], position, altitude, slope, -1300, y - 500)
         factor = group_node(b, height_blend_group(), -600, y, Coverage=coverage, Base_Height=height,
                             Layer_Height=layer_height, Depth=settings.layer_blend_depth)[0]
         albedo = b.mix_color(albedo, layer_color, factor, x=-400, y=y)

@@ -44,4 +44,22 @@ def build_mesh(strata_mesh, name):
         mesh.use_auto_smooth = True
         mesh.auto_smooth_angle = np.pi
         mesh.normals_split_custom_set_from_vertices(to_blender_axes(np.asarray(normals, dtype=np.float32)))
+    add_vertex_attributes(mesh, strata_mesh)
     return mesh
+
+
+# The per-vertex values [[layer]] rules read (docs/rendering.md), as float
+# point attributes the material's Attribute nodes read by these names.
+SURFACE_ATTRIBUTES = ("strata_cavity", "strata_cover")
+LANDFORM_ATTRIBUTES = ("strata_flow", "strata_wear", "strata_deposition", "strata_water")
+
+
+def add_vertex_attributes(mesh, strata_mesh):
+    """Cavity and cover (mesh.surface) and the landform masks (mesh.landform),
+    when the library computed them (only for scenes whose layers read them)."""
+    for names, values in ((SURFACE_ATTRIBUTES, strata_mesh.surface), (LANDFORM_ATTRIBUTES, strata_mesh.landform)):
+        if values is None:
+            continue
+        for column, name in enumerate(names):
+            attribute = mesh.attributes.new(name, "FLOAT", "POINT")
+            attribute.data.foreach_set("value", np.ascontiguousarray(values[:, column], dtype=np.float32))
