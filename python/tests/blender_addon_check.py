@@ -132,6 +132,41 @@ def material_is_strata(obj):
     check(material.node_tree.nodes["Principled BSDF"].inputs["Normal"].is_linked, "normal maps not connected")
 
 
+def adds_layers():
+    """docs/four-layers-default.toml (sand by altitude and slope, soil by
+    cavity, snow by altitude, slope and noise) at 2 m voxels: each layer is
+    height-blended over the base by its bands, and the cavity the soil
+    reads is on the mesh."""
+    path = str(HERE.parents[1] / "docs" / "four-layers-default.toml")
+    result = bpy.ops.mesh.strata_terrain_add(filepath=path, voxel_size=2.0, preset="fast")
+    check(result == {"FINISHED"}, f"the operator returned {result} on {path}")
+    obj = bpy.context.active_object
+    scene = strata.load_scene(path)
+    reference = strata.mesh(strata.sample(scene, voxel_size=2.0, preset="fast"), preset="fast")
+    check(len(obj.data.polygons) == reference.triangle_count, "layered scene: triangle count differs")
+    check("strata_cavity" in obj.data.attributes, "no cavity attribute for the soil layer's rule")
+    nodes = obj.data.materials[0].node_tree.nodes
+    groups = [n.node_tree.name for n in nodes if n.type == "GROUP"]
+    check(groups.count("Strata Height Blend") == 3, f"groups: {groups}")
+    check(groups.count("Strata Band") == 6, f"six bands expected (2 sand, 1 soil, 2 snow + noise): {groups}")
+    check(any(n.type == "ATTRIBUTE" and n.attribute_name == "strata_cavity" for n in nodes), "cavity not read")
+    check(sum(n.type == "TEX_NOISE" for n in nodes) == 1, "the snow's noise mask is missing")
+    bpy.data.objects.remove(obj)
+
+
+def bad_scene_file_is_reported():
+    """A missing scene file cancels the operator with the library's error,
+    which names the file (bpy.ops raises it as RuntimeError)."""
+    before = len(bpy.data.objects)
+    try:
+        result = bpy.ops.mesh.strata_terrain_add(filepath="/nonexistent/terrain.toml")
+    except RuntimeError as error:
+        check("/nonexistent/terrain.toml" in str(error), f"the error does not name the file: {error}")
+    else:
+        raise AssertionError(f"a missing scene file gave {result}")
+    check(len(bpy.data.objects) == before, "a failed run left an object")
+
+
 def renders_the_terrain(obj, out_dir):
     scene = bpy.context.scene
     scene.render.engine = "CYCLES"
@@ -199,6 +234,8 @@ def main():
     registers()
     obj = adds_the_default_scene()
     material_is_strata(obj)
+    adds_layers()
+    bad_scene_file_is_reported()
     with tempfile.TemporaryDirectory() as out_dir:
         renders_the_terrain(obj, out_dir)
     strata_terrain.unregister()
