@@ -80,7 +80,8 @@ def blender_box_weights_2d(angle, blend):
 def box_blend(offset, exponent):
     """The box blend (0..1) whose weights are closest, in the least-squares
     sense over normals from one axis to the next, to Strata's for
-    blend_offset and blend_exponent (0.25 and 4 give 0.27)."""
+    blend_offset and blend_exponent: 0.25 and 4 (the default scene) give
+    0.205, whose weights are within 0.063 of Strata's at every angle."""
     angles = np.linspace(0.0, 0.5 * math.pi, 181)
     target = strata_weights_2d(angles, offset, exponent)
     candidates = np.linspace(0.0, 1.0, 201)
