@@ -57,7 +57,7 @@ def adds_the_default_scene():
     check(obj is not None and obj.type == "MESH", "no terrain object added")
 
     scene = strata.default_scene()
-    reference = strata.mesh(strata.sample(scene, voxel_size=VOXEL, preset="balanced"), preset="balanced")
+    reference = strata.mesh(strata.sample(scene, voxel_size=VOXEL))
     mesh = obj.data
     print(f"add-on: {len(mesh.vertices)} vertices, {len(mesh.polygons)} triangles in {elapsed:.2f} s; "
           f"library: {reference.vertex_count}, {reference.triangle_count}")

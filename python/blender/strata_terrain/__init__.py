@@ -28,6 +28,7 @@ from bpy.props import BoolProperty, EnumProperty, FloatProperty, IntProperty, St
 from . import terrain_material, terrain_mesh
 
 PRESETS = [
+    ("SCENE", "Scene's", "The scene's [quality] preset and knobs (balanced where it sets none), as `strata generate`"),
     ("fast", "Fast", "Coarse voxels (1 m on the default scene), surface nets, simplified"),
     ("balanced", "Balanced", "The scene's own voxel size, the volume mesher (Strata's default)"),
     ("accurate", "Accurate", "Finer voxels and meshing: slowest"),
@@ -84,7 +85,7 @@ class STRATA_OT_add_terrain(bpy.types.Operator):
     voxel_size: FloatProperty(
         name="Voxel Size", default=0.0, min=0.0, soft_max=8.0, unit="LENGTH",
         description="Metres per voxel; 0 for the scene's (or the preset's) own")
-    preset: EnumProperty(name="Preset", items=PRESETS, default="balanced")
+    preset: EnumProperty(name="Preset", items=PRESETS, default="SCENE")
     mesher: EnumProperty(name="Mesher", items=MESHERS, default="PRESET")
     with_material: BoolProperty(name="Material", default=True, description="Build Strata's triplanar material")
 
@@ -119,15 +120,16 @@ class STRATA_OT_add_terrain(bpy.types.Operator):
         try:
             scene = strata.load_scene(bpy.path.abspath(self.filepath)) if self.filepath else strata.default_scene()
             # Sampling is most of the work; meshing and building the Blender mesh share the rest.
+            preset = None if self.preset == "SCENE" else self.preset
             grid = strata.sample(
                 scene,
                 seed=None if self.use_scene_seed else self.seed,
-                preset=self.preset,
+                preset=preset,
                 voxel_size=self.voxel_size if self.voxel_size > 0.0 else None,
                 progress=BlenderProgress(wm, 0.0, 0.8))
             timings["sample"] = time.perf_counter() - started
             mark = time.perf_counter()
-            mesh = strata.mesh(grid, preset=self.preset, mesher=None if self.mesher == "PRESET" else self.mesher)
+            mesh = strata.mesh(grid, preset=preset, mesher=None if self.mesher == "PRESET" else self.mesher)
             timings["mesh"] = time.perf_counter() - mark
             wm.progress_update(850)
             mark = time.perf_counter()
