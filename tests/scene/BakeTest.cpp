@@ -10,6 +10,7 @@
 #include <strata/scene/Bake.h>
 #include <strata/scene/Scene.h>
 #include "RunStrata.h"
+#include "../SmallScene.h"
 #include "TestDir.h"
 
 #include <strata/Error.h>
@@ -38,29 +39,7 @@ namespace {
 
 /// Hills minus worm tunnels over 40 × 20 × 40 m at 0.5 m: with 16 m tiles,
 /// 3 × 3 columns (the last 8 m wide) of two slabs (16 m and 4 m).
-const char* CAVE_SCENE = R"(
-seed = 11
-[terrain]
-root = "world"
-[terrain.nodes.world]
-type = "subtract"
-children = ["land", "tunnels"]
-[terrain.nodes.land]
-type = "heightfield"
-amplitude = 10.0
-wavelength = 25.0
-[terrain.nodes.tunnels]
-type = "worms"
-cell_size = 16.0
-min_y = -8.0
-max_y = 2.0
-radius = 2.0
-[region]
-min = [-20.0, -12.0, -20.0]
-max = [20.0, 8.0, 20.0]
-[sampling]
-voxel_size = 0.5
-)";
+const char* const CAVE_SCENE = strata::test::BAKE_CAVE_SCENE;
 
 /// Hills only (every vertical line meets the surface once).
 const char* HILL_SCENE = R"(
