@@ -64,6 +64,10 @@ begin=$(now)
 #  - WebViewer.*: the work is Chromium's and node's (not instrumented); the
 #    strata bake and render it runs are covered by Bake.*, BakeViewer.* and
 #    Cli.* here; and the npm packages would need a second npm ci per folder.
+#  - Python.* are not in this build at all: python/ leaves the module out of
+#    sanitizer builds (an instrumented extension cannot be loaded into
+#    Debian's uninstrumented python3 or Blender); the library code they call
+#    runs here through the C++ tests.
 #  - Slurm.*: starts munge, slurmctld and slurmd as root for a real cluster;
 #    the bakes it runs are the bakes of Bake.* (run here); CI's main run has it.
 #  - ReadmeFigures.*: it compares README.md's figures with the Release (gcc)
