@@ -127,7 +127,8 @@ try {
 
 	} catch {
 
-		fail( `the viewer was not ready within ${ timeoutMs } ms (${ url }); console errors (${ consoleErrors.length }, the first 10): ${ JSON.stringify( consoleErrors.slice( 0, 10 ) ) }` );
+		const partial = await page.evaluate( () => JSON.stringify( window.strataStats ) ).catch( () => 'none' );
+		fail( `the viewer was not ready within ${ timeoutMs } ms (${ url }); stats so far: ${ partial }; console errors (${ consoleErrors.length }, the first 10): ${ JSON.stringify( consoleErrors.slice( 0, 10 ) ) }` );
 
 	}
 	const stats = await page.evaluate( () => ( { ...window.strataStats, error: window.strataError } ) );
