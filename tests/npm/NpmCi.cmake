@@ -16,25 +16,9 @@
 # in this folder and commit both files.
 set(STRATA_NPM_DIR "${CMAKE_CURRENT_LIST_DIR}")
 
+include("${CMAKE_CURRENT_LIST_DIR}/../../cmake/NpmCi.cmake")
+
 function(strata_npm_ci npm modules)
-  set(lock "${STRATA_NPM_DIR}/package-lock.json")
-  if(EXISTS "${modules}/package-lock.json" AND EXISTS "${modules}/node_modules/.package-lock.json")
-    file(SHA256 "${lock}" wanted)
-    file(SHA256 "${modules}/package-lock.json" have)
-    if(wanted STREQUAL have)
-      return()
-    endif()
-  endif()
-  file(MAKE_DIRECTORY "${modules}")
-  file(COPY "${STRATA_NPM_DIR}/package.json" "${lock}" DESTINATION "${modules}")
-  execute_process(
-    COMMAND "${npm}" ci --no-audit --no-fund --ignore-scripts --loglevel=error
-    WORKING_DIRECTORY "${modules}"
-    RESULT_VARIABLE npm_result OUTPUT_VARIABLE npm_output ERROR_VARIABLE npm_output TIMEOUT 300)
-  if(NOT npm_result EQUAL 0 OR NOT EXISTS "${modules}/node_modules/.package-lock.json")
-    file(REMOVE "${modules}/package-lock.json") # so the next run tries again
-    message(FATAL_ERROR "cannot install the tests' npm packages (${STRATA_NPM_DIR}/package-lock.json) into "
-                        "${modules} with npm ci (no network?). Run once with network: cd ${modules} && ${npm} ci\n"
-                        "${npm_output}")
-  endif()
+  strata_npm_ci_folder("${npm}" "${STRATA_NPM_DIR}" "${modules}" 300
+                       "Run once with network: cd ${modules} && ${npm} ci")
 endfunction()
