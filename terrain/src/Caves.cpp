@@ -146,7 +146,7 @@ double roundConeDistance(const glm::dvec3& p, const glm::dvec3& a, const glm::dv
 
 namespace {
 
-constexpr double BUCKET_SIZE = 8.0;
+constexpr double BUCKET_SIZE = WormCaves::BUCKET_SIZE;
 std::atomic<std::uint64_t> gNextWormId{1};
 
 /// Per thread, the last few buckets used, direct-mapped by key: the sampler
@@ -182,7 +182,7 @@ inline double wander(std::uint64_t hashedSeed, double t)
 /// shard is full, its oldest entry goes (first in, first out). Values are
 /// immutable and shared, so an evicted value stays valid for whoever still
 /// holds it.
-template <class Key, class Value, std::size_t CAPACITY>
+template <class Key, class Value, std::size_t CAPACITY, std::size_t SHARDS = 64>
 class BoundedCache
 {
 public:
@@ -215,7 +215,6 @@ public:
     }
 
 private:
-    static constexpr std::size_t SHARDS = 64;
     static_assert(CAPACITY % SHARDS == 0);
     static std::size_t shardOf(const Key& key)
     {
@@ -236,7 +235,7 @@ private:
 
 struct WormCaves::Cache
 {
-    BoundedCache<Key, Bucket, BUCKET_CACHE_SLOTS> buckets;
+    BoundedCache<Key, Region, BUCKET_CACHE_SLOTS / REGION_BUCKETS, 16> regions;
     BoundedCache<std::array<std::int64_t, 2>, std::vector<Segment>, CELL_CACHE_SLOTS> cells;
 };
 
@@ -307,42 +306,140 @@ std::shared_ptr<const std::vector<WormCaves::Segment>> WormCaves::cell(std::int6
 
 std::size_t WormCaves::cachedBuckets() const
 {
-    return mCache->buckets.size();
+    return mCache->regions.size() * REGION_BUCKETS;
 }
+
+std::vector<WormCaves::Segment> WormCaves::bucketSegments(const Key& key) const
+{
+    std::vector<Segment> segments;
+    for (const Cone& c : *bucket(key)) segments.push_back(c.s);
+    return segments;
+}
+
+namespace {
+
+/// floor(v / BUCKET_SIZE) − first: the bucket of coordinate v counted from
+/// a region's first bucket along one axis, clamped to [lo, hi] (so the
+/// conversion is defined; NaN gives lo).
+int clampedOffset(double v, double first, int lo, int hi)
+{
+    const double t = std::floor(v / BUCKET_SIZE) - first;
+    if (!(t > double(lo))) return lo; // also NaN
+    if (!(t < double(hi))) return hi;
+    return int(t);
+}
+
+} // namespace
+
+struct WormCaves::Region
+{
+    std::array<Bucket, REGION_BUCKETS> buckets; ///< x-major: (i·R + j)·R + k for bucket offsets (i, j, k)
+};
 
 std::shared_ptr<const WormCaves::Bucket> WormCaves::bucket(const Key& key) const
 {
-    if (auto found = mCache->buckets.find(key)) return found;
-    // Build outside the lock (two threads may build the same bucket; both
+    constexpr std::int64_t MASK = REGION_SIDE - 1;
+    const std::shared_ptr<const Region> built = region({key[0] >> REGION_SHIFT, key[1] >> REGION_SHIFT, key[2] >> REGION_SHIFT});
+    const Bucket& b = built->buckets[std::size_t(((key[0] & MASK) * REGION_SIDE + (key[1] & MASK)) * REGION_SIDE + (key[2] & MASK))];
+    return std::shared_ptr<const Bucket>(built, &b); // shares the region's ownership
+}
+
+std::shared_ptr<const WormCaves::Region> WormCaves::region(const Key& regionKey) const
+{
+    if (auto found = mCache->regions.find(regionKey)) return found;
+    // Build outside the lock (two threads may build the same region; both
     // get the same contents, whichever is stored).
-    const glm::dvec3 lo = BUCKET_SIZE * glm::dvec3(static_cast<double>(key[0]), static_cast<double>(key[1]),
-                                                   static_cast<double>(key[2]));
-    const glm::dvec3 hi = lo + BUCKET_SIZE;
-    auto bucket = std::make_shared<Bucket>();
+    //
+    // Each bucket gets exactly the segments, in exactly the order, of the
+    // rule a bucket had when it was built on its own (every segment of the
+    // cells within reach + CAP, cx outer and cz inner, kept when its box
+    // comes within CAP of the bucket's): the cells of the whole region are
+    // walked once in that order, and each segment is appended to every
+    // bucket of the region that the same per-bucket tests accept (the same
+    // y range, the same cell range, the same box distance, computed with
+    // the same expressions). So densities keep their bits.
+    auto region = std::make_shared<Region>();
     const double margin = mReach + CAP;
-    if (hi.y > mOptions.minY - margin && lo.y < mOptions.maxY + margin) {
-        // Saturating (detail::latticeIndex): a bucket beyond ±2^62 cells converts without undefined behaviour.
-        const auto cellOf = [&](double v) { return detail::latticeIndex(std::floor(v / mOptions.cellSize)); };
-        for (std::int64_t cx = cellOf(lo.x - margin); cx <= cellOf(hi.x + margin); ++cx) {
-            for (std::int64_t cz = cellOf(lo.z - margin); cz <= cellOf(hi.z + margin); ++cz) {
-                // Hold the cell while reading it: the cache may evict it meanwhile.
-                const std::shared_ptr<const std::vector<Segment>> segments = cell(cx, cz);
-                for (const Segment& s : *segments) {
-                    const double r = std::max(s.ra, s.rb);
-                    const glm::dvec3 smin = glm::min(s.a, s.b) - r, smax = glm::max(s.a, s.b) + r;
-                    // Box-to-box distance: every point of the cone is at least this far.
-                    const glm::dvec3 gap = glm::max(glm::max(smin - hi, lo - smax), 0.0);
-                    if (glm::length(gap) < CAP) {
-                        const glm::dvec3 mid = 0.5 * (s.a + s.b);
-                        bucket->push_back({s, mid, 0.5 * glm::length(s.b - s.a) + std::max(s.ra, s.rb)});
+    // Saturating (detail::latticeIndex): a bucket beyond ±2^62 cells converts without undefined behaviour.
+    const auto cellOf = [&](double v) { return detail::latticeIndex(std::floor(v / mOptions.cellSize)); };
+    struct Target
+    {
+        glm::dvec3 lo, hi;
+        std::int64_t cx0, cx1, cz0, cz1;
+        bool live;
+    };
+    std::array<Target, REGION_BUCKETS> targets;
+    std::int64_t cx0 = 0, cx1 = -1, cz0 = 0, cz1 = -1;
+    bool any = false;
+    const Key first{regionKey[0] * REGION_SIDE, regionKey[1] * REGION_SIDE, regionKey[2] * REGION_SIDE};
+    double extent = 0.0;
+    for (int i = 0; i < REGION_SIDE; ++i)
+        for (int j = 0; j < REGION_SIDE; ++j)
+            for (int k = 0; k < REGION_SIDE; ++k) {
+                Target& t = targets[std::size_t((i * REGION_SIDE + j) * REGION_SIDE + k)];
+                t.lo = BUCKET_SIZE * glm::dvec3(static_cast<double>(first[0] + i), static_cast<double>(first[1] + j),
+                                                static_cast<double>(first[2] + k));
+                t.hi = t.lo + BUCKET_SIZE;
+                t.live = t.hi.y > mOptions.minY - margin && t.lo.y < mOptions.maxY + margin;
+                t.cx0 = cellOf(t.lo.x - margin);
+                t.cx1 = cellOf(t.hi.x + margin);
+                t.cz0 = cellOf(t.lo.z - margin);
+                t.cz1 = cellOf(t.hi.z + margin);
+                extent = std::max({extent, std::abs(t.lo.x), std::abs(t.lo.y), std::abs(t.lo.z), std::abs(t.hi.x),
+                                   std::abs(t.hi.y), std::abs(t.hi.z)});
+                if (!t.live) continue;
+                cx0 = any ? std::min(cx0, t.cx0) : t.cx0;
+                cx1 = any ? std::max(cx1, t.cx1) : t.cx1;
+                cz0 = any ? std::min(cz0, t.cz0) : t.cz0;
+                cz1 = any ? std::max(cz1, t.cz1) : t.cz1;
+                any = true;
+            }
+    // Near enough to the origin that 8 m buckets are still 8 m apart in
+    // doubles, a segment only looks at the buckets its padded box touches;
+    // farther out, at every bucket of the region (the exact tests decide
+    // either way).
+    const bool narrow = extent < 0x1.0p40;
+    const glm::dvec3 firstD(static_cast<double>(first[0]), static_cast<double>(first[1]), static_cast<double>(first[2]));
+    for (std::int64_t cx = cx0; any && cx <= cx1; ++cx) {
+        for (std::int64_t cz = cz0; cz <= cz1; ++cz) {
+            // Hold the cell while reading it: the cache may evict it meanwhile.
+            const std::shared_ptr<const std::vector<Segment>> segments = cell(cx, cz);
+            for (const Segment& s : *segments) {
+                const double r = std::max(s.ra, s.rb);
+                const glm::dvec3 smin = glm::min(s.a, s.b) - r, smax = glm::max(s.a, s.b) + r;
+                int from[3] = {0, 0, 0}, to[3] = {REGION_SIDE - 1, REGION_SIDE - 1, REGION_SIDE - 1};
+                if (narrow) {
+                    for (int axis = 0; axis < 3; ++axis) {
+                        from[axis] = clampedOffset(smin[axis] - CAP, firstD[axis], -2, REGION_SIDE + 1) - 1;
+                        to[axis] = clampedOffset(smax[axis] + CAP, firstD[axis], -2, REGION_SIDE + 1) + 1;
+                        from[axis] = std::max(from[axis], 0);
+                        to[axis] = std::min(to[axis], REGION_SIDE - 1);
                     }
                 }
+                bool haveCone = false;
+                Cone cone;
+                for (int i = from[0]; i <= to[0]; ++i)
+                    for (int j = from[1]; j <= to[1]; ++j)
+                        for (int k = from[2]; k <= to[2]; ++k) {
+                            const std::size_t index = std::size_t((i * REGION_SIDE + j) * REGION_SIDE + k);
+                            const Target& t = targets[index];
+                            if (!t.live || cx < t.cx0 || cx > t.cx1 || cz < t.cz0 || cz > t.cz1) continue;
+                            // Box-to-box distance: every point of the cone is at least this far.
+                            const glm::dvec3 gap = glm::max(glm::max(smin - t.hi, t.lo - smax), 0.0);
+                            if (!(glm::length(gap) < CAP)) continue;
+                            if (!haveCone) {
+                                const glm::dvec3 mid = 0.5 * (s.a + s.b);
+                                cone = {s, mid, 0.5 * glm::length(s.b - s.a) + std::max(s.ra, s.rb)};
+                                haveCone = true;
+                            }
+                            region->buckets[index].push_back(cone);
+                        }
             }
         }
     }
-    std::shared_ptr<const Bucket> built = std::move(bucket);
-    mCache->buckets.store(key, built);
-    return built;
+    std::shared_ptr<const Region> result = std::move(region);
+    mCache->regions.store(regionKey, result);
+    return result;
 }
 
 namespace {

@@ -93,7 +93,8 @@ private:
 /// varying radius), and density is the exact signed distance to their union,
 /// capped at CAP metres (so it is 1-Lipschitz and its own distance bound).
 ///
-/// Segments are gathered lazily into 8 m buckets, kept in a bounded
+/// Segments are gathered lazily into 8 m buckets, built a region of 4³
+/// buckets at a time and kept in a bounded
 /// thread-safe cache (at most BUCKET_CACHE_SLOTS buckets and
 /// CELL_CACHE_SLOTS spawn cells; when full, the oldest entries of a shard
 /// are dropped). The contents of a bucket depend only on its position, so
@@ -135,7 +136,17 @@ public:
     /// signed distance capped at CAP, hence 1-Lipschitz.
     Interval bounds(const WorldBox& box) const override;
 
-    /// Capacity of the bucket and cell caches (entries).
+    /// Side of a bucket, metres: a bucket holds the segments that come
+    /// within CAP of its cube.
+    static constexpr double BUCKET_SIZE = 8.0;
+    /// Buckets are built a region of REGION_SIDE³ at a time: one pass over
+    /// the cells within reach fills them all (each segment goes to the
+    /// buckets it comes within CAP of), instead of a pass per bucket.
+    static constexpr int REGION_SHIFT = 2;
+    static constexpr int REGION_SIDE = 1 << REGION_SHIFT;
+    static constexpr std::size_t REGION_BUCKETS = std::size_t(REGION_SIDE) * REGION_SIDE * REGION_SIDE;
+    /// Capacity of the bucket and cell caches (entries; buckets are cached
+    /// a whole region at a time, BUCKET_CACHE_SLOTS / REGION_BUCKETS regions).
     static constexpr std::size_t BUCKET_CACHE_SLOTS = 4096;
     static constexpr std::size_t CELL_CACHE_SLOTS = 512;
     /// How many buckets the cache holds now (<= BUCKET_CACHE_SLOTS), for
@@ -150,6 +161,9 @@ public:
     using Key = std::array<std::int64_t, 3>; ///< a bucket: floor(p / 8 m)
     /// The segments of all worms spawned in cell (cx, cz), in order.
     std::vector<Segment> wormsOfCell(std::int64_t cx, std::int64_t cz) const;
+    /// The segments of bucket `key`, in the order density() visits them
+    /// (for tests: they compare it with the per-bucket rule).
+    std::vector<Segment> bucketSegments(const Key& key) const;
 
 private:
     struct Cone ///< a segment with its bounding sphere, for quick rejection
@@ -159,7 +173,11 @@ private:
         double reach;
     };
     using Bucket = std::vector<Cone>;
+    struct Region; ///< REGION_BUCKETS buckets, built together (Caves.cpp)
+    /// The bucket, from its region (built on a miss); shares the region's ownership.
     std::shared_ptr<const Bucket> bucket(const Key& key) const;
+    /// The region floor(key / REGION_SIDE), from the cache or built.
+    std::shared_ptr<const Region> region(const Key& regionKey) const;
     /// The bucket, through this thread's one-entry cache.
     const Bucket& threadBucket(const Key& key) const;
     /// min(CAP, the cones' round-cone distances at p).
