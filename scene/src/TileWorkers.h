@@ -2,16 +2,22 @@
 // SPDX-License-Identifier: MIT
 
 #pragma once
-// Internal: a pool of threads that works through a list of tile indices,
-// each tile a pure function of its index, while the calling thread
-// reports progress and hears the observer's interrupt.
+// Internal: works through a list of tile indices on TBB, each tile a pure
+// function of its index, while the calling thread reports progress and
+// hears the observer's interrupt.
 
 #include <strata/scene/Pipeline.h>
+
+#include <tbb/global_control.h>
+#include <tbb/info.h>
+#include <tbb/task_arena.h>
+#include <tbb/task_group.h>
 
 #include <algorithm>
 #include <condition_variable>
 #include <exception>
 #include <functional>
+#include <memory>
 #include <mutex>
 #include <string>
 #include <thread>
@@ -27,46 +33,84 @@ struct TileWorkResult
     bool interrupted = false;
 };
 
-/// Runs `work(index)` for every index of `todo` on `threads` threads (0:
-/// all cores); an exception from `work` is recorded as that tile's failure
-/// (the others go on). Stops handing out tiles once the observer's
+/// Runs `work(index)` for every index of `todo`, `threads` tiles at once
+/// (0: as many as TBB's default concurrency, the cores this process may
+/// use); an exception from `work` is recorded as that tile's failure (the
+/// others go on). Stops handing out tiles once the observer's
 /// progressCount() returns false; tiles in progress finish.
+///
+/// The tiles run as TBB tasks in one task_arena of `threads` slots, so a
+/// tile's own parallel_for calls share those threads (one scheduler owns
+/// the cores: `threads` threads in all, not `threads` plus TBB's pool).
+/// The calling thread stays outside, free for progress and the interrupt;
+/// one helper thread enters the arena in its place and takes the slot an
+/// entering thread is given, so the arena needs threads − 1 of TBB's
+/// workers: the same as any parallel_for called with max_allowed_parallelism
+/// = threads (strata bake --threads sets exactly that). Beyond TBB's
+/// default (more tiles at once than cores), the limit is raised to
+/// `threads` while the tiles run; a lower limit the caller holds still
+/// wins (TBB takes the lowest), and then fewer tiles run at once.
+/// Each tile runs isolated (tbb::this_task_arena::isolate): a thread
+/// waiting inside a tile's parallel_for never picks up another tile.
 inline TileWorkResult runTileWorkers(const std::vector<int>& todo, int threads, PipelineObserver* observer,
                                      const std::function<void(int index)>& work)
 {
     TileWorkResult result;
+    if (todo.empty()) return result;
     std::mutex mutex;
     std::condition_variable changed;
     std::size_t next = 0;
-    const int count = std::max(1, std::min<int>(threads > 0 ? threads : int(std::max(1u, std::thread::hardware_concurrency())),
-                                                 int(todo.size())));
-    std::vector<std::thread> workers;
-    for (int w = 0; w < count && !todo.empty(); ++w) {
-        workers.emplace_back([&] {
-            for (;;) {
-                int index;
-                {
-                    std::lock_guard<std::mutex> hold(mutex);
-                    if (result.interrupted || next >= todo.size()) return;
-                    index = todo[next++];
-                }
-                std::string failure;
-                try {
-                    work(index);
-                } catch (const std::exception& e) {
-                    failure = e.what();
-                    if (failure.empty()) failure = "unknown error";
-                }
+    bool drained = false; // every runner has returned
+    const int count = std::max(1, std::min<int>(threads > 0 ? threads : tbb::info::default_concurrency(), int(todo.size())));
+
+    std::unique_ptr<tbb::global_control> raise;
+    if (tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism) < std::size_t(count))
+        raise = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, std::size_t(count));
+    tbb::task_arena arena(count, 1);
+
+    // A runner takes the next index until none is left or the observer
+    // interrupted; `count` runners, one per slot.
+    const auto runner = [&] {
+        for (;;) {
+            int index;
+            {
                 std::lock_guard<std::mutex> hold(mutex);
-                if (!failure.empty()) result.failures.emplace_back(index, failure);
-                ++result.finished;
-                changed.notify_all();
+                if (result.interrupted || next >= todo.size()) return;
+                index = todo[next++];
             }
-        });
-    }
+            std::string failure;
+            try {
+                tbb::this_task_arena::isolate([&] { work(index); });
+            } catch (const std::exception& e) {
+                failure = e.what();
+                if (failure.empty()) failure = "unknown error";
+            } catch (...) {
+                failure = "unknown error";
+            }
+            std::lock_guard<std::mutex> hold(mutex);
+            if (!failure.empty()) result.failures.emplace_back(index, failure);
+            ++result.finished;
+            changed.notify_all();
+        }
+    };
+    std::exception_ptr lost; // from TBB itself (e.g. out of memory), not from a tile
+    std::thread entry([&] {
+        try {
+            arena.execute([&] {
+                tbb::task_group group;
+                for (int r = 0; r < count; ++r) group.run(runner);
+                group.wait();
+            });
+        } catch (...) {
+            lost = std::current_exception();
+        }
+        std::lock_guard<std::mutex> hold(mutex);
+        drained = true;
+        changed.notify_all();
+    });
     {
         std::unique_lock<std::mutex> hold(mutex);
-        while (result.finished < todo.size() && !(result.interrupted && result.finished == next)) {
+        while (!drained && result.finished < todo.size() && !(result.interrupted && result.finished == next)) {
             changed.wait(hold);
             const std::size_t done = result.finished;
             hold.unlock();
@@ -75,7 +119,8 @@ inline TileWorkResult runTileWorkers(const std::vector<int>& todo, int threads, 
             if (!go) result.interrupted = true;
         }
     }
-    for (std::thread& worker : workers) worker.join();
+    entry.join();
+    if (lost) std::rethrow_exception(lost);
     std::sort(result.failures.begin(), result.failures.end());
     return result;
 }

@@ -1,0 +1,164 @@
+// SPDX-FileCopyrightText: The Strata authors
+// SPDX-License-Identifier: MIT
+
+// The bake's tile pool (scene/src/TileWorkers.h) on TBB: `threads` tiles at
+// once, even beyond the cores and under the max_allowed_parallelism that
+// strata bake --threads sets; a tile's parallel_for stays in the pool's
+// arena; failures are per tile; the interrupt stops handing out tiles.
+// A pool that ran fewer tiles at once than asked would hang the first test
+// (its tiles wait for each other): ctest's timeout fails it.
+
+#include "TileWorkers.h"
+
+#include <gtest/gtest.h>
+#include <tbb/global_control.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <atomic>
+#include <condition_variable>
+#include <mutex>
+#include <numeric>
+#include <stdexcept>
+#include <vector>
+
+using strata::scene::PipelineObserver;
+using strata::scene::detail::runTileWorkers;
+using strata::scene::detail::TileWorkResult;
+
+namespace {
+
+std::vector<int> indices(int n)
+{
+    std::vector<int> v(std::size_t(n), 0);
+    std::iota(v.begin(), v.end(), 0);
+    return v;
+}
+
+/// Counts progress reports; interrupts after `stopAfter` of them (< 0: never).
+class CountingObserver final : public PipelineObserver
+{
+public:
+    explicit CountingObserver(int stopAfter) : mStopAfter(stopAfter) {}
+    bool progressCount(std::uint64_t done, std::uint64_t total, const std::string& unit) override
+    {
+        EXPECT_EQ(unit, "tiles");
+        EXPECT_LE(done, total);
+        last = done;
+        ++reports;
+        return mStopAfter < 0 || reports < mStopAfter;
+    }
+    std::uint64_t last = 0;
+    int reports = 0;
+
+private:
+    int mStopAfter;
+};
+
+} // namespace
+
+TEST(TileWorkers, RunsThatManyTilesAtOnceAndTheirParallelForsInTheirArena)
+{
+    for (const int threads : {1, 2, 3}) {
+        // As strata bake --threads N: the process limited to N.
+        const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
+        std::mutex mutex;
+        std::condition_variable all;
+        int running = 0, most = 0, arrived = 0;
+        std::atomic<int> arenaConcurrency{0};
+        std::atomic<long> sum{0};
+        CountingObserver observer(-1);
+        const TileWorkResult result = runTileWorkers(indices(4 * threads), threads, &observer, [&](int index) {
+            {
+                std::unique_lock<std::mutex> hold(mutex);
+                most = std::max(most, ++running);
+                // The first `threads` tiles wait until all of them run at once.
+                if (++arrived <= threads) {
+                    all.notify_all();
+                    all.wait(hold, [&] { return arrived >= threads; });
+                }
+            }
+            arenaConcurrency = tbb::this_task_arena::max_concurrency();
+            tbb::parallel_for(0, 1000, [&](int i) { sum += i + index; });
+            std::lock_guard<std::mutex> hold(mutex);
+            --running;
+        });
+        EXPECT_EQ(most, threads);
+        EXPECT_EQ(arenaConcurrency.load(), threads) << "a tile's parallel_for runs in the pool's arena";
+        EXPECT_EQ(result.finished, std::size_t(4 * threads));
+        EXPECT_FALSE(result.interrupted);
+        EXPECT_TRUE(result.failures.empty());
+        EXPECT_EQ(sum.load(), 4L * threads * 499500L + 1000L * (4L * threads) * (4L * threads - 1) / 2);
+        EXPECT_EQ(observer.last, std::uint64_t(4 * threads)) << "the last report says every tile is done";
+    }
+}
+
+TEST(TileWorkers, AFailureIsThatTilesTheOthersGoOn)
+{
+    std::atomic<int> done{0};
+    const TileWorkResult result = runTileWorkers(indices(12), 2, nullptr, [&](int index) {
+        if (index == 7) throw std::runtime_error("seven");
+        if (index == 3) throw 3; // not a std::exception
+        if (index == 9) throw std::runtime_error("");
+        ++done;
+    });
+    EXPECT_EQ(done.load(), 9);
+    EXPECT_EQ(result.finished, 12u);
+    ASSERT_EQ(result.failures.size(), 3u);
+    EXPECT_EQ(result.failures[0], std::make_pair(3, std::string("unknown error")));
+    EXPECT_EQ(result.failures[1], std::make_pair(7, std::string("seven")));
+    EXPECT_EQ(result.failures[2], std::make_pair(9, std::string("unknown error")));
+}
+
+TEST(TileWorkers, TheInterruptStopsHandingOutTilesAndTilesInProgressFinish)
+{
+    for (const int threads : {1, 2, 3}) {
+        constexpr int TILES = 2000;
+        std::mutex mutex;
+        std::condition_variable reported;
+        std::vector<int> started, finished;
+        // Stops at the first report (after the first tile); the tiles after
+        // the first wait for that report, so the interrupt comes while tiles
+        // are in progress and most are still to hand out.
+        class StopAtOnce final : public PipelineObserver
+        {
+        public:
+            StopAtOnce(std::mutex& m, std::condition_variable& c) : mMutex(m), mReported(c) {}
+            bool progressCount(std::uint64_t, std::uint64_t, const std::string&) override
+            {
+                std::lock_guard<std::mutex> hold(mMutex);
+                ++reports;
+                mReported.notify_all();
+                return false;
+            }
+            int reports = 0;
+
+        private:
+            std::mutex& mMutex;
+            std::condition_variable& mReported;
+        } observer(mutex, reported);
+        const TileWorkResult result = runTileWorkers(indices(TILES), threads, &observer, [&](int index) {
+            {
+                std::unique_lock<std::mutex> hold(mutex);
+                started.push_back(index);
+                if (started.size() > 1) reported.wait(hold, [&] { return observer.reports > 0; });
+            }
+            tbb::parallel_for(0, 20000, [](int) {});
+            std::lock_guard<std::mutex> hold(mutex);
+            finished.push_back(index);
+        });
+        EXPECT_TRUE(result.interrupted);
+        EXPECT_EQ(started.size(), finished.size()) << "every tile handed out finished";
+        EXPECT_EQ(result.finished, finished.size());
+        EXPECT_LT(finished.size(), std::size_t(TILES)) << "tiles stopped being handed out";
+        EXPECT_TRUE(result.failures.empty());
+    }
+}
+
+TEST(TileWorkers, NothingToDo)
+{
+    CountingObserver observer(-1);
+    const TileWorkResult result = runTileWorkers({}, 2, &observer, [](int) { FAIL() << "no tile"; });
+    EXPECT_EQ(result.finished, 0u);
+    EXPECT_EQ(observer.reports, 0);
+}
