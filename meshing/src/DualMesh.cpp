@@ -10,6 +10,7 @@
 #include <cassert>
 #include <cmath>
 #include <map>
+#include <memory>
 
 namespace strata::meshing {
 
@@ -239,7 +240,7 @@ public:
         const int u0 = mOuter[0], u1 = mOuter[1], u2 = mOuter[2];
         const std::ptrdiff_t sx = mS.stride[0], sy = mS.stride[1], sz = mS.stride[2];
         const std::ptrdiff_t strides[3] = {sx, sy, sz};
-        const std::uint8_t* inside = mInside.data();
+        const std::uint8_t* inside = mInside.get();
         const int n0 = mS.cells[u0], n1 = mS.cells[u1], n2 = mS.cells[u2];
         const std::ptrdiff_t step = strides[u2];
         int p[3];
@@ -256,7 +257,11 @@ public:
                     p[u2] = i2;
                     for (int a = 0; a < 3; ++a) {
                         if (row[strides[a]] == s) continue;
-                        if (mAnyLevel && minNeighbourLevel(p, a) < 0) continue; // subdivided by a finer neighbour
+                        if (!mAnyLevel) {
+                            ownPolygon(a, p, s != 0);
+                            continue;
+                        }
+                        if (minNeighbourLevel(p, a) < 0) continue; // subdivided by a finer neighbour
                         const std::int64_t q[3] = {2 * p[0], 2 * p[1], 2 * p[2]};
                         polygon(a, q, 2, s != 0);
                     }
@@ -297,7 +302,11 @@ private:
     {
         std::size_t count = 1;
         for (int a = 0; a < 3; ++a) count += std::size_t(mS.size[a] - 1) * std::size_t(mS.stride[a]);
-        mInside.assign(count, 0);
+        // Dense layouts (no gaps between rows) are written in full below.
+        std::size_t points = 1;
+        for (int a = 0; a < 3; ++a) points *= std::size_t(mS.size[a]);
+        if (points == count) mInside.reset(new std::uint8_t[count]);
+        else mInside.reset(new std::uint8_t[count]());
         // Memory order: rows along the axis of the smallest stride.
         const int u0 = mOuter[0], u1 = mOuter[1], u2 = mOuter[2];
         const std::ptrdiff_t step = mS.stride[u2];
@@ -306,7 +315,7 @@ private:
             for (int i1 = 0; i1 < mS.size[u1]; ++i1) {
                 const std::ptrdiff_t first = i0 * mS.stride[u0] + i1 * mS.stride[u1];
                 const float* from = mS.values + first;
-                std::uint8_t* to = mInside.data() + first;
+                std::uint8_t* to = mInside.get() + first;
                 for (int i2 = 0, n = mS.size[u2]; i2 < n; ++i2) to[i2 * step] = from[i2 * step] < iso ? 1 : 0;
             }
     }
@@ -346,6 +355,31 @@ private:
             local[c] = SC[i] < 0;
             corners[i] = vertexOf(level, cell, cellEdge(a, local[0], local[1], local[2]));
         }
+        emit(corners, lowerInside);
+    }
+
+    /// polygon() for an own-level edge from lattice point p along a when every
+    /// neighbour has the chunk's level (the same cells, without the levels).
+    void ownPolygon(int a, const int p[3], bool lowerInside)
+    {
+        const int b = (a + 1) % 3, c = (a + 2) % 3;
+        std::uint32_t corners[4];
+        for (int i = 0; i < 4; ++i) { // the cells at (-1, -1), (0, -1), (0, 0), (-1, 0) across the edge in (b, c)
+            const int db = i == 0 || i == 3 ? 1 : 0, dc = i < 2 ? 1 : 0;
+            int cell[3] = {p[0], p[1], p[2]};
+            cell[b] -= db;
+            cell[c] -= dc;
+            int local[3] = {0, 0, 0};
+            local[b] = db;
+            local[c] = dc;
+            corners[i] = ownVertex(cell, cellEdge(a, local[0], local[1], local[2]));
+        }
+        emit(corners, lowerInside);
+    }
+
+    /// The polygon through the vertices of the four cells around an edge.
+    void emit(const std::uint32_t (&corners)[4], bool lowerInside)
+    {
         // Two cells around the edge may be the same coarse cell: a triangle.
         std::uint32_t poly[4];
         int n = 0;
@@ -391,6 +425,12 @@ private:
             mOtherLevels.emplace(key, index);
             return index;
         }
+        return ownVertex(cell, edge);
+    }
+
+    /// vertexOf() at the chunk's own level.
+    std::uint32_t ownVertex(const int cell[3], int edge)
+    {
         const int cy = mS.cells[1] + 1, cz = mS.cells[2] + 1;
         std::uint32_t& slotIndex = mCellSlot[(std::size_t(cell[0] + 1) * cy + (cell[1] + 1)) * cz + (cell[2] + 1)];
         if (slotIndex == UNSET) { // first visit: the corner signs, once per cell
@@ -601,7 +641,9 @@ private:
         for (int a = 0; a < 3; ++a) {
             p[a] = std::clamp(p[a], lo, hi);
             if (mQuantum > 0.0) {
-                const double r = std::floor(p[a] * mQuantum + 0.5);
+                const double x = p[a] * mQuantum + 0.5;
+                // floor() of a positive double below 2^52 is its truncation.
+                const double r = x > 0.0 && x < 4503599627370496.0 ? double(std::int64_t(x)) : std::floor(x);
                 p[a] = mQuantumInverse > 0.0 ? r * mQuantumInverse : r / mQuantum;
             }
         }
@@ -642,9 +684,49 @@ private:
         return lerp(lerp(c00, c01, v), lerp(c10, c11, v), u);
     }
 
+    // trilinear() in the cell at sample `i` (its corner 0), weights u, v, w:
+    // the same operations in the same order.
+    double trilinearIn(std::ptrdiff_t i, double u, double v, double w) const
+    {
+        const std::ptrdiff_t sx = mS.stride[0], sy = mS.stride[1], sz = mS.stride[2];
+        const float* d = mS.values;
+        auto lerp = [](double a, double b, double t) { return a + (b - a) * t; };
+        const double c00 = lerp(d[i], d[i + sz], w), c01 = lerp(d[i + sy], d[i + sy + sz], w);
+        const double c10 = lerp(d[i + sx], d[i + sx + sz], w);
+        const double c11 = lerp(d[i + sx + sy], d[i + sx + sy + sz], w);
+        return lerp(lerp(c00, c01, v), lerp(c10, c11, v), u);
+    }
+
     // Central differences one cell apart on the trilinear interpolant, p in
-    // [0, 1]^3 relative to sample `base`.
+    // [0, 1]^3 relative to sample `base`. For p in [0, 1]^3 (every caller's
+    // case) the cells of the six evaluations are known without floor(): the
+    // same cells and weights as centralGradientAnywhere(), bit for bit.
     glm::dvec3 centralGradient(std::size_t base, const glm::dvec3& p) const
+    {
+        const bool inUnitCell = p.x >= 0.0 && p.x <= 1.0 && p.y >= 0.0 && p.y <= 1.0 && p.z >= 0.0 && p.z <= 1.0;
+        // p + (1, 0, 0) turns a -0 of y or z into +0: leave that to the general path.
+        if (!inUnitCell || std::signbit(p.x) || std::signbit(p.y) || std::signbit(p.z)) {
+            return centralGradientAnywhere(base, p);
+        }
+        const std::ptrdiff_t sx = mS.stride[0], sy = mS.stride[1], sz = mS.stride[2];
+        const std::ptrdiff_t b = std::ptrdiff_t(base);
+        // Unshifted axes: floor(p) is 0, or 1 at p = 1.
+        const int cx = p.x < 1.0 ? 0 : 1, cy = p.y < 1.0 ? 0 : 1, cz = p.z < 1.0 ? 0 : 1;
+        const double u = p.x - cx, v = p.y - cy, w = p.z - cz;
+        // Shifted by +1: floor(p + 1) clamps to 1; by -1: floor(p - 1) is -1, or 0 at p = 1.
+        const double xp = p.x + 1.0, yp = p.y + 1.0, zp = p.z + 1.0;
+        const double xm = p.x - 1.0, ym = p.y - 1.0, zm = p.z - 1.0;
+        const int xmCell = xm < 0.0 ? -1 : 0, ymCell = ym < 0.0 ? -1 : 0, zmCell = zm < 0.0 ? -1 : 0;
+        const double gx = trilinearIn(b + sx + cy * sy + cz * sz, xp - 1.0, v, w) -
+                          trilinearIn(b + xmCell * sx + cy * sy + cz * sz, xm - xmCell, v, w);
+        const double gy = trilinearIn(b + cx * sx + sy + cz * sz, u, yp - 1.0, w) -
+                          trilinearIn(b + cx * sx + ymCell * sy + cz * sz, u, ym - ymCell, w);
+        const double gz = trilinearIn(b + cx * sx + cy * sy + sz, u, v, zp - 1.0) -
+                          trilinearIn(b + cx * sx + cy * sy + zmCell * sz, u, v, zm - zmCell);
+        return {0.5 * gx, 0.5 * gy, 0.5 * gz};
+    }
+
+    glm::dvec3 centralGradientAnywhere(std::size_t base, const glm::dvec3& p) const
     {
         return {0.5 * (trilinear(base, p + glm::dvec3(1, 0, 0)) - trilinear(base, p - glm::dvec3(1, 0, 0))),
                 0.5 * (trilinear(base, p + glm::dvec3(0, 1, 0)) - trilinear(base, p - glm::dvec3(0, 1, 0))),
@@ -702,7 +784,7 @@ private:
     bool mAnyFiner = false, mAnyLevel = false;
     float mIso = 0.0f;
     double mQuantum = 0.0, mQuantumInverse = 0.0; // the inverse only when exact (a power of two)
-    std::vector<std::uint8_t> mInside;
+    std::unique_ptr<std::uint8_t[]> mInside;
     std::vector<std::uint32_t> mCellSlot;
     std::vector<std::array<std::uint32_t, 5>> mSlots; // 4 vertices, then the corner signs
     std::map<std::array<int, 4>, std::uint32_t> mOtherLevels;

@@ -15,6 +15,8 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
+#include <memory>
 #include <string>
 
 namespace strata::meshing {
@@ -75,7 +77,7 @@ struct Block
 {
     Coord min;   // index coordinates of sample (0,0,0)
     int n[3];    // samples per axis
-    std::vector<float> values;
+    std::unique_ptr<float[]> values; // every sample written by fillBlock(): no zero fill first
 
     std::size_t at(int x, int y, int z) const { return (std::size_t(x) * n[1] + y) * n[2] + z; }
     std::size_t stride(int axis) const { return axis == 0 ? std::size_t(n[1]) * n[2] : axis == 1 ? n[2] : 1; }
@@ -84,27 +86,37 @@ struct Block
 void fillBlock(const openvdb::FloatGrid& grid, Block& block)
 {
     const std::size_t count = std::size_t(block.n[0]) * block.n[1] * block.n[2];
-    block.values.resize(count);
+    block.values.reset(new float[count]);
+    float* values = block.values.get();
     openvdb::FloatGrid::ConstAccessor accessor = grid.getConstAccessor();
     const Coord lo = block.min, hi = block.min + Coord(block.n[0] - 1, block.n[1] - 1, block.n[2] - 1);
-    // Leaf by leaf: copy from the leaf buffer, or fill with the tile value.
+    // Leaf by leaf: copy runs along z from the leaf buffer, or fill with the tile value.
     for (int lx = lo.x() & ~7; lx <= hi.x(); lx += 8) {
         for (int ly = lo.y() & ~7; ly <= hi.y(); ly += 8) {
             for (int lz = lo.z() & ~7; lz <= hi.z(); lz += 8) {
                 const Coord origin(lx, ly, lz);
                 const openvdb::FloatTree::LeafNodeType* leaf = accessor.probeConstLeaf(origin);
-                const float tile = leaf ? 0.0f : accessor.getValue(origin);
+                const float* buffer = nullptr; // null: every sample is `tile`
+                float tile = 0.0f;
+                if (leaf) {
+                    // getValue() reads 0 from an empty buffer; load a delayed one first.
+                    if (leaf->buffer().isOutOfCore()) (void)leaf->getValue(openvdb::Index(0));
+                    if (!leaf->buffer().empty()) buffer = leaf->buffer().data();
+                } else {
+                    tile = accessor.getValue(origin);
+                }
                 const int x0 = std::max(lx, lo.x()), x1 = std::min(lx + 7, hi.x());
                 const int y0 = std::max(ly, lo.y()), y1 = std::min(ly + 7, hi.y());
                 const int z0 = std::max(lz, lo.z()), z1 = std::min(lz + 7, hi.z());
+                const std::size_t run = std::size_t(z1 - z0 + 1);
                 for (int x = x0; x <= x1; ++x) {
                     for (int y = y0; y <= y1; ++y) {
-                        std::size_t i = block.at(x - lo.x(), y - lo.y(), z0 - lo.z());
-                        if (leaf) {
-                            const openvdb::Index base = openvdb::Index(((x & 7) << 6) | ((y & 7) << 3));
-                            for (int z = z0; z <= z1; ++z, ++i) block.values[i] = leaf->getValue(base | (z & 7));
+                        float* to = values + block.at(x - lo.x(), y - lo.y(), z0 - lo.z());
+                        if (buffer) {
+                            const float* from = buffer + (((x & 7) << 6) | ((y & 7) << 3) | (z0 & 7));
+                            std::memcpy(to, from, run * sizeof(float));
                         } else {
-                            for (int z = z0; z <= z1; ++z, ++i) block.values[i] = tile;
+                            std::fill(to, to + run, tile);
                         }
                     }
                 }
@@ -166,7 +178,7 @@ ChunkData GridChunkMesher::mesh(const Coord& min, const Coord& dim) const
     fillBlock(mGrid, block);
 
     DualSamples samples;
-    samples.values = block.values.data();
+    samples.values = block.values.get();
     samples.apron = APRON;
     for (int a = 0; a < 3; ++a) {
         samples.cells[a] = dim[a];
