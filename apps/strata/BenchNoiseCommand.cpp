@@ -13,6 +13,8 @@
 #include <cstdio>
 #include <iostream>
 #include <memory>
+#include <string>
+#include <vector>
 
 namespace strata::app {
 
@@ -28,6 +30,8 @@ std::string millions(double rate)
 int runNoiseBench(const terrain::NoiseThroughputOptions& options, const std::string& simd)
 {
     if (!simd.empty()) terrain::useSimdTarget(simd); // one of availableSimdTargets(): checked by the flag
+    // Measured first, so a bad --fastnoise-lite fails before anything is printed.
+    const std::vector<terrain::NoiseThroughput> rows = terrain::measureNoiseThroughput(options);
     std::string targets;
     for (const std::string& name : terrain::availableSimdTargets()) targets += (targets.empty() ? "" : ", ") + name;
     std::cout << "Noise throughput, one core, processor time (best of 3), M points/s.\n"
@@ -35,17 +39,31 @@ int runNoiseBench(const terrain::NoiseThroughputOptions& options, const std::str
               << " noise units apart (lattice order); 'scattered': the same count spread over 64 cells.\n"
               << "Block path: FractalNoise::evaluate, lattice hashes reused within a cell, the arithmetic in "
                  "SIMD lanes; the same bits as the scalar path on every target.\n"
-              << "SIMD target in use: " << terrain::simdTarget() << " (this machine: " << targets << ").\n\n"
-              << "| noise | dims | scalar, scattered | scalar, voxels | block, no SIMD | block, " << terrain::simdTarget()
-              << " | block / scalar |\n"
-              << "|---|---:|---:|---:|---:|---:|---:|\n";
-    for (const terrain::NoiseThroughput& row : terrain::measureNoiseThroughput(options)) {
-        char ratio[32];
-        std::snprintf(ratio, sizeof(ratio), "%.2fx", row.blockRate / row.scalarRate);
+              << "SIMD target in use: " << terrain::simdTarget() << " (this machine: " << targets << ").\n";
+    const bool reference = !options.fastNoiseLite.empty();
+    if (reference) {
+        std::cout << "FastNoiseLite: " << options.fastNoiseLite
+                  << ", compiled here with -O3 -march=native; GetNoise per point on the same points (as float), "
+                     "frequency 1; gradient = Perlin, simplex = OpenSimplex2, value = Value, cellular = Cellular "
+                     "(Euclidean; Distance, Distance2).\n";
+    }
+    std::cout << "\n| noise | dims | scalar, scattered | scalar, voxels | block, no SIMD | block, " << terrain::simdTarget()
+              << " | block / scalar |" << (reference ? " FastNoiseLite | block / FastNoiseLite |" : "") << "\n"
+              << "|---|---:|---:|---:|---:|---:|---:|" << (reference ? "---:|---:|" : "") << "\n";
+    const auto ratio = [](double a, double b) {
+        char text[32];
+        std::snprintf(text, sizeof(text), "%.2fx", a / b);
+        return std::string(text);
+    };
+    for (const terrain::NoiseThroughput& row : rows) {
         std::cout << "| " << row.name << " | " << row.dimensions << "D | " << millions(row.scatteredRate) << " | "
                   << millions(row.scalarRate) << " | " << millions(row.blockScalarTargetRate) << " | "
-                  << millions(row.blockRate) << " | " << ratio << " |"
-                  << std::endl;
+                  << millions(row.blockRate) << " | " << ratio(row.blockRate, row.scalarRate) << " |";
+        if (reference) {
+            std::cout << " " << millions(row.fastNoiseLiteRate) << " | " << ratio(row.blockRate, row.fastNoiseLiteRate)
+                      << " |";
+        }
+        std::cout << std::endl;
     }
     return 0;
 }
@@ -66,6 +84,9 @@ Command registerBenchNoiseCommand(CLI::App& bench)
         ->capture_default_str();
     noise->add_option("--simd", *simd, "Run the block path on this SIMD target (default: the best this machine has)")
         ->check(CLI::IsMember(terrain::availableSimdTargets()));
+    noise->add_option("--fastnoise-lite", options->fastNoiseLite,
+                      "A copy of FastNoiseLite.h (C++; never shipped with Strata) to measure beside the block path on "
+                      "the same points: compiled here with $CXX -O3 -march=native");
     return {noise, [options, simd]() { return runNoiseBench(*options, *simd); }};
 }
 

@@ -4,8 +4,11 @@
 #include <strata/terrain/NoiseThroughput.h>
 #include <strata/terrain/SimdTarget.h>
 
+#include "FastNoiseLiteReference.h"
+
 #include <ctime>
 #include <functional>
+#include <memory>
 #include <vector>
 
 namespace strata::terrain {
@@ -86,17 +89,29 @@ std::vector<NoiseThroughput> measureNoiseThroughput(const NoiseThroughputOptions
     const Blocks scattered = scatteredPoints(blocks.x.size());
     const std::size_t n = blocks.x.size();
     std::vector<double> out(n);
+    // FastNoiseLite takes float coordinates: the same points, rounded.
+    std::unique_ptr<detail::FastNoiseLiteReference> reference;
+    std::vector<float> fx, fy, fz, fout(n);
+    if (!options.fastNoiseLite.empty()) {
+        reference = std::make_unique<detail::FastNoiseLiteReference>(options.fastNoiseLite);
+        for (std::size_t i = 0; i < n; ++i) {
+            fx.push_back(float(blocks.x[i]));
+            fy.push_back(float(blocks.y[i]));
+            fz.push_back(float(blocks.z[i]));
+        }
+    }
     volatile double sink = 0.0;
 
     const struct
     {
         const char* name;
         NoiseType type;
-    } bases[] = {{"gradient", NoiseType::GRADIENT},
-                 {"simplex", NoiseType::SIMPLEX},
-                 {"value", NoiseType::VALUE},
-                 {"cellular F1", NoiseType::CELLULAR_F1},
-                 {"cellular F2", NoiseType::CELLULAR_F2}};
+        detail::ReferenceBasis reference;
+    } bases[] = {{"gradient", NoiseType::GRADIENT, detail::ReferenceBasis::GRADIENT},
+                 {"simplex", NoiseType::SIMPLEX, detail::ReferenceBasis::SIMPLEX},
+                 {"value", NoiseType::VALUE, detail::ReferenceBasis::VALUE},
+                 {"cellular F1", NoiseType::CELLULAR_F1, detail::ReferenceBasis::CELLULAR_F1},
+                 {"cellular F2", NoiseType::CELLULAR_F2, detail::ReferenceBasis::CELLULAR_F2}};
     // The block path also runs on Highway's portable target (SCALAR, or
     // EMU128 with compilers that support it: no SIMD); then the target that
     // was in use comes back.
@@ -136,6 +151,15 @@ std::vector<NoiseThroughput> measureNoiseThroughput(const NoiseThroughputOptions
                 useSimdTarget(targets.back());
                 row.blockScalarTargetRate = rate(blockPath, n, options.seconds);
                 restore();
+                if (reference) {
+                    row.fastNoiseLiteRate = rate(
+                        [&] {
+                            reference->fill(basis.reference, octaves, dimensions, fx.data(), fy.data(), fz.data(), n,
+                                            fout.data());
+                            sink = sink + fout[n / 2];
+                        },
+                        n, options.seconds);
+                }
                 rows.push_back(row);
             }
     return rows;

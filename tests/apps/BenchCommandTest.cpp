@@ -157,4 +157,10 @@ TEST(BenchNoiseCommand, PrintsEveryBasisOnTheChosenSimdTargetAndRefusesAnUnknown
     const CommandResult bad = runStrata("bench noise --seconds 0.01 --simd NEON9000", dir);
     EXPECT_EQ(bad.exitCode, 2);
     EXPECT_EQ(bad.output.rfind("strata: error: --simd: NEON9000", 0), 0u) << bad.output;
+
+    // A missing FastNoiseLite copy fails before anything is measured or printed.
+    const std::string missing = (dir / "FastNoiseLite.h").string();
+    const CommandResult noCopy = runStrata("bench noise --seconds 0.01 --fastnoise-lite " + missing, dir);
+    EXPECT_EQ(noCopy.exitCode, 2);
+    EXPECT_EQ(noCopy.output.rfind("strata: error: --fastnoise-lite: " + missing + ": no such file", 0), 0u) << noCopy.output;
 }
