@@ -6,6 +6,7 @@
 // SwiftShader) and saves what it draws. Used by tests/web/WebViewerTest.cpp.
 //   node viewer_browser.mjs --modules <node_modules> --chromium <path> --dir <bake>
 //        --size WxH --out <png> [--query "pos=..&target=..&fov=.."] [--timeout-ms N] [--serve <strata>]
+//        [--wait ready|first-frame]
 // Serves DIR on 127.0.0.1 with `strata serve DIR --port 0` (--serve; else a
 // small static server of its own, for trying a bake by hand), opens
 // viewer/index.html?QUERY, waits for window.strataReady (every tile the view
@@ -29,6 +30,7 @@ function fail( message ) {
 
 }
 for ( const key of [ 'modules', 'chromium', 'dir', 'size', 'out' ] ) if ( ! args[ key ] ) fail( `--${ key } is missing` );
+if ( args.wait && ! [ 'ready', 'first-frame' ].includes( args.wait ) ) fail( `--wait ${ args.wait }: expected ready or first-frame` );
 if ( ! existsSync( args.chromium ) ) fail( `no Chromium at ${ args.chromium }: install Debian's chromium (scripts/install-deps.sh)` );
 const root = resolve( args.dir );
 if ( ! existsSync( join( root, 'viewer', 'index.html' ) ) ) fail( `${ root }/viewer/index.html does not exist: the bake wrote no viewer` );
@@ -123,7 +125,9 @@ try {
 	await page.goto( url, { waitUntil: 'load', timeout: timeoutMs } );
 	try {
 
-		await page.waitForFunction( 'window.strataReady === true || window.strataError !== undefined', { timeout: timeoutMs, polling: 100 } );
+		// --wait first-frame: only until the first frame with terrain is drawn (the viewer's start-up time).
+		const until = args.wait === 'first-frame' ? 'window.strataStats.firstFrameMs !== null' : 'window.strataReady === true';
+		await page.waitForFunction( `${ until } || window.strataError !== undefined`, { timeout: timeoutMs, polling: 50 } );
 
 	} catch {
 

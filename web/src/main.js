@@ -22,7 +22,7 @@ import { MeshoptDecoder } from 'three/examples/jsm/libs/meshopt_decoder.module.j
 import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
 import { DEBUG_VIEWS, loadMaps, makeUniforms, makeTerrainMaterial, makeSky, makeShadowPass, updateFrameUniforms } from './material.js';
 
-const stats = { start: performance.now(), firstFrameMs: null, readyMs: null, tilesLoaded: 0, frames: 0 };
+const stats = { start: performance.now(), firstFrameMs: null, firstTileMs: null, mapsReadyMs: null, readyMs: null, tilesLoaded: 0, frames: 0 };
 window.strataReady = false;
 window.strataStats = stats;
 
@@ -141,7 +141,7 @@ async function main() {
 	tiles.setResolutionFromRenderer( camera, renderer );
 	tiles.addEventListener( 'load-model', ( { scene: model } ) => {
 
-		stats.tilesLoaded ++;
+		if ( stats.tilesLoaded ++ === 0 ) stats.firstTileMs = performance.now(); // since navigation start
 		model.traverse( o => {
 
 			if ( o.isMesh ) {
@@ -164,6 +164,12 @@ async function main() {
 	} );
 	const showTiles = params.get( 'tiles' ) !== '0';
 	if ( showTiles ) scene.add( tiles.group );
+	// Compile the shaders while the maps and the first tiles load: with
+	// KHR_parallel_shader_compile the GPU process builds them meanwhile, so
+	// the first frame does not wait for them (seconds on software WebGL).
+	const warm = new THREE.Scene();
+	for ( const m of [ material, shadowPass && shadowPass.material ] ) if ( m ) warm.add( new THREE.Mesh( new THREE.BufferGeometry(), m ) );
+	renderer.compileAsync( warm, camera, scene ).then( () => renderer.compileAsync( scene, camera ) ).catch( e => console.warn( 'shader warm-up:', e ) );
 
 	let controls = null;
 	if ( params.get( 'controls' ) !== '0' ) {
@@ -321,7 +327,9 @@ async function main() {
 		if ( showTiles ) tiles.update();
 		const busy = showTiles ? tiles.stats.downloading + tiles.stats.parsing + ( tiles.stats.queued || 0 ) : 0;
 		const streaming = busy > 0;
-		const render = mapsReady && ( stats.frames === 0 || viewChanged || ( tilesChanged && ( ! streaming || now - lastRender > 1000 ) ) );
+		// The first tiles are drawn as soon as they arrive (no throttle before the first frame with terrain).
+		const firstTiles = showTiles && stats.firstFrameMs === null;
+		const render = mapsReady && ( stats.frames === 0 || viewChanged || ( tilesChanged && ( ! streaming || firstTiles || now - lastRender > 1000 ) ) );
 		if ( render ) {
 
 			viewChanged = false;
@@ -394,6 +402,7 @@ async function main() {
 
 	} );
 	mapsReady = true;
+	stats.mapsReadyMs = performance.now(); // since navigation start
 
 }
 
