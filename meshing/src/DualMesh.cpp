@@ -12,6 +12,10 @@
 #include <map>
 #include <memory>
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 namespace strata::meshing {
 
 namespace {
@@ -26,6 +30,31 @@ constexpr int NO_SAMPLE = -1;
 constexpr int CELL_EDGES[12][2] = {{0, 4}, {1, 5}, {2, 6}, {3, 7},  // x
                                    {0, 2}, {1, 3}, {4, 6}, {5, 7},  // y
                                    {0, 1}, {2, 3}, {4, 5}, {6, 7}}; // z
+
+// Bit i (i < n <= 16): the samples at row[i] and row[i + offset] differ,
+// i.e. the lattice edge from row + i towards row + i + offset crosses.
+unsigned crossings(const std::uint8_t* row, std::ptrdiff_t offset, int n)
+{
+#if defined(__SSE2__)
+    if (n == 16) {
+        const __m128i s = _mm_loadu_si128(reinterpret_cast<const __m128i*>(row));
+        const __m128i o = _mm_loadu_si128(reinterpret_cast<const __m128i*>(row + offset));
+        return unsigned(_mm_movemask_epi8(_mm_cmpeq_epi8(s, o))) ^ 0xffffu;
+    }
+#endif
+    unsigned bits = 0;
+    for (int i = 0; i < n; ++i) bits |= unsigned(row[i] != row[i + offset]) << i;
+    return bits;
+}
+
+// Set bits of a 16-bit mask (std::popcount is a library call without POPCNT).
+int popcount16(unsigned x)
+{
+    x = x - ((x >> 1) & 0x5555u);
+    x = (x & 0x3333u) + ((x >> 2) & 0x3333u);
+    x = (x + (x >> 4)) & 0x0f0fu;
+    return int((x + (x >> 8)) & 0x1fu);
+}
 
 int cornerAt(const int o[3])
 {
@@ -215,6 +244,19 @@ public:
             const std::ptrdiff_t d[3] = {k >> 2 & 1, k >> 1 & 1, k & 1};
             mCornerOffset[k] = d[0] * mS.stride[0] + d[1] * mS.stride[1] + d[2] * mS.stride[2];
         }
+        const std::ptrdiff_t slotStride[3] = {std::ptrdiff_t(mS.cells[1] + 1) * (mS.cells[2] + 1), mS.cells[2] + 1, 1};
+        for (int a = 0; a < 3; ++a) {
+            const int b = (a + 1) % 3, c = (a + 2) % 3;
+            for (int i = 0; i < 4; ++i) { // the cells at (-1, -1), (0, -1), (0, 0), (-1, 0) across the edge in (b, c)
+                const int db = i == 0 || i == 3 ? 1 : 0, dc = i < 2 ? 1 : 0;
+                OwnCorner& corner = mOwnCorners[a][i];
+                for (int k = 0; k < 3; ++k) corner.delta[k] = 0;
+                corner.delta[b] = db;
+                corner.delta[c] = dc;
+                corner.slot = -(db * slotStride[b] + dc * slotStride[c]);
+                corner.edge = cellEdge(a, corner.delta[0], corner.delta[1], corner.delta[2]);
+            }
+        }
         mAnyFiner = mAnyLevel = false;
         for (int m = 1; m < 8; ++m) {
             mAnyFiner = mAnyFiner || mS.signature[m] < 0;
@@ -244,6 +286,10 @@ public:
         const int n0 = mS.cells[u0], n1 = mS.cells[u1], n2 = mS.cells[u2];
         const std::ptrdiff_t step = strides[u2];
         int p[3];
+        if (!mAnyLevel && step == 1) {
+            walkOwnLevel();
+            return std::move(mOut);
+        }
         for (int i0 = 0; i0 < n0; ++i0) {
             for (int i1 = 0; i1 < n1; ++i1) {
                 p[u0] = i0;
@@ -292,6 +338,65 @@ public:
     }
 
 private:
+    /// The walk of run() when every neighbour has the chunk's level and rows
+    /// are contiguous: 16 lattice points at a time, the crossing edges as
+    /// bit masks, counted first to size the outputs; then the polygons in
+    /// the same order (points in memory order, axes 0, 1, 2 per point).
+    void walkOwnLevel()
+    {
+        const int u0 = mOuter[0], u1 = mOuter[1], u2 = mOuter[2];
+        const std::ptrdiff_t strides[3] = {mS.stride[0], mS.stride[1], mS.stride[2]};
+        const std::uint8_t* inside = mInside.get();
+        const int n0 = mS.cells[u0], n1 = mS.cells[u1], n2 = mS.cells[u2];
+        auto rowAt = [&](int i0, int i1) {
+            int p[3];
+            p[u0] = i0;
+            p[u1] = i1;
+            p[u2] = 0;
+            return inside + dense(p[0], p[1], p[2]);
+        };
+        std::size_t edges = 0;
+        for (int i0 = 0; i0 < n0; ++i0) {
+            for (int i1 = 0; i1 < n1; ++i1) {
+                const std::uint8_t* row = rowAt(i0, i1);
+                for (int i2 = 0; i2 < n2; i2 += 16) {
+                    const int n = std::min(16, n2 - i2);
+                    for (int a = 0; a < 3; ++a) edges += std::size_t(popcount16(crossings(row + i2, strides[a], n)));
+                }
+            }
+        }
+        // One quad per edge; about as many vertices (cells) as quads, more
+        // in small chunks (the apron cells): growth past this is only slower.
+        mOut.indices.reserve(6 * edges);
+        const std::size_t vertices = edges + edges / 2 + 64;
+        mOut.positions.reserve(vertices);
+        mOut.vertices.reserve(vertices);
+        if (mP.gradients != DualGradient::None) mOut.gradients.reserve(vertices);
+        if (mP.split == DualQuadSplit::ShorterDiagonal) mChunkPosition.reserve(vertices);
+        mSlots.reserve(vertices);
+
+        int p[3];
+        for (int i0 = 0; i0 < n0; ++i0) {
+            for (int i1 = 0; i1 < n1; ++i1) {
+                p[u0] = i0;
+                p[u1] = i1;
+                const std::uint8_t* row = rowAt(i0, i1);
+                for (int i2 = 0; i2 < n2; i2 += 16) {
+                    const int n = std::min(16, n2 - i2);
+                    const unsigned cross[3] = {crossings(row + i2, strides[0], n), crossings(row + i2, strides[1], n),
+                                               crossings(row + i2, strides[2], n)};
+                    for (unsigned any = cross[0] | cross[1] | cross[2]; any != 0; any &= any - 1) {
+                        const int i = std::countr_zero(any);
+                        p[u2] = i2 + i;
+                        const bool lowerInside = row[i2 + i] != 0;
+                        for (int a = 0; a < 3; ++a)
+                            if (cross[a] >> i & 1) ownPolygon(a, p, lowerInside);
+                    }
+                }
+            }
+        }
+    }
+
     std::size_t dense(std::int64_t x, std::int64_t y, std::int64_t z) const
     {
         return std::size_t((x + mS.apron) * mS.stride[0] + (y + mS.apron) * mS.stride[1] +
@@ -316,7 +421,24 @@ private:
                 const std::ptrdiff_t first = i0 * mS.stride[u0] + i1 * mS.stride[u1];
                 const float* from = mS.values + first;
                 std::uint8_t* to = mInside.get() + first;
-                for (int i2 = 0, n = mS.size[u2]; i2 < n; ++i2) to[i2 * step] = from[i2 * step] < iso ? 1 : 0;
+                const int n = mS.size[u2];
+                if (step == 1) {
+                    int i2 = 0;
+#if defined(__SSE2__)
+                    const __m128 isoV = _mm_set1_ps(iso);
+                    for (; i2 + 16 <= n; i2 += 16) { // NaN compares false, as below
+                        const __m128i a = _mm_castps_si128(_mm_cmplt_ps(_mm_loadu_ps(from + i2), isoV));
+                        const __m128i b = _mm_castps_si128(_mm_cmplt_ps(_mm_loadu_ps(from + i2 + 4), isoV));
+                        const __m128i c = _mm_castps_si128(_mm_cmplt_ps(_mm_loadu_ps(from + i2 + 8), isoV));
+                        const __m128i d = _mm_castps_si128(_mm_cmplt_ps(_mm_loadu_ps(from + i2 + 12), isoV));
+                        const __m128i bytes = _mm_packs_epi16(_mm_packs_epi32(a, b), _mm_packs_epi32(c, d));
+                        _mm_storeu_si128(reinterpret_cast<__m128i*>(to + i2), _mm_and_si128(bytes, _mm_set1_epi8(1)));
+                    }
+#endif
+                    for (; i2 < n; ++i2) to[i2] = from[i2] < iso ? 1 : 0;
+                } else {
+                    for (int i2 = 0; i2 < n; ++i2) to[i2 * step] = from[i2 * step] < iso ? 1 : 0;
+                }
             }
     }
 
@@ -362,19 +484,36 @@ private:
     /// neighbour has the chunk's level (the same cells, without the levels).
     void ownPolygon(int a, const int p[3], bool lowerInside)
     {
-        const int b = (a + 1) % 3, c = (a + 2) % 3;
+        const std::size_t slot0 = slotOf(p);
         std::uint32_t corners[4];
-        for (int i = 0; i < 4; ++i) { // the cells at (-1, -1), (0, -1), (0, 0), (-1, 0) across the edge in (b, c)
-            const int db = i == 0 || i == 3 ? 1 : 0, dc = i < 2 ? 1 : 0;
-            int cell[3] = {p[0], p[1], p[2]};
-            cell[b] -= db;
-            cell[c] -= dc;
-            int local[3] = {0, 0, 0};
-            local[b] = db;
-            local[c] = dc;
-            corners[i] = ownVertex(cell, cellEdge(a, local[0], local[1], local[2]));
+        for (int i = 0; i < 4; ++i) {
+            const OwnCorner& corner = mOwnCorners[a][i];
+            std::uint32_t& slot = mCellSlot[std::size_t(std::ptrdiff_t(slot0) + corner.slot)];
+            if (slot != UNSET) { // the common case: the cell's vertices exist
+                const std::uint32_t vertex = mSlots[slot][std::size_t(sheetOf(int(mSlots[slot][4]), corner.edge))];
+                if (vertex != UNSET) {
+                    corners[i] = vertex;
+                    continue;
+                }
+            }
+            const int cell[3] = {p[0] - corner.delta[0], p[1] - corner.delta[1], p[2] - corner.delta[2]};
+            corners[i] = ownVertex(cell, corner.edge);
         }
-        emit(corners, lowerInside);
+        // Four distinct cells: always a quad.
+        const std::uint32_t q0 = corners[0], q1 = lowerInside ? corners[1] : corners[3], q2 = corners[2],
+                            q3 = lowerInside ? corners[3] : corners[1];
+        emitQuad(q0, q1, q2, q3, lowerInside);
+    }
+
+    std::size_t slotOf(const int cell[3]) const
+    {
+        const int cy = mS.cells[1] + 1, cz = mS.cells[2] + 1;
+        return (std::size_t(cell[0] + 1) * cy + (cell[1] + 1)) * cz + (cell[2] + 1);
+    }
+
+    int sheetOf(int mask, int edge) const
+    {
+        return mP.sheets == DualSheets::Separate ? mTable.component[mask][edge] : 0;
     }
 
     /// The polygon through the vertices of the four cells around an edge.
@@ -397,14 +536,26 @@ private:
         // the surface faces +a, and (b, c) turns counter-clockwise seen from +a.
         const std::uint32_t q0 = corners[0], q1 = lowerInside ? corners[1] : corners[3], q2 = corners[2],
                             q3 = lowerInside ? corners[3] : corners[1];
+        emitQuad(q0, q1, q2, q3, lowerInside);
+    }
+
+    void emitQuad(std::uint32_t q0, std::uint32_t q1, std::uint32_t q2, std::uint32_t q3, bool lowerInside)
+    {
+        std::vector<std::uint32_t>& idx = mOut.indices;
         bool first;
         if (mP.split == DualQuadSplit::Fixed) {
             first = lowerInside;
         } else {
             first = distance2(q0, q2) <= distance2(q1, q3);
         }
-        if (first) idx.insert(idx.end(), {q0, q1, q2, q0, q2, q3});
-        else idx.insert(idx.end(), {q1, q2, q3, q1, q3, q0});
+        const std::size_t at = idx.size();
+        idx.resize(at + 6);
+        std::uint32_t* o = idx.data() + at;
+        if (first) {
+            o[0] = q0, o[1] = q1, o[2] = q2, o[3] = q0, o[4] = q2, o[5] = q3;
+        } else {
+            o[0] = q1, o[1] = q2, o[2] = q3, o[3] = q1, o[4] = q3, o[5] = q0;
+        }
     }
 
     float distance2(std::uint32_t i, std::uint32_t j) const
@@ -431,8 +582,7 @@ private:
     /// vertexOf() at the chunk's own level.
     std::uint32_t ownVertex(const int cell[3], int edge)
     {
-        const int cy = mS.cells[1] + 1, cz = mS.cells[2] + 1;
-        std::uint32_t& slotIndex = mCellSlot[(std::size_t(cell[0] + 1) * cy + (cell[1] + 1)) * cz + (cell[2] + 1)];
+        std::uint32_t& slotIndex = mCellSlot[slotOf(cell)];
         if (slotIndex == UNSET) { // first visit: the corner signs, once per cell
             const std::size_t corner0 = dense(cell[0], cell[1], cell[2]);
             int signs = signsAt(corner0);
@@ -451,7 +601,7 @@ private:
             mSlots.push_back({UNSET, UNSET, UNSET, UNSET, std::uint32_t(signs)});
         }
         const int mask = int(mSlots[slotIndex][4]);
-        const int sheet = mP.sheets == DualSheets::Separate ? mTable.component[mask][edge] : 0;
+        const int sheet = sheetOf(mask, edge);
         std::uint32_t& vertex = mSlots[slotIndex][std::size_t(sheet)];
         if (vertex == UNSET) vertex = create(0, cell, mask, sheet);
         return vertex;
@@ -781,6 +931,13 @@ private:
     int mEdgeOrder[12];
     std::uint16_t mMemoryOrderBits[2][64]; // edge bits 0-5 and 6-11 (CELL_EDGES) to bits of mEdgeOrder
     std::ptrdiff_t mCornerOffset[8];
+    struct OwnCorner // ownPolygon(): per axis, the four cells around an edge
+    {
+        int delta[3];        // the cell is the edge's lattice point minus this
+        std::ptrdiff_t slot; // its offset in mCellSlot
+        int edge;            // the edge in it (CELL_EDGES)
+    };
+    OwnCorner mOwnCorners[3][4];
     bool mAnyFiner = false, mAnyLevel = false;
     float mIso = 0.0f;
     double mQuantum = 0.0, mQuantumInverse = 0.0; // the inverse only when exact (a power of two)
