@@ -71,30 +71,44 @@ public:
         return {int(std::floor(p.x / mH)), int(std::floor(p.y / mH)), int(std::floor(p.z / mH))};
     }
 
-    // Distance from p to the nearest triangle (infinity for an empty mesh).
+    // Distance from p to the nearest triangle (infinity for an empty mesh), exact.
+    // Shells of cells at growing Chebyshev radius r around p's cell; once the
+    // best distance is no more than the distance from p to the faces of the
+    // cube of cells scanned so far, no triangle outside it can be nearer (a
+    // triangle is in every cell its box touches). Stopping at that face, not
+    // at r·h, usually ends the search in p's own cell.
     double distance(const glm::dvec3& p) const
     {
         if (mEntries.empty()) return std::numeric_limits<double>::infinity();
         const std::array<int, 3> c = cell(p);
+        // Cell rounding (floor(p / h)) may put p an ulp outside its cell: slack.
+        const double slack = 1e-9 * (std::abs(p.x) + std::abs(p.y) + std::abs(p.z) + mH);
         double best = std::numeric_limits<double>::infinity();
         for (int r = 0; r <= 64; ++r) {
-            // Shell of cells at Chebyshev distance r.
             for (int x = c[0] - r; x <= c[0] + r; ++x)
-                for (int y = c[1] - r; y <= c[1] + r; ++y)
-                    for (int z = c[2] - r; z <= c[2] + r; ++z) {
-                        if (std::max({std::abs(x - c[0]), std::abs(y - c[1]), std::abs(z - c[2])}) != r) continue;
-                        const Entry key{{x, y, z}, 0};
-                        for (auto it = std::lower_bound(mEntries.begin(), mEntries.end(), key);
-                             it != mEntries.end() && it->cell[0] == x && it->cell[1] == y && it->cell[2] == z; ++it) {
-                            const std::uint32_t t = it->triangle;
-                            const glm::dvec3 q = closestOnTriangle(p, vertex(mMesh.indices[3 * t]),
-                                                                   vertex(mMesh.indices[3 * t + 1]),
-                                                                   vertex(mMesh.indices[3 * t + 2]));
-                            best = std::min(best, glm::length(p - q));
-                        }
+                for (int y = c[1] - r; y <= c[1] + r; ++y) {
+                    // A column (or cell) whose box is no nearer than `best` cannot hold a nearer
+                    // triangle: that triangle's nearest point lies in a cell it also touches.
+                    const double dx = gap(p.x, x), dy = gap(p.y, y), dxy2 = dx * dx + dy * dy;
+                    if (dxy2 >= best * best) continue;
+                    if (std::abs(x - c[0]) == r || std::abs(y - c[1]) == r) {
+                        nearestInColumn(p, x, y, c[2] - r, c[2] + r, dxy2, best); // the whole column is on the shell
+                    } else {
+                        nearestInColumn(p, x, y, c[2] - r, c[2] - r, dxy2, best);
+                        nearestInColumn(p, x, y, c[2] + r, c[2] + r, dxy2, best);
                     }
-            // Everything beyond this shell is at least r * h away.
-            if (best <= double(r) * mH) break;
+                }
+            double reach = std::numeric_limits<double>::infinity();
+            for (int a = 0; a < 3; ++a) {
+                reach = std::min({reach, p[a] - double(c[a] - r) * mH, double(c[a] + r + 1) * mH - p[a]});
+            }
+            if (best <= reach - slack) return best;
+        }
+        // Far from every triangle (beyond 64 shells): all of them.
+        for (std::uint32_t t = 0; t < mMesh.triangleCount(); ++t) {
+            const glm::dvec3 q = closestOnTriangle(p, vertex(mMesh.indices[3 * t]), vertex(mMesh.indices[3 * t + 1]),
+                                                   vertex(mMesh.indices[3 * t + 2]));
+            best = std::min(best, glm::length(p - q));
         }
         return best;
     }
@@ -114,6 +128,31 @@ private:
             return triangle < o.triangle;
         }
     };
+    // Distance from v to the cell interval [i·h, (i + 1)·h] on one axis (0 inside).
+    double gap(double v, int i) const { return std::max({0.0, double(i) * mH - v, v - double(i + 1) * mH}); }
+
+    // Lowers `best` to the distance from p to each triangle in cells (x, y, z0..z1):
+    // consecutive in the sorted entries, so one binary search. Cells whose box
+    // lies no nearer than `best` (dxy2: the squared distance across x and y) are skipped.
+    void nearestInColumn(const glm::dvec3& p, int x, int y, int z0, int z1, double dxy2, double& best) const
+    {
+        int z = z0 - 1;
+        bool skip = false;
+        for (auto it = std::lower_bound(mEntries.begin(), mEntries.end(), Entry{{x, y, z0}, 0});
+             it != mEntries.end() && it->cell[0] == x && it->cell[1] == y && it->cell[2] <= z1; ++it) {
+            if (it->cell[2] != z) {
+                z = it->cell[2];
+                const double dz = gap(p.z, z);
+                skip = dxy2 + dz * dz >= best * best;
+            }
+            if (skip) continue;
+            const std::uint32_t t = it->triangle;
+            const glm::dvec3 q = closestOnTriangle(p, vertex(mMesh.indices[3 * t]), vertex(mMesh.indices[3 * t + 1]),
+                                                   vertex(mMesh.indices[3 * t + 2]));
+            best = std::min(best, glm::length(p - q));
+        }
+    }
+
     const TriangleMesh& mMesh;
     double mH;
     std::vector<Entry> mEntries;
