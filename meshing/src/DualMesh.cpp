@@ -11,6 +11,7 @@
 #include <cmath>
 #include <map>
 #include <memory>
+#include <utility>
 
 #if defined(__SSE2__)
 #include <emmintrin.h>
@@ -200,14 +201,59 @@ void symmetricEigen(double m[3][3], double eigenvalues[3], double v[3][3])
     for (int i = 0; i < 3; ++i) eigenvalues[i] = m[i][i];
 }
 
+// The walker's buffers, kept per thread from one chunk to the next.
+// Allocated and freed per chunk, they made the allocator return pages to the
+// system and fault them in again (a third of the time went to the kernel).
+// A buffer larger than KEEP_BYTES (a 64^3 chunk needs about 1 MB) is freed,
+// so one huge chunk does not pin its memory to a thread.
+struct WalkerScratch
+{
+    static constexpr std::size_t KEEP_BYTES = std::size_t(16) << 20;
+    std::unique_ptr<std::uint8_t[]> inside;
+    std::size_t insideCapacity = 0;
+    std::vector<std::uint32_t> cellSlot;
+    std::vector<std::array<std::uint32_t, 5>> slots;
+    std::vector<glm::vec3> chunkPosition;
+    bool busy = false; // in use further up this thread's stack (a callback that meshes)
+};
+
+WalkerScratch& threadScratch()
+{
+    thread_local WalkerScratch scratch;
+    return scratch;
+}
+
+template <class T> void keep(std::vector<T>& from, std::vector<T>& to)
+{
+    from.clear();
+    if (from.capacity() * sizeof(T) <= WalkerScratch::KEEP_BYTES) to = std::move(from);
+}
+
 class Walker
 {
 public:
-    Walker(const DualSamples& samples, const DualMeshSettings& settings)
+    Walker(const DualSamples& samples, const DualMeshSettings& settings, DualMeshResult&& reuse)
         : mS(samples)
         , mP(settings)
         , mTable(componentTable())
+        , mOut(std::move(reuse))
     {
+        mOut.vertices.clear();
+        mOut.positions.clear();
+        mOut.gradients.clear();
+        mOut.indices.clear();
+        WalkerScratch& scratch = threadScratch();
+        if (!scratch.busy) {
+            mScratch = &scratch;
+            scratch.busy = true;
+            mInside = std::move(scratch.inside);
+            mInsideCapacity = std::exchange(scratch.insideCapacity, 0);
+            mCellSlot = std::move(scratch.cellSlot);
+            mSlots = std::move(scratch.slots);
+            mSlots.clear();
+            mChunkPosition = std::move(scratch.chunkPosition);
+            mChunkPosition.clear();
+        }
         assert(mS.values);
         assert(mS.apron >= 2);
         for (int a = 0; a < 3; ++a) assert(mS.size[a] - mS.apron >= mS.cells[a] + 1);
@@ -271,6 +317,22 @@ public:
         if (mQuantum > 0.0 && std::frexp(mQuantum, &exponent) == 0.5) mQuantumInverse = std::ldexp(1.0, 1 - exponent);
         if (!std::isfinite(mQuantumInverse)) mQuantumInverse = 0.0;
     }
+
+    ~Walker()
+    {
+        if (!mScratch) return;
+        if (mInsideCapacity <= WalkerScratch::KEEP_BYTES) {
+            mScratch->inside = std::move(mInside);
+            mScratch->insideCapacity = mInsideCapacity;
+        }
+        keep(mCellSlot, mScratch->cellSlot);
+        keep(mSlots, mScratch->slots);
+        keep(mChunkPosition, mScratch->chunkPosition);
+        mScratch->busy = false;
+    }
+
+    Walker(const Walker&) = delete;
+    Walker& operator=(const Walker&) = delete;
 
     DualMeshResult run()
     {
@@ -410,8 +472,11 @@ private:
         // Dense layouts (no gaps between rows) are written in full below.
         std::size_t points = 1;
         for (int a = 0; a < 3; ++a) points *= std::size_t(mS.size[a]);
-        if (points == count) mInside.reset(new std::uint8_t[count]);
-        else mInside.reset(new std::uint8_t[count]());
+        if (count > mInsideCapacity) {
+            mInside.reset(new std::uint8_t[count]);
+            mInsideCapacity = count;
+        }
+        if (points != count) std::fill(mInside.get(), mInside.get() + count, std::uint8_t(0));
         // Memory order: rows along the axis of the smallest stride.
         const int u0 = mOuter[0], u1 = mOuter[1], u2 = mOuter[2];
         const std::ptrdiff_t step = mS.stride[u2];
@@ -941,7 +1006,9 @@ private:
     bool mAnyFiner = false, mAnyLevel = false;
     float mIso = 0.0f;
     double mQuantum = 0.0, mQuantumInverse = 0.0; // the inverse only when exact (a power of two)
+    WalkerScratch* mScratch = nullptr; // where the buffers below go back to
     std::unique_ptr<std::uint8_t[]> mInside;
+    std::size_t mInsideCapacity = 0;
     std::vector<std::uint32_t> mCellSlot;
     std::vector<std::array<std::uint32_t, 5>> mSlots; // 4 vertices, then the corner signs
     std::map<std::array<int, 4>, std::uint32_t> mOtherLevels;
@@ -953,7 +1020,12 @@ private:
 
 DualMeshResult dualMesh(const DualSamples& samples, const DualMeshSettings& settings)
 {
-    return Walker(samples, settings).run();
+    return Walker(samples, settings, DualMeshResult()).run();
+}
+
+void dualMesh(const DualSamples& samples, const DualMeshSettings& settings, DualMeshResult& result)
+{
+    result = Walker(samples, settings, std::move(result)).run();
 }
 
 } // namespace strata::meshing

@@ -77,7 +77,7 @@ struct Block
 {
     Coord min;   // index coordinates of sample (0,0,0)
     int n[3];    // samples per axis
-    std::unique_ptr<float[]> values; // every sample written by fillBlock(): no zero fill first
+    float* values = nullptr; // n[0] * n[1] * n[2], every one written by fillBlock()
 
     std::size_t at(int x, int y, int z) const { return (std::size_t(x) * n[1] + y) * n[2] + z; }
     std::size_t stride(int axis) const { return axis == 0 ? std::size_t(n[1]) * n[2] : axis == 1 ? n[2] : 1; }
@@ -85,9 +85,7 @@ struct Block
 
 void fillBlock(const openvdb::FloatGrid& grid, Block& block)
 {
-    const std::size_t count = std::size_t(block.n[0]) * block.n[1] * block.n[2];
-    block.values.reset(new float[count]);
-    float* values = block.values.get();
+    float* values = block.values;
     openvdb::FloatGrid::ConstAccessor accessor = grid.getConstAccessor();
     const Coord lo = block.min, hi = block.min + Coord(block.n[0] - 1, block.n[1] - 1, block.n[2] - 1);
     // Leaf by leaf: copy runs along z from the leaf buffer, or fill with the tile value.
@@ -124,6 +122,65 @@ void fillBlock(const openvdb::FloatGrid& grid, Block& block)
         }
     }
 }
+
+// GridChunkMesher::mesh()'s buffers, kept per thread from one chunk to the
+// next (as dualMesh() keeps its own): allocated and freed per chunk, they
+// made the allocator return pages to the system and fault them in again.
+// Buffers above KEEP_BYTES are freed after use.
+struct MesherScratch
+{
+    static constexpr std::size_t KEEP_BYTES = std::size_t(16) << 20;
+    std::unique_ptr<float[]> values;
+    std::size_t capacity = 0;
+    DualMeshResult result;
+    bool busy = false; // in use further up this thread's stack (a gradient callback that meshes)
+
+    float* samples(std::size_t count)
+    {
+        if (count > capacity) {
+            values.reset(new float[count]);
+            capacity = count;
+        }
+        return values.get();
+    }
+};
+
+// This thread's scratch, or a fresh one when it is in use.
+class ScratchLease
+{
+public:
+    ScratchLease()
+    {
+        thread_local MesherScratch scratch;
+        if (scratch.busy) {
+            mLocal = std::make_unique<MesherScratch>();
+            mScratch = mLocal.get();
+        } else {
+            mScratch = &scratch;
+        }
+        mScratch->busy = true;
+    }
+    ~ScratchLease()
+    {
+        mScratch->busy = false;
+        if (mLocal) return;
+        if (mScratch->capacity * sizeof(float) > MesherScratch::KEEP_BYTES) {
+            mScratch->values.reset();
+            mScratch->capacity = 0;
+        }
+        DualMeshResult& r = mScratch->result;
+        const std::size_t bytes = r.vertices.capacity() * sizeof(DualVertex) + r.positions.capacity() * sizeof(glm::dvec3) +
+                                  r.gradients.capacity() * sizeof(glm::dvec3) + r.indices.capacity() * sizeof(std::uint32_t);
+        if (bytes > MesherScratch::KEEP_BYTES) r = DualMeshResult();
+    }
+    ScratchLease(const ScratchLease&) = delete;
+    ScratchLease& operator=(const ScratchLease&) = delete;
+    MesherScratch* operator->() const { return mScratch; }
+
+private:
+    MesherScratch* mScratch = nullptr;
+    std::unique_ptr<MesherScratch> mLocal;
+};
 
 // Internal result of one chunk: positions in index space relative to the
 // chunk's first cell (exact in float: integer plus a multiple of 1/65536).
@@ -172,13 +229,15 @@ ChunkData GridChunkMesher::mesh(const Coord& min, const Coord& dim) const
     out.min = min;
     out.dim = dim;
 
+    const ScratchLease scratch;
     Block block;
     block.min = min - Coord(APRON);
     for (int a = 0; a < 3; ++a) block.n[a] = dim[a] + 2 * APRON;
+    block.values = scratch->samples(std::size_t(block.n[0]) * block.n[1] * block.n[2]);
     fillBlock(mGrid, block);
 
     DualSamples samples;
-    samples.values = block.values.get();
+    samples.values = block.values;
     samples.apron = APRON;
     for (int a = 0; a < 3; ++a) {
         samples.cells[a] = dim[a];
@@ -207,7 +266,8 @@ ChunkData GridChunkMesher::mesh(const Coord& min, const Coord& dim) const
             };
         }
     }
-    DualMeshResult result = dualMesh(samples, settings);
+    DualMeshResult& result = scratch->result;
+    dualMesh(samples, settings, result);
 
     const bool perVertexNormals = normalMethod == NormalMethod::Grid || normalMethod == NormalMethod::Gradient;
     out.local.reserve(result.vertices.size());

@@ -182,4 +182,9 @@ struct DualMeshResult
 /// contouring only with an all-zero signature. O(cells³).
 DualMeshResult dualMesh(const DualSamples& samples, const DualMeshSettings& settings);
 
+/// dualMesh() into `result`, whose vectors are cleared and refilled, keeping
+/// their capacity: a caller that meshes chunk after chunk with one result
+/// (per thread) allocates nothing once the buffers have grown.
+void dualMesh(const DualSamples& samples, const DualMeshSettings& settings, DualMeshResult& result);
+
 } // namespace strata::meshing
