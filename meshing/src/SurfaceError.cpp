@@ -42,34 +42,72 @@ glm::dvec3 closestOnTriangle(const glm::dvec3& p, const glm::dvec3& a, const glm
     return a + ab * (vb * denom) + ac * (vc * denom);
 }
 
-// Triangles binned into a uniform grid of cubes `h` wide (world metres).
+// Triangles binned into a uniform grid of cubes about `h` wide (world
+// metres), counted from the mesh's lower corner, stored by columns: for each
+// (x, y) the (z, triangle) entries of its cells, sorted by z.
 class TriangleBuckets
 {
 public:
     TriangleBuckets(const TriangleMesh& mesh, double h)
-        : mMesh(mesh), mH(h)
+        : mMesh(mesh)
     {
-        for (std::uint32_t t = 0; t < mesh.triangleCount(); ++t) {
-            glm::dvec3 lo(std::numeric_limits<double>::max()), hi(std::numeric_limits<double>::lowest());
-            for (int k = 0; k < 3; ++k) {
-                const glm::dvec3 p = vertex(mesh.indices[3 * t + k]);
-                lo = glm::min(lo, p);
-                hi = glm::max(hi, p);
-            }
-            const std::array<int, 3> a = cell(lo), b = cell(hi);
-            for (int x = a[0]; x <= b[0]; ++x)
-                for (int y = a[1]; y <= b[1]; ++y)
-                    for (int z = a[2]; z <= b[2]; ++z) mEntries.push_back({{x, y, z}, t});
+        const std::size_t triangles = mesh.triangleCount();
+        if (triangles == 0) return;
+        glm::dvec3 lo(std::numeric_limits<double>::max()), hi(std::numeric_limits<double>::lowest());
+        for (std::size_t i = 0; i < mesh.indices.size(); ++i) {
+            const glm::dvec3 p = vertex(mesh.indices[i]);
+            lo = glm::min(lo, p);
+            hi = glm::max(hi, p);
         }
-        std::sort(mEntries.begin(), mEntries.end());
+        // Wider cubes where h would make more than 2^20 cells on an axis or
+        // far more columns than triangles (only the speed depends on the
+        // width: every distance is exact).
+        mLo = lo;
+        mH = std::max(h, std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z}) / double(1 << 20));
+        const double columnBudget = std::max(65536.0, 8.0 * double(triangles));
+        for (;;) {
+            for (int a = 0; a < 3; ++a) mCells[a] = cellOf(hi[a], a) + 1;
+            if (double(mCells[0]) * double(mCells[1]) <= columnBudget) break;
+            mH *= 2.0;
+        }
+        // Count, then place: each column's entries in one run.
+        mColumnStart.assign(std::size_t(mCells[0] * mCells[1]) + 1, 0);
+        const auto range = [&](std::uint32_t t, std::int64_t (&c0)[3], std::int64_t (&c1)[3]) {
+            glm::dvec3 tlo = vertex(mesh.indices[3 * t]), thi = tlo;
+            for (int k = 1; k < 3; ++k) {
+                const glm::dvec3 p = vertex(mesh.indices[3 * t + k]);
+                tlo = glm::min(tlo, p);
+                thi = glm::max(thi, p);
+            }
+            for (int a = 0; a < 3; ++a) {
+                c0[a] = cellOf(tlo[a], a);
+                c1[a] = cellOf(thi[a], a);
+            }
+        };
+        std::int64_t c0[3], c1[3];
+        for (std::uint32_t t = 0; t < triangles; ++t) {
+            range(t, c0, c1);
+            for (std::int64_t x = c0[0]; x <= c1[0]; ++x)
+                for (std::int64_t y = c0[1]; y <= c1[1]; ++y) mColumnStart[column(x, y) + 1] += std::size_t(c1[2] - c0[2] + 1);
+        }
+        for (std::size_t i = 1; i < mColumnStart.size(); ++i) mColumnStart[i] += mColumnStart[i - 1];
+        mEntries.resize(mColumnStart.back());
+        std::vector<std::size_t> next(mColumnStart.begin(), mColumnStart.end() - 1);
+        for (std::uint32_t t = 0; t < triangles; ++t) {
+            range(t, c0, c1);
+            for (std::int64_t x = c0[0]; x <= c1[0]; ++x)
+                for (std::int64_t y = c0[1]; y <= c1[1]; ++y) {
+                    std::size_t& at = next[column(x, y)];
+                    for (std::int64_t z = c0[2]; z <= c1[2]; ++z) mEntries[at++] = {std::uint32_t(z), t};
+                }
+        }
+        for (std::size_t c = 0; c + 1 < mColumnStart.size(); ++c) {
+            std::sort(mEntries.begin() + std::ptrdiff_t(mColumnStart[c]), mEntries.begin() + std::ptrdiff_t(mColumnStart[c + 1]),
+                      [](const Entry& a, const Entry& b) { return a.z < b.z; });
+        }
     }
 
     glm::dvec3 vertex(std::uint32_t i) const { return mMesh.origin + glm::dvec3(mMesh.positions[i]); }
-
-    std::array<int, 3> cell(const glm::dvec3& p) const
-    {
-        return {int(std::floor(p.x / mH)), int(std::floor(p.y / mH)), int(std::floor(p.z / mH))};
-    }
 
     // Distance from p to the nearest triangle (infinity for an empty mesh), exact.
     // Shells of cells at growing Chebyshev radius r around p's cell; once the
@@ -80,16 +118,19 @@ public:
     double distance(const glm::dvec3& p) const
     {
         if (mEntries.empty()) return std::numeric_limits<double>::infinity();
-        const std::array<int, 3> c = cell(p);
-        // Cell rounding (floor(p / h)) may put p an ulp outside its cell: slack.
+        // Far outside the grid the cell is clamped: the faces below then lie
+        // behind p, so the search goes on to the fallback, still exact.
+        std::int64_t c[3];
+        for (int a = 0; a < 3; ++a) c[a] = std::clamp<std::int64_t>(cellOf(p[a], a), -(1 << 24), mCells[a] + (1 << 24));
+        // Cell rounding (floor) may put p an ulp outside its cell: slack.
         const double slack = 1e-9 * (std::abs(p.x) + std::abs(p.y) + std::abs(p.z) + mH);
         double best = std::numeric_limits<double>::infinity();
-        for (int r = 0; r <= 64; ++r) {
-            for (int x = c[0] - r; x <= c[0] + r; ++x)
-                for (int y = c[1] - r; y <= c[1] + r; ++y) {
+        for (std::int64_t r = 0; r <= 64; ++r) {
+            for (std::int64_t x = c[0] - r; x <= c[0] + r; ++x)
+                for (std::int64_t y = c[1] - r; y <= c[1] + r; ++y) {
                     // A column (or cell) whose box is no nearer than `best` cannot hold a nearer
                     // triangle: that triangle's nearest point lies in a cell it also touches.
-                    const double dx = gap(p.x, x), dy = gap(p.y, y), dxy2 = dx * dx + dy * dy;
+                    const double dx = gap(p.x, x, 0), dy = gap(p.y, y, 1), dxy2 = dx * dx + dy * dy;
                     if (dxy2 >= best * best) continue;
                     if (std::abs(x - c[0]) == r || std::abs(y - c[1]) == r) {
                         nearestInColumn(p, x, y, c[2] - r, c[2] + r, dxy2, best); // the whole column is on the shell
@@ -100,7 +141,7 @@ public:
                 }
             double reach = std::numeric_limits<double>::infinity();
             for (int a = 0; a < 3; ++a) {
-                reach = std::min({reach, p[a] - double(c[a] - r) * mH, double(c[a] + r + 1) * mH - p[a]});
+                reach = std::min({reach, p[a] - lower(c[a] - r, a), lower(c[a] + r + 1, a) - p[a]});
             }
             if (best <= reach - slack) return best;
         }
@@ -116,33 +157,40 @@ public:
 private:
     struct Entry
     {
-        std::array<int, 3> cell;
-        std::uint32_t triangle;
-        // Component by component: std::array's operators call memcmp, which
-        // dominated the lookups.
-        bool operator<(const Entry& o) const
-        {
-            if (cell[0] != o.cell[0]) return cell[0] < o.cell[0];
-            if (cell[1] != o.cell[1]) return cell[1] < o.cell[1];
-            if (cell[2] != o.cell[2]) return cell[2] < o.cell[2];
-            return triangle < o.triangle;
-        }
+        std::uint32_t z, triangle;
     };
-    // Distance from v to the cell interval [i·h, (i + 1)·h] on one axis (0 inside).
-    double gap(double v, int i) const { return std::max({0.0, double(i) * mH - v, v - double(i + 1) * mH}); }
 
-    // Lowers `best` to the distance from p to each triangle in cells (x, y, z0..z1):
-    // consecutive in the sorted entries, so one binary search. Cells whose box
-    // lies no nearer than `best` (dxy2: the squared distance across x and y) are skipped.
-    void nearestInColumn(const glm::dvec3& p, int x, int y, int z0, int z1, double dxy2, double& best) const
+    // The cell of coordinate v on axis a (may lie outside [0, mCells[a])).
+    std::int64_t cellOf(double v, int a) const
     {
-        int z = z0 - 1;
+        const double c = std::floor((v - mLo[a]) / mH);
+        return std::int64_t(std::clamp(c, -4.0e15, 4.0e15)); // no overflow in the conversion
+    }
+    double lower(std::int64_t i, int a) const { return mLo[a] + double(i) * mH; }
+    // Distance from v to cell i's interval on axis a (0 inside).
+    double gap(double v, std::int64_t i, int a) const { return std::max({0.0, lower(i, a) - v, v - lower(i + 1, a)}); }
+    std::size_t column(std::int64_t x, std::int64_t y) const { return std::size_t(x * mCells[1] + y); }
+
+    // Lowers `best` to the distance from p to each triangle in cells (x, y, z0..z1).
+    // Cells whose box lies no nearer than `best` (dxy2: the squared distance
+    // across x and y) are skipped.
+    void nearestInColumn(const glm::dvec3& p, std::int64_t x, std::int64_t y, std::int64_t z0, std::int64_t z1,
+                         double dxy2, double& best) const
+    {
+        if (x < 0 || x >= mCells[0] || y < 0 || y >= mCells[1]) return;
+        z0 = std::max<std::int64_t>(z0, 0);
+        z1 = std::min<std::int64_t>(z1, mCells[2] - 1);
+        if (z0 > z1) return;
+        const std::size_t c = column(x, y);
+        const auto end = mEntries.begin() + std::ptrdiff_t(mColumnStart[c + 1]);
+        std::int64_t z = -1;
         bool skip = false;
-        for (auto it = std::lower_bound(mEntries.begin(), mEntries.end(), Entry{{x, y, z0}, 0});
-             it != mEntries.end() && it->cell[0] == x && it->cell[1] == y && it->cell[2] <= z1; ++it) {
-            if (it->cell[2] != z) {
-                z = it->cell[2];
-                const double dz = gap(p.z, z);
+        for (auto it = std::lower_bound(mEntries.begin() + std::ptrdiff_t(mColumnStart[c]), end, std::uint32_t(z0),
+                                        [](const Entry& e, std::uint32_t v) { return e.z < v; });
+             it != end && std::int64_t(it->z) <= z1; ++it) {
+            if (std::int64_t(it->z) != z) {
+                z = it->z;
+                const double dz = gap(p.z, z, 2);
                 skip = dxy2 + dz * dz >= best * best;
             }
             if (skip) continue;
@@ -154,7 +202,10 @@ private:
     }
 
     const TriangleMesh& mMesh;
-    double mH;
+    double mH = 1.0;
+    glm::dvec3 mLo{0.0};
+    std::int64_t mCells[3] = {1, 1, 1};
+    std::vector<std::size_t> mColumnStart; ///< entries of column x·cells[1] + y: [start[c], start[c + 1])
     std::vector<Entry> mEntries;
 };
 
