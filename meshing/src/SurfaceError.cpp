@@ -230,12 +230,12 @@ SurfaceError measureSurfaceError(const TriangleMesh& mesh, const DistanceFunctio
     if (!(options.voxelSize > 0.0) || !std::isfinite(options.voxelSize)) {
         throw Error(ErrorKind::BadInput, "surface error: voxel size must be positive");
     }
-    if (!distance) throw Error(ErrorKind::BadInput, "surface error: no distance function");
+    if (!distance && options.meshToSurface) throw Error(ErrorKind::BadInput, "surface error: no distance function");
     const double voxel = options.voxelSize;
 
     // Per-sample values first (parallel), then summed in order: deterministic.
     const std::size_t vertices = mesh.vertexCount(), triangles = mesh.triangleCount();
-    std::vector<double> meshDistances(vertices + triangles);
+    std::vector<double> meshDistances(options.meshToSurface ? vertices + triangles : 0);
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, meshDistances.size(), 1024),
                       [&](const tbb::blocked_range<std::size_t>& r) {
         for (std::size_t i = r.begin(); i != r.end(); ++i) {
@@ -287,7 +287,7 @@ SurfaceError measureSurfaceError(const TriangleMesh& mesh, const DistanceFunctio
     e.meshSamples = toSurface.count;
     e.surfaceSamples = toMesh.count;
 
-    if (options.gradient && mesh.normals.size() == mesh.positions.size() && vertices > 0) {
+    if (options.meshToSurface && options.gradient && mesh.normals.size() == mesh.positions.size() && vertices > 0) {
         std::vector<double> angles(vertices);
         tbb::parallel_for(tbb::blocked_range<std::size_t>(0, vertices, 1024), [&](const tbb::blocked_range<std::size_t>& r) {
             for (std::size_t i = r.begin(); i != r.end(); ++i) {

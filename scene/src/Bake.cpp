@@ -61,9 +61,8 @@ double levelError(const meshing::TriangleMesh& fine, const meshing::TriangleMesh
         options.voxelSize = cell;
         options.surfacePoints.reserve(from.positions.size());
         for (const glm::vec3& p : from.positions) options.surfacePoints.push_back(from.origin + glm::dvec3(p));
-        // Only the point-to-mesh direction is used: the analytic side is a stub distance.
-        const meshing::SurfaceError error =
-            meshing::measureSurfaceError(to, [](const glm::dvec3&) { return 0.0; }, options);
+        options.meshToSurface = false; // only the point-to-mesh direction: there is no analytic side
+        const meshing::SurfaceError error = meshing::measureSurfaceError(to, {}, options);
         return error.surfaceToMeshMax * cell;
     };
     return std::max(oneWay(fine, coarse, 0.5 * coarseCell), oneWay(coarse, fine, 0.5 * voxelSize));

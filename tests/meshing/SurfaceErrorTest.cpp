@@ -120,9 +120,12 @@ TEST(SurfaceError, PointToMeshDistancesAreExactNearAndFarAndAwayFromTheOrigin)
 
         SurfaceErrorOptions options;
         options.voxelSize = 0.5; // buckets 1 m wide
+        options.meshToSurface = false; // mesh against points: no distance function
         for (const glm::dvec3& p : points) {
             options.surfacePoints = {p};
-            const double found = measureSurfaceError(mesh, [](const glm::dvec3&) { return 0.0; }, options).surfaceToMeshMax * 0.5;
+            const SurfaceError e = measureSurfaceError(mesh, {}, options);
+            ASSERT_EQ(e.meshSamples, 0u);
+            const double found = e.surfaceToMeshMax * 0.5;
             double expected = std::numeric_limits<double>::infinity();
             for (std::size_t t = 0; t < mesh.indices.size(); t += 3) {
                 const auto v = [&](std::size_t k) { return mesh.origin + glm::dvec3(mesh.positions[mesh.indices[t + k]]); };

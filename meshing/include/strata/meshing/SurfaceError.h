@@ -26,6 +26,9 @@ struct SurfaceErrorOptions
     std::vector<glm::dvec3> surfacePoints;
     /// Exact gradient for the normal error; empty: normal error not measured.
     GradientFunction gradient;
+    /// False: only the surface-to-mesh direction (mesh-to-surface and normal
+    /// figures stay 0; `distance` may then be empty), e.g. mesh against mesh.
+    bool meshToSurface = true;
 };
 
 struct SurfaceError
@@ -44,7 +47,8 @@ struct SurfaceError
 
 /// Measures `mesh` against the surface `distance` = 0. O((V + T) + S·k)
 /// with a uniform bucket grid over the triangles (k triangles near a point).
-/// Throws strata::Error if voxelSize is not positive or distance is empty.
+/// Throws strata::Error if voxelSize is not positive or distance is empty
+/// (while options.meshToSurface).
 SurfaceError measureSurfaceError(const TriangleMesh& mesh, const DistanceFunction& distance,
                                  const SurfaceErrorOptions& options);
 
