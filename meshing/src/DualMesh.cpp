@@ -853,16 +853,19 @@ private:
     {
         if (project && mP.projectionSteps > 0) p = projected(p, corner0);
         const double hi = 1.0 - lo;
-        for (int a = 0; a < 3; ++a) {
-            p[a] = std::clamp(p[a], lo, hi);
-            if (mQuantum > 0.0) {
-                const double x = p[a] * mQuantum + 0.5;
-                // floor() of a positive double below 2^52 is its truncation.
-                const double r = x > 0.0 && x < 4503599627370496.0 ? double(std::int64_t(x)) : std::floor(x);
-                p[a] = mQuantumInverse > 0.0 ? r * mQuantumInverse : r / mQuantum;
-            }
-        }
-        return p;
+        // Per component in registers (a vector stored by parts and loaded
+        // whole stalls store forwarding).
+        return {quantized(std::clamp(p.x, lo, hi)), quantized(std::clamp(p.y, lo, hi)),
+                quantized(std::clamp(p.z, lo, hi))};
+    }
+
+    double quantized(double v) const
+    {
+        if (!(mQuantum > 0.0)) return v;
+        const double x = v * mQuantum + 0.5;
+        // floor() of a positive double below 2^52 is its truncation.
+        const double r = x > 0.0 && x < 4503599627370496.0 ? double(std::int64_t(x)) : std::floor(x);
+        return mQuantumInverse > 0.0 ? r * mQuantumInverse : r / mQuantum;
     }
 
     /// Newton steps along the trilinear gradient towards the isosurface.
