@@ -86,11 +86,20 @@ ClipMesh makeSkirts(const ClipMesh& surface, const glm::dvec3& lo, const glm::dv
 {
     ClipMesh skirt;
     if (depth <= 0.0 || faces == 0) return skirt;
-    // Directed edges of the surface; a boundary edge has no reverse twin.
+    // Directed edges of the surface that lie in one of the faces, in
+    // triangle order; a boundary edge has no reverse twin. The twin of such
+    // an edge joins the same two points, so it lies in the same face: only
+    // these few edges need sorting and searching.
     std::vector<std::pair<std::uint32_t, std::uint32_t>> edges;
-    edges.reserve(surface.indices.size());
+    std::vector<int> edgeFaces;
     for (std::size_t t = 0; t + 2 < surface.indices.size(); t += 3)
-        for (int k = 0; k < 3; ++k) edges.emplace_back(surface.indices[t + k], surface.indices[t + (k + 1) % 3]);
+        for (int k = 0; k < 3; ++k) {
+            const std::uint32_t a = surface.indices[t + k], b = surface.indices[t + (k + 1) % 3];
+            const int face = sharedFace(surface.positions[a], surface.positions[b], lo, hi, faces);
+            if (face < 0) continue;
+            edges.emplace_back(a, b);
+            edgeFaces.push_back(face);
+        }
     std::vector<std::pair<std::uint32_t, std::uint32_t>> sorted = edges;
     std::sort(sorted.begin(), sorted.end());
 
@@ -127,10 +136,10 @@ ClipMesh makeSkirts(const ClipMesh& surface, const glm::dvec3& lo, const glm::dv
         if (outward > 0.0) skirt.indices.insert(skirt.indices.end(), {a, b, c});
     };
 
-    for (const auto& [a, b] : edges) {
+    for (std::size_t e = 0; e < edges.size(); ++e) {
+        const auto [a, b] = edges[e];
         if (std::binary_search(sorted.begin(), sorted.end(), std::make_pair(b, a))) continue;
-        const int face = sharedFace(surface.positions[a], surface.positions[b], lo, hi, faces);
-        if (face < 0) continue;
+        const int face = edgeFaces[e];
         const auto [aTop, aBottom] = vertexPair(a, face);
         const auto [bTop, bBottom] = vertexPair(b, face);
         if (aTop == UINT32_MAX || bTop == UINT32_MAX) continue;
