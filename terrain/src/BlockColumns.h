@@ -21,6 +21,8 @@ struct BlockColumns
 };
 
 /// Columns by their bits (−0 and +0 are distinct: a field may tell them apart).
+/// Where the first 16 points are all in distinct columns (points moved by a
+/// warp), every point is taken as its own column without looking further.
 void findColumns(const PointBlock& points, BlockColumns& columns);
 
 } // namespace strata::terrain::detail
