@@ -57,6 +57,25 @@ int popcount16(unsigned x)
     return int((x + (x >> 8)) & 0x1fu);
 }
 
+// Per edge of CELL_EDGES: its corners, axis and the position of corner k0.
+struct EdgeCorner
+{
+    int k0, k1, axis;
+    double at[3];
+};
+
+constexpr std::array<EdgeCorner, 12> edgeCorners()
+{
+    std::array<EdgeCorner, 12> table{};
+    for (int e = 0; e < 12; ++e) {
+        const int k0 = CELL_EDGES[e][0];
+        table[std::size_t(e)] = {k0, CELL_EDGES[e][1], e / 4, {double(k0 >> 2 & 1), double(k0 >> 1 & 1), double(k0 & 1)}};
+    }
+    return table;
+}
+
+constexpr std::array<EdgeCorner, 12> EDGE_CORNERS = edgeCorners();
+
 int cornerAt(const int o[3])
 {
     return o[0] << 2 | o[1] << 1 | o[2];
@@ -834,14 +853,13 @@ private:
         int count = 0;
         for (; order != 0; order &= order - 1) {
             const int e = mEdgeOrder[std::countr_zero(order)];
-            const int k0 = CELL_EDGES[e][0], k1 = CELL_EDGES[e][1];
-            const double v0 = f[k0], v1 = f[k1];
+            const EdgeCorner& corner = EDGE_CORNERS[e];
+            const double v0 = f[corner.k0], v1 = f[corner.k1];
             const double t = std::clamp((iso - v0) / (v1 - v0), 0.0, 1.0);
             // The crossing: corner k0, moved by t along the edge's axis.
-            const int axis = e / 4;
-            sum.x += axis == 0 ? t : double(k0 >> 2 & 1);
-            sum.y += axis == 1 ? t : double(k0 >> 1 & 1);
-            sum.z += axis == 2 ? t : double(k0 & 1);
+            sum.x += corner.axis == 0 ? t : corner.at[0];
+            sum.y += corner.axis == 1 ? t : corner.at[1];
+            sum.z += corner.axis == 2 ? t : corner.at[2];
             ++count;
         }
         return count > 0 ? sum / double(count) : glm::dvec3(0.5);
@@ -920,6 +938,25 @@ private:
     // case) the cells of the six evaluations are known without floor(): the
     // same cells and weights as centralGradientAnywhere(), bit for bit.
     glm::dvec3 centralGradient(std::size_t base, const glm::dvec3& p) const
+    {
+        // Almost always p is in [0, 1)^3 (and not -0): the cells are the
+        // vertex's own and its six face neighbours, the weights those below
+        // with floor(p) = 0, floor(p + 1) = 1 and floor(p - 1) = -1.
+        if (p.x >= 0.0 && p.x < 1.0 && p.y >= 0.0 && p.y < 1.0 && p.z >= 0.0 && p.z < 1.0 && !std::signbit(p.x) &&
+            !std::signbit(p.y) && !std::signbit(p.z)) {
+            const std::ptrdiff_t b = std::ptrdiff_t(base);
+            const std::ptrdiff_t sx = mS.stride[0], sy = mS.stride[1], sz = mS.stride[2];
+            const double u = p.x, v = p.y, w = p.z;
+            const double gx = trilinearIn(b + sx, (p.x + 1.0) - 1.0, v, w) - trilinearIn(b - sx, (p.x - 1.0) - -1.0, v, w);
+            const double gy = trilinearIn(b + sy, u, (p.y + 1.0) - 1.0, w) - trilinearIn(b - sy, u, (p.y - 1.0) - -1.0, w);
+            const double gz = trilinearIn(b + sz, u, v, (p.z + 1.0) - 1.0) - trilinearIn(b - sz, u, v, (p.z - 1.0) - -1.0);
+            return {0.5 * gx, 0.5 * gy, 0.5 * gz};
+        }
+        return centralGradientUnitCell(base, p);
+    }
+
+    // centralGradient() for any p in [0, 1]^3 (else centralGradientAnywhere()).
+    [[gnu::noinline]] glm::dvec3 centralGradientUnitCell(std::size_t base, const glm::dvec3& p) const
     {
         const bool inUnitCell = p.x >= 0.0 && p.x <= 1.0 && p.y >= 0.0 && p.y <= 1.0 && p.z >= 0.0 && p.z <= 1.0;
         // p + (1, 0, 0) turns a -0 of y or z into +0: leave that to the general path.
