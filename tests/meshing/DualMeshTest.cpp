@@ -7,6 +7,7 @@
 
 #include <strata/meshing/AnalyticShapes.h>
 #include <strata/meshing/DualContouring.h>
+#include <strata/meshing/DualMesh.h>
 #include <strata/meshing/MeshMetrics.h>
 #include <strata/meshing/SurfaceNets.h>
 
@@ -206,6 +207,50 @@ TEST(DualMesh, DualContouringVerticesAreDistinctAfterWeldingByPosition)
             const TriangleMesh welded = weldByPosition(mesh, duplicates);
             EXPECT_EQ(duplicates, 0u) << what;
             EXPECT_EQ(analyzeTopology(welded).nonManifoldEdges, 0u) << what;
+        }
+    }
+}
+
+// dualMesh() into a reused result (the chunk meshers' per-thread buffers)
+// gives the same vertices, positions, gradients and indices as a fresh call,
+// whatever the result held before, for each layout and setting.
+TEST(DualMesh, ReusedResultEqualsFreshResult)
+{
+    auto field = [](int x, int y, int z, int seed) {
+        const std::uint32_t k = std::uint32_t(x * 73856093) ^ std::uint32_t(y * 19349663) ^ std::uint32_t(z * 83492791) ^
+                                std::uint32_t(seed * 2654435761u);
+        return 0.3f * float(z - 6) + float((k * 2246822519u) >> 20) / 2048.0f - 1.0f;
+    };
+    DualMeshResult reused;
+    for (int seed = 0; seed < 4; ++seed) {
+        const int cells = seed % 2 ? 8 : 13, apron = 3, n = cells + 2 * apron + 1;
+        std::vector<float> values(std::size_t(n) * n * n);
+        for (int x = 0; x < n; ++x)
+            for (int y = 0; y < n; ++y)
+                for (int z = 0; z < n; ++z) values[(std::size_t(x) * n + y) * n + z] = field(x, y, z, seed);
+        DualSamples samples;
+        samples.values = values.data();
+        samples.apron = apron;
+        samples.cells = {cells, cells, cells};
+        samples.size = {n, n, n};
+        // Seeds 2 and 3 store z slowest (the general walk), 0 and 1 x slowest.
+        samples.stride = seed < 2 ? std::array<std::ptrdiff_t, 3>{std::ptrdiff_t(n) * n, n, 1}
+                                  : std::array<std::ptrdiff_t, 3>{1, n, std::ptrdiff_t(n) * n};
+        DualMeshSettings settings;
+        settings.sheets = seed % 2 ? DualSheets::Separate : DualSheets::One;
+        settings.split = DualQuadSplit::ShorterDiagonal;
+        settings.gradients = seed % 2 ? DualGradient::Central : DualGradient::Cell;
+        settings.quantum = 65536.0;
+        const DualMeshResult fresh = dualMesh(samples, settings);
+        dualMesh(samples, settings, reused);
+        ASSERT_FALSE(fresh.indices.empty()) << seed;
+        EXPECT_EQ(fresh.indices, reused.indices) << seed;
+        EXPECT_EQ(fresh.positions, reused.positions) << seed;
+        EXPECT_EQ(fresh.gradients, reused.gradients) << seed;
+        ASSERT_EQ(fresh.vertices.size(), reused.vertices.size()) << seed;
+        for (std::size_t i = 0; i < fresh.vertices.size(); ++i) {
+            EXPECT_EQ(fresh.vertices[i].cell, reused.vertices[i].cell) << seed;
+            EXPECT_EQ(fresh.vertices[i].sheet, reused.vertices[i].sheet) << seed;
         }
     }
 }
