@@ -99,14 +99,29 @@ struct Gradient3
     }
 };
 
+/// valueInCell (3D) with corner (a, b, c)'s value in c[4a + 2b + c].
+STRATA_LANES HWY_INLINE V valueInCell3(D d, const V (&c)[8], V x, V y, V z)
+{
+    const V u = fade(d, x), v = fade(d, y), w = fade(d, z);
+    const V n00 = lerp(c[0], c[1], w), n01 = lerp(c[2], c[3], w);
+    const V n10 = lerp(c[4], c[5], w), n11 = lerp(c[6], c[7], w);
+    return lerp(lerp(n00, n01, v), lerp(n10, n11, v), u);
+}
+
+/// valueInCell (2D) with corner (a, b)'s value in c[2a + b].
+STRATA_LANES HWY_INLINE V valueInCell2(D d, const V (&c)[4], V x, V y)
+{
+    const V u = fade(d, x), v = fade(d, y);
+    return lerp(lerp(c[0], c[1], v), lerp(c[2], c[3], v), u);
+}
+
 struct Value3
 {
     STRATA_LANES static V at(D d, const double* c, V x, V y, V z)
     {
-        const V u = fade(d, x), v = fade(d, y), w = fade(d, z);
-        const V n00 = lerp(hn::Set(d, c[0]), hn::Set(d, c[1]), w), n01 = lerp(hn::Set(d, c[2]), hn::Set(d, c[3]), w);
-        const V n10 = lerp(hn::Set(d, c[4]), hn::Set(d, c[5]), w), n11 = lerp(hn::Set(d, c[6]), hn::Set(d, c[7]), w);
-        return lerp(lerp(n00, n01, v), lerp(n10, n11, v), u);
+        V corners[8];
+        for (int k = 0; k < 8; ++k) corners[k] = hn::Set(d, c[k]);
+        return valueInCell3(d, corners, x, y, z);
     }
 };
 
@@ -202,8 +217,9 @@ struct Value2
 {
     STRATA_LANES static V at(D d, const double* c, V x, V y, V)
     {
-        const V u = fade(d, x), v = fade(d, y);
-        return lerp(lerp(hn::Set(d, c[0]), hn::Set(d, c[1]), v), lerp(hn::Set(d, c[2]), hn::Set(d, c[3]), v), u);
+        V corners[4];
+        for (int k = 0; k < 4; ++k) corners[k] = hn::Set(d, c[k]);
+        return valueInCell2(d, corners, x, y);
     }
 };
 
@@ -326,8 +342,18 @@ HWY_INLINE void gradient2(hn::ScalableTag<double> d, VU index, hn::Vec<decltype(
     g[1] = hn::IfThenElse(first2, zero, hn::IfThenElse(first4, axis, diag1));
 }
 
-void GradientLanesImpl(std::uint64_t seed, const SplitPoints& p, std::size_t n, bool threeD, double* out)
+/// latticeValue() of lane hashes: 2·(double(h >> 11)·2^-53) − 1, exact as the scalar one.
+HWY_INLINE hn::Vec<hn::ScalableTag<double>> latticeValue(VU h)
 {
+    const hn::ScalableTag<double> d;
+    const hn::RebindToSigned<decltype(d)> di;
+    const auto unit = hn::Mul(hn::ConvertTo(d, hn::BitCast(di, hn::ShiftRight<11>(h))), hn::Set(d, 0x1.0p-53));
+    return hn::Sub(hn::Mul(hn::Set(d, 2.0), unit), hn::Set(d, 1.0));
+}
+
+void HashedLanesImpl(LaneBasis basis, std::uint64_t seed, const SplitPoints& p, std::size_t n, bool threeD, double* out)
+{
+    const bool valueBasis = basis == LaneBasis::VALUE;
     using DD = hn::ScalableTag<double>;
     using VD = hn::Vec<DD>;
     const DD d;
@@ -350,7 +376,24 @@ void GradientLanesImpl(std::uint64_t seed, const SplitPoints& p, std::size_t n, 
         const VU hx[2] = {hashCombine(s, ci), hashCombine(s, hn::Add(ci, one))};
         const VD x = hn::LoadU(d, src[3]), y = hn::LoadU(d, src[4]);
         VD value;
-        if (threeD) {
+        if (threeD && valueBasis) {
+            const VU ck = latticeIndex(d, hn::LoadU(d, src[2]));
+            VD c[8];
+            for (int a = 0; a < 2; ++a)
+                for (int bj = 0; bj < 2; ++bj) {
+                    const VU h = hashCombine(hx[a], bj ? hn::Add(cj, one) : cj);
+                    c[4 * a + 2 * bj] = latticeValue(hashCombine(h, ck));
+                    c[4 * a + 2 * bj + 1] = latticeValue(hashCombine(h, hn::Add(ck, one)));
+                }
+            value = valueInCell3(d, c, x, y, hn::LoadU(d, src[5]));
+        } else if (valueBasis) {
+            VD c[4];
+            for (int a = 0; a < 2; ++a) {
+                c[2 * a] = latticeValue(hashCombine(hx[a], cj));
+                c[2 * a + 1] = latticeValue(hashCombine(hx[a], hn::Add(cj, one)));
+            }
+            value = valueInCell2(d, c, x, y);
+        } else if (threeD) {
             const VU ck = latticeIndex(d, hn::LoadU(d, src[2]));
             VD g[8][3];
             for (int a = 0; a < 2; ++a)
@@ -531,7 +574,7 @@ namespace detail {
 HWY_EXPORT(EvaluateRuns);
 HWY_EXPORT(SplitPointsImpl);
 HWY_EXPORT(TargetInUse);
-HWY_EXPORT(GradientLanesImpl);
+HWY_EXPORT(HashedLanesImpl);
 HWY_EXPORT(NativeLaneHashingImpl);
 
 namespace {
@@ -565,9 +608,9 @@ hwy::ChosenTarget& chosenTarget()
 
 bool nativeLaneHashing() { return STRATA_DISPATCH(NativeLaneHashingImpl)(); }
 
-void gradientLanes(std::uint64_t seed, const SplitPoints& split, std::size_t n, bool threeD, double* out)
+void hashedLanes(LaneBasis basis, std::uint64_t seed, const SplitPoints& split, std::size_t n, bool threeD, double* out)
 {
-    STRATA_DISPATCH(GradientLanesImpl)(seed, split, n, threeD, out);
+    STRATA_DISPATCH(HashedLanesImpl)(basis, seed, split, n, threeD, out);
 }
 
 std::size_t cellSize(InCell kind)

@@ -71,12 +71,20 @@ std::size_t cellSize(InCell kind);
 void evaluateRuns(InCell kind, const CellRuns& runs, const double* x, const double* y, const double* z,
                   double* out);
 
-/// Gradient noise (3D, or 2D when !threeD) at n split points, each lane
-/// hashing its own point's cell: for points that seldom share a cell.
-void gradientLanes(std::uint64_t seed, const SplitPoints& split, std::size_t n, bool threeD, double* out);
+/// The bases hashedLanes() evaluates.
+enum class LaneBasis
+{
+    GRADIENT,
+    VALUE,
+};
+
+/// Gradient or value noise (3D, or 2D when !threeD) at n split points, each
+/// lane hashing its own point's cell: for points that seldom share a cell.
+void hashedLanes(LaneBasis basis, std::uint64_t seed, const SplitPoints& split, std::size_t n, bool threeD,
+                 double* out);
 
 /// Whether the target in use multiplies 64-bit lanes natively (AVX-512),
-/// which makes gradientLanes() the faster path where runs are short.
+/// which makes hashedLanes() the faster path where runs are short.
 bool nativeLaneHashing();
 
 } // namespace strata::terrain::detail

@@ -9,7 +9,8 @@
 
 #include "DefaultSceneTree.h"
 #include "NoiseHash.h" // internal: noise3/noise2, seedHash
-#include "NoiseSimd.h" // internal: gradientLanes
+#include "NoiseKernels.h" // internal: the scalar value cells
+#include "NoiseSimd.h"    // internal: hashedLanes
 
 #include <strata/Error.h>
 #include <strata/terrain/FractalNoise.h>
@@ -229,29 +230,47 @@ TEST(BlockEvaluation, ChoosingATargetLeavesHighwaysOwnChoiceAlone)
     EXPECT_EQ(hwy::SupportedTargets(), before);
 }
 
-TEST(BlockEvaluation, LaneHashedGradientNoiseGivesTheScalarBitsOnEveryTarget)
+TEST(BlockEvaluation, LaneHashedGradientAndValueNoiseGiveTheScalarBitsOnEveryTarget)
 {
     // The library hashes cells in lanes only on AVX-512 (native 64-bit
     // multiplies); the kernel exists for every target and must agree on all.
     using namespace strata::terrain::detail;
     const std::uint64_t seed = seedHash(77);
+    const auto scalarValue = [seed](bool threeD, double x, double y, double z) {
+        if (threeD) {
+            const Split3 q = splitCube({x, y, z});
+            ValueCell3 cell;
+            valueCell(seed, q, cell);
+            return valueInCell(cell, q);
+        }
+        const Split2 q = splitSquare({x, y});
+        ValueCell2 cell;
+        valueCell(seed, q, cell);
+        return valueInCell(cell, q);
+    };
     for (const std::string& target : availableSimdTargets()) {
         useSimdTarget(target);
         for (const auto& [label, block] : testBlocks()) {
             const std::size_t n = block.x.size();
-            for (const bool threeD : {true, false}) {
-                std::vector<double> cells(3 * n), fractions(3 * n), out(n);
-                const SplitPoints split{cells.data(), cells.data() + n, cells.data() + 2 * n,
-                                        fractions.data(), fractions.data() + n, fractions.data() + 2 * n};
-                splitPoints(Lattice::CUBE, block.x.data(), block.y.data(), threeD ? block.z.data() : nullptr, n, split);
-                gradientLanes(seed, split, n, threeD, out.data());
-                for (std::size_t i = 0; i < n; ++i) {
-                    const double scalar = threeD ? noise3(seed, {block.x[i], block.y[i], block.z[i]})
-                                                 : noise2(seed, {block.x[i], block.y[i]});
-                    ASSERT_TRUE(sameBits(out[i], scalar)) << target << ", " << (threeD ? "3D" : "2D") << ", " << label
-                                                          << ", point " << i << ": " << out[i] << " vs " << scalar;
+            for (const LaneBasis basis : {LaneBasis::GRADIENT, LaneBasis::VALUE})
+                for (const bool threeD : {true, false}) {
+                    std::vector<double> cells(3 * n), fractions(3 * n), out(n);
+                    const SplitPoints split{cells.data(), cells.data() + n, cells.data() + 2 * n,
+                                            fractions.data(), fractions.data() + n, fractions.data() + 2 * n};
+                    splitPoints(Lattice::CUBE, block.x.data(), block.y.data(), threeD ? block.z.data() : nullptr, n,
+                                split);
+                    hashedLanes(basis, seed, split, n, threeD, out.data());
+                    for (std::size_t i = 0; i < n; ++i) {
+                        const double scalar =
+                            basis == LaneBasis::VALUE ? scalarValue(threeD, block.x[i], block.y[i], block.z[i])
+                            : threeD                  ? noise3(seed, {block.x[i], block.y[i], block.z[i]})
+                                                      : noise2(seed, {block.x[i], block.y[i]});
+                        ASSERT_TRUE(sameBits(out[i], scalar))
+                            << target << ", " << (basis == LaneBasis::VALUE ? "value" : "gradient") << ", "
+                            << (threeD ? "3D" : "2D") << ", " << label << ", point " << i << ": " << out[i] << " vs "
+                            << scalar;
+                    }
                 }
-            }
         }
     }
     useSimdTarget("");
