@@ -139,7 +139,7 @@ void basisAt(NoiseType type, std::uint64_t s, const double* x, const double* y, 
         return split.cellX[a] == split.cellX[b] && split.cellY[a] == split.cellY[b] &&
                (!threeD || split.cellZ[a] == split.cellZ[b]);
     };
-    if ((type == NoiseType::GRADIENT || type == NoiseType::VALUE) && nativeLaneHashing()) {
+    if (nativeLaneHashing()) {
         // Where 64-bit lanes multiply natively (AVX-512), points that seldom
         // share a cell (runs shorter than 8 on average: the fine octaves of a
         // sum) hash each its own cell in lanes; long runs reuse cells, which
@@ -147,7 +147,12 @@ void basisAt(NoiseType type, std::uint64_t s, const double* x, const double* y, 
         std::size_t runs = 1;
         for (std::size_t i = 1; i < n; ++i) runs += !sameCell(i, i - 1);
         if (8 * runs > n) {
-            hashedLanes(type == NoiseType::VALUE ? LaneBasis::VALUE : LaneBasis::GRADIENT, s, split, n, threeD, out);
+            const LaneBasis basis = type == NoiseType::VALUE         ? LaneBasis::VALUE
+                                    : type == NoiseType::SIMPLEX     ? LaneBasis::SIMPLEX
+                                    : type == NoiseType::CELLULAR_F1 ? LaneBasis::CELLULAR_F1
+                                    : type == NoiseType::CELLULAR_F2 ? LaneBasis::CELLULAR_F2
+                                                                     : LaneBasis::GRADIENT;
+            hashedLanes(basis, s, split, n, threeD, out);
             return;
         }
     }

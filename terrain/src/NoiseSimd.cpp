@@ -142,40 +142,46 @@ STRATA_LANES HWY_INLINE V simplexKernel2(D d, V gx, V gy, V x, V y)
     return hn::IfThenElseZero(hn::Gt(t, hn::Zero(d)), hn::Mul(hn::Mul(t2, t2), dot));
 }
 
+/// simplexInCell (3D) with corner (a, b, c)'s gradient in g[4a + 2b + c].
+STRATA_LANES HWY_INLINE V simplexInCell3(D d, const V (&g)[8][3], V x0, V y0, V z0)
+{
+    constexpr double G3 = 1.0 / 6.0;
+    // simplexInCell's branches as masks: the second corner is one of
+    // (1,0,0) (0,1,0) (0,0,1), the third one of (1,1,0) (1,0,1) (0,1,1).
+    const auto xy = hn::Ge(x0, y0), yz = hn::Ge(y0, z0), xz = hn::Ge(x0, z0);
+    const auto i1 = hn::And(xy, xz), j1 = hn::AndNot(xy, yz);
+    const auto i2 = hn::Or(xy, xz), j2 = hn::Or(hn::Not(xy), yz), k2 = hn::Not(hn::And(xz, yz));
+    const V zero = hn::Zero(d), one = hn::Set(d, 1.0);
+    // Corners: (1,0,0) → 4, (0,1,0) → 2, (0,0,1) → 1, (1,1,0) → 6, (1,0,1) → 5, (0,1,1) → 3.
+    V g1[3], g2[3];
+    for (int k = 0; k < 3; ++k) {
+        g1[k] = hn::IfThenElse(i1, g[4][k], hn::IfThenElse(j1, g[2][k], g[1][k]));
+        // the third: (1,1,0) unless k2; then (1,0,1) if i2, else (0,1,1)
+        g2[k] = hn::IfThenElse(k2, hn::IfThenElse(i2, g[5][k], g[3][k]), g[6][k]);
+    }
+    const V di1 = hn::IfThenElseZero(i1, one), dj1 = hn::IfThenElseZero(j1, one);
+    const V dk1 = hn::IfThenElse(hn::Or(i1, j1), zero, one);
+    const V di2 = hn::IfThenElseZero(i2, one), dj2 = hn::IfThenElseZero(j2, one), dk2 = hn::IfThenElseZero(k2, one);
+    const V gs = hn::Set(d, G3), g2x = hn::Set(d, 2.0 * G3), g3x = hn::Set(d, 3.0 * G3);
+    V n = simplexKernel3(d, g[0][0], g[0][1], g[0][2], x0, y0, z0);
+    n = hn::Add(n, simplexKernel3(d, g1[0], g1[1], g1[2], hn::Add(hn::Sub(x0, di1), gs), hn::Add(hn::Sub(y0, dj1), gs),
+                                  hn::Add(hn::Sub(z0, dk1), gs)));
+    n = hn::Add(n, simplexKernel3(d, g2[0], g2[1], g2[2], hn::Add(hn::Sub(x0, di2), g2x),
+                                  hn::Add(hn::Sub(y0, dj2), g2x), hn::Add(hn::Sub(z0, dk2), g2x)));
+    n = hn::Add(n, simplexKernel3(d, g[7][0], g[7][1], g[7][2], hn::Add(hn::Sub(x0, one), g3x),
+                                  hn::Add(hn::Sub(y0, one), g3x), hn::Add(hn::Sub(z0, one), g3x)));
+    return hn::Mul(hn::Set(d, 77.0), n); // SIMPLEX3_SCALE
+}
+
 struct Simplex3
 {
     STRATA_LANES static V at(D d, const double* c, V x0, V y0, V z0)
     {
-        constexpr double G3 = 1.0 / 6.0;
-        // simplexInCell's branches as masks: the second corner is one of
-        // (1,0,0) (0,1,0) (0,0,1), the third one of (1,1,0) (1,0,1) (0,1,1).
-        const auto xy = hn::Ge(x0, y0), yz = hn::Ge(y0, z0), xz = hn::Ge(x0, z0);
-        const auto i1 = hn::And(xy, xz), j1 = hn::AndNot(xy, yz);
-        const auto i2 = hn::Or(xy, xz), j2 = hn::Or(hn::Not(xy), yz), k2 = hn::Not(hn::And(xz, yz));
-        const V zero = hn::Zero(d), one = hn::Set(d, 1.0);
-        // Corner gradients at 3·(4a + 2b + c): (1,0,0) → 12, (0,1,0) → 6, (0,0,1) → 3,
-        // (1,1,0) → 18, (1,0,1) → 15, (0,1,1) → 9.
-        V g1[3], g2[3];
-        for (int k = 0; k < 3; ++k) {
-            g1[k] = hn::IfThenElse(i1, hn::Set(d, c[12 + k]), hn::IfThenElse(j1, hn::Set(d, c[6 + k]), hn::Set(d, c[3 + k])));
-            // the third: (1,1,0) unless k2; then (1,0,1) if i2, else (0,1,1)
-            g2[k] = hn::IfThenElse(k2, hn::IfThenElse(i2, hn::Set(d, c[15 + k]), hn::Set(d, c[9 + k])), hn::Set(d, c[18 + k]));
-        }
-        const V di1 = hn::IfThenElseZero(i1, one), dj1 = hn::IfThenElseZero(j1, one);
-        const V dk1 = hn::IfThenElse(hn::Or(i1, j1), zero, one);
-        const V di2 = hn::IfThenElseZero(i2, one), dj2 = hn::IfThenElseZero(j2, one), dk2 = hn::IfThenElseZero(k2, one);
-        const V g = hn::Set(d, G3), g2x = hn::Set(d, 2.0 * G3), g3x = hn::Set(d, 3.0 * G3);
-        V n = simplexKernel3(d, hn::Set(d, c[0]), hn::Set(d, c[1]), hn::Set(d, c[2]), x0, y0, z0);
-        n = hn::Add(n, simplexKernel3(d, g1[0], g1[1], g1[2], hn::Add(hn::Sub(x0, di1), g),
-                                      hn::Add(hn::Sub(y0, dj1), g), hn::Add(hn::Sub(z0, dk1), g)));
-        n = hn::Add(n, simplexKernel3(d, g2[0], g2[1], g2[2], hn::Add(hn::Sub(x0, di2), g2x),
-                                      hn::Add(hn::Sub(y0, dj2), g2x), hn::Add(hn::Sub(z0, dk2), g2x)));
-        n = hn::Add(n, simplexKernel3(d, hn::Set(d, c[21]), hn::Set(d, c[22]), hn::Set(d, c[23]),
-                                      hn::Add(hn::Sub(x0, one), g3x), hn::Add(hn::Sub(y0, one), g3x),
-                                      hn::Add(hn::Sub(z0, one), g3x)));
-        return hn::Mul(hn::Set(d, SIMPLEX3_SCALE), n);
+        V g[8][3];
+        for (int corner = 0; corner < 8; ++corner)
+            for (int k = 0; k < 3; ++k) g[corner][k] = hn::Set(d, c[3 * corner + k]);
+        return simplexInCell3(d, g, x0, y0, z0);
     }
-    static constexpr double SIMPLEX3_SCALE = 77.0;
 };
 
 // keepTwoNearest() without branches: the same two minima.
@@ -223,21 +229,29 @@ struct Value2
     }
 };
 
+/// simplexInCell (2D) with corner (a, b)'s gradient in g[2a + b].
+STRATA_LANES HWY_INLINE V simplexInCell2(D d, const V (&g)[4][2], V x0, V y0)
+{
+    const double G2 = (3.0 - 1.7320508075688772) / 6.0; // SIMPLEX2_G
+    const V one = hn::Set(d, 1.0), gs = hn::Set(d, G2), g2x = hn::Set(d, 2.0 * G2);
+    const auto i1 = hn::Gt(x0, y0); // second corner (1,0) → 2, else (0,1) → 1
+    const V di1 = hn::IfThenElseZero(i1, one), dj1 = hn::Sub(one, di1);
+    const V gx = hn::IfThenElse(i1, g[2][0], g[1][0]);
+    const V gy = hn::IfThenElse(i1, g[2][1], g[1][1]);
+    V n = simplexKernel2(d, g[0][0], g[0][1], x0, y0);
+    n = hn::Add(n, simplexKernel2(d, gx, gy, hn::Add(hn::Sub(x0, di1), gs), hn::Add(hn::Sub(y0, dj1), gs)));
+    n = hn::Add(n, simplexKernel2(d, g[3][0], g[3][1], hn::Add(hn::Sub(x0, one), g2x), hn::Add(hn::Sub(y0, one), g2x)));
+    return hn::Mul(hn::Set(d, 99.0), n); // SIMPLEX2_SCALE
+}
+
 struct Simplex2
 {
     STRATA_LANES static V at(D d, const double* c, V x0, V y0, V)
     {
-        const double G2 = (3.0 - 1.7320508075688772) / 6.0; // SIMPLEX2_G
-        const V one = hn::Set(d, 1.0), g = hn::Set(d, G2), g2x = hn::Set(d, 2.0 * G2);
-        const auto i1 = hn::Gt(x0, y0); // second corner (1,0) → 4, else (0,1) → 2
-        const V di1 = hn::IfThenElseZero(i1, one), dj1 = hn::Sub(one, di1);
-        const V gx = hn::IfThenElse(i1, hn::Set(d, c[4]), hn::Set(d, c[2]));
-        const V gy = hn::IfThenElse(i1, hn::Set(d, c[5]), hn::Set(d, c[3]));
-        V n = simplexKernel2(d, hn::Set(d, c[0]), hn::Set(d, c[1]), x0, y0);
-        n = hn::Add(n, simplexKernel2(d, gx, gy, hn::Add(hn::Sub(x0, di1), g), hn::Add(hn::Sub(y0, dj1), g)));
-        n = hn::Add(n, simplexKernel2(d, hn::Set(d, c[6]), hn::Set(d, c[7]), hn::Add(hn::Sub(x0, one), g2x),
-                                      hn::Add(hn::Sub(y0, one), g2x)));
-        return hn::Mul(hn::Set(d, 99.0), n); // SIMPLEX2_SCALE
+        V g[4][2];
+        for (int corner = 0; corner < 4; ++corner)
+            for (int k = 0; k < 2; ++k) g[corner][k] = hn::Set(d, c[2 * corner + k]);
+        return simplexInCell2(d, g, x0, y0);
     }
 };
 
@@ -342,18 +356,75 @@ HWY_INLINE void gradient2(hn::ScalableTag<double> d, VU index, hn::Vec<decltype(
     g[1] = hn::IfThenElse(first2, zero, hn::IfThenElse(first4, axis, diag1));
 }
 
+/// unitInterval() of lane hashes: double(h >> 11)·2^-53, exact.
+HWY_INLINE hn::Vec<hn::ScalableTag<double>> unitInterval(VU h)
+{
+    const hn::ScalableTag<double> d;
+    const hn::RebindToSigned<decltype(d)> di;
+    return hn::Mul(hn::ConvertTo(d, hn::BitCast(di, hn::ShiftRight<11>(h))), hn::Set(d, 0x1.0p-53));
+}
+
 /// latticeValue() of lane hashes: 2·(double(h >> 11)·2^-53) − 1, exact as the scalar one.
 HWY_INLINE hn::Vec<hn::ScalableTag<double>> latticeValue(VU h)
 {
     const hn::ScalableTag<double> d;
-    const hn::RebindToSigned<decltype(d)> di;
-    const auto unit = hn::Mul(hn::ConvertTo(d, hn::BitCast(di, hn::ShiftRight<11>(h))), hn::Set(d, 0x1.0p-53));
-    return hn::Sub(hn::Mul(hn::Set(d, 2.0), unit), hn::Set(d, 1.0));
+    return hn::Sub(hn::Mul(hn::Set(d, 2.0), unitInterval(h)), hn::Set(d, 1.0));
+}
+
+/// cellularCell() and cellularInCell() in lanes, each lane its own point's
+/// 3^D cells (z unused in 2D): the feature points' jitters from the same
+/// hashes in the same order, the two nearest kept as Cellular3/2 keep them.
+/// Returns the nearest (SECOND: second nearest) distance, shaped as the
+/// scalar bases shape it.
+template <bool SECOND>
+HWY_INLINE hn::Vec<hn::ScalableTag<double>> cellularLanes(VU s, VU ci, VU cj, VU ck, bool threeD,
+                                                          hn::Vec<hn::ScalableTag<double>> x,
+                                                          hn::Vec<hn::ScalableTag<double>> y,
+                                                          hn::Vec<hn::ScalableTag<double>> z)
+{
+    using VD = hn::Vec<hn::ScalableTag<double>>;
+    const hn::ScalableTag<double> d;
+    const DU du;
+    const VU golden = hn::Set(du, 0x9e3779b97f4a7c15ULL);
+    const VD jitterMin = hn::Set(d, 0.3), jitterSpan = hn::Set(d, 0.4); // JITTER_MIN, JITTER_SPAN
+    const auto jitter = [&](VU h) { return hn::Add(jitterMin, hn::Mul(jitterSpan, unitInterval(h))); };
+    VD f1 = hn::Set(d, 1e9), f2 = f1;
+    for (int a = -1; a <= 1; ++a) {
+        const VU ha = hashCombine(s, hn::Add(ci, hn::Set(du, std::uint64_t(std::int64_t(a)))));
+        for (int b = -1; b <= 1; ++b) {
+            const VU hb = hashCombine(ha, hn::Add(cj, hn::Set(du, std::uint64_t(std::int64_t(b)))));
+            if (!threeD) {
+                VU h = hb;
+                const VD jx = jitter(h);
+                h = mix64(hn::Add(h, golden));
+                const VD jy = jitter(h);
+                const VD dx = hn::Sub(x, hn::Add(hn::Set(d, double(a)), jx));
+                const VD dy = hn::Sub(y, hn::Add(hn::Set(d, double(b)), jy));
+                keepTwoNearest(hn::Add(hn::Mul(dx, dx), hn::Mul(dy, dy)), f1, f2);
+                continue;
+            }
+            for (int c = -1; c <= 1; ++c) {
+                VU h = hashCombine(hb, hn::Add(ck, hn::Set(du, std::uint64_t(std::int64_t(c)))));
+                const VD jx = jitter(h);
+                h = mix64(hn::Add(h, golden));
+                const VD jy = jitter(h);
+                h = mix64(hn::Add(h, golden));
+                const VD jz = jitter(h);
+                const VD dx = hn::Sub(x, hn::Add(hn::Set(d, double(a)), jx));
+                const VD dy = hn::Sub(y, hn::Add(hn::Set(d, double(b)), jy));
+                const VD dz = hn::Sub(z, hn::Add(hn::Set(d, double(c)), jz));
+                keepTwoNearest(hn::Add(hn::Add(hn::Mul(dx, dx), hn::Mul(dy, dy)), hn::Mul(dz, dz)), f1, f2);
+            }
+        }
+    }
+    if (SECOND) return hn::Sub(hn::Mul(hn::Set(d, 2.0), hn::Sqrt(f2)), hn::Set(d, 1.4));
+    return hn::Sub(hn::Mul(hn::Set(d, 2.0), hn::Sqrt(f1)), hn::Set(d, 1.0));
 }
 
 void HashedLanesImpl(LaneBasis basis, std::uint64_t seed, const SplitPoints& p, std::size_t n, bool threeD, double* out)
 {
-    const bool valueBasis = basis == LaneBasis::VALUE;
+    const bool valueBasis = basis == LaneBasis::VALUE, simplexBasis = basis == LaneBasis::SIMPLEX;
+    const bool cellular = basis == LaneBasis::CELLULAR_F1 || basis == LaneBasis::CELLULAR_F2;
     using DD = hn::ScalableTag<double>;
     using VD = hn::Vec<DD>;
     const DD d;
@@ -376,7 +447,12 @@ void HashedLanesImpl(LaneBasis basis, std::uint64_t seed, const SplitPoints& p, 
         const VU hx[2] = {hashCombine(s, ci), hashCombine(s, hn::Add(ci, one))};
         const VD x = hn::LoadU(d, src[3]), y = hn::LoadU(d, src[4]);
         VD value;
-        if (threeD && valueBasis) {
+        if (cellular) {
+            const VU ck = threeD ? latticeIndex(d, hn::LoadU(d, src[2])) : hn::Zero(du);
+            const VD z = threeD ? hn::LoadU(d, src[5]) : hn::Zero(d);
+            value = basis == LaneBasis::CELLULAR_F2 ? cellularLanes<true>(s, ci, cj, ck, threeD, x, y, z)
+                                                    : cellularLanes<false>(s, ci, cj, ck, threeD, x, y, z);
+        } else if (threeD && valueBasis) {
             const VU ck = latticeIndex(d, hn::LoadU(d, src[2]));
             VD c[8];
             for (int a = 0; a < 2; ++a)
@@ -402,14 +478,15 @@ void HashedLanesImpl(LaneBasis basis, std::uint64_t seed, const SplitPoints& p, 
                     gradient3(d, pick(hashCombine(h, ck), 12), g[4 * a + 2 * bj]);
                     gradient3(d, pick(hashCombine(h, hn::Add(ck, one)), 12), g[4 * a + 2 * bj + 1]);
                 }
-            value = gradientInCell3(d, g, x, y, hn::LoadU(d, src[5]));
+            value = simplexBasis ? simplexInCell3(d, g, x, y, hn::LoadU(d, src[5]))
+                                 : gradientInCell3(d, g, x, y, hn::LoadU(d, src[5]));
         } else {
             VD g[4][2];
             for (int a = 0; a < 2; ++a) {
                 gradient2(d, pick(hashCombine(hx[a], cj), 8), g[2 * a]);
                 gradient2(d, pick(hashCombine(hx[a], hn::Add(cj, one)), 8), g[2 * a + 1]);
             }
-            value = gradientInCell2(d, g, x, y);
+            value = simplexBasis ? simplexInCell2(d, g, x, y) : gradientInCell2(d, g, x, y);
         }
         if (full) {
             hn::StoreU(value, d, out + i);

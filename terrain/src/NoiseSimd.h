@@ -76,9 +76,13 @@ enum class LaneBasis
 {
     GRADIENT,
     VALUE,
+    SIMPLEX, ///< on points split on the simplex lattice
+    CELLULAR_F1,
+    CELLULAR_F2,
 };
 
-/// Gradient or value noise (3D, or 2D when !threeD) at n split points, each
+/// Gradient, value, simplex or cellular noise (3D, or 2D when !threeD;
+/// before the fractal shape) at n split points, each
 /// lane hashing its own point's cell: for points that seldom share a cell.
 void hashedLanes(LaneBasis basis, std::uint64_t seed, const SplitPoints& split, std::size_t n, bool threeD,
                  double* out);

@@ -230,7 +230,7 @@ TEST(BlockEvaluation, ChoosingATargetLeavesHighwaysOwnChoiceAlone)
     EXPECT_EQ(hwy::SupportedTargets(), before);
 }
 
-TEST(BlockEvaluation, LaneHashedGradientAndValueNoiseGiveTheScalarBitsOnEveryTarget)
+TEST(BlockEvaluation, EveryLaneHashedBasisGivesTheScalarBitsOnEveryTarget)
 {
     // The library hashes cells in lanes only on AVX-512 (native 64-bit
     // multiplies); the kernel exists for every target and must agree on all.
@@ -248,25 +248,43 @@ TEST(BlockEvaluation, LaneHashedGradientAndValueNoiseGiveTheScalarBitsOnEveryTar
         valueCell(seed, q, cell);
         return valueInCell(cell, q);
     };
+    const auto scalarSimplex = [seed](bool threeD, double x, double y, double z) {
+        if (threeD) {
+            const Split3 q = splitSimplex(glm::dvec3(x, y, z));
+            GradientCell3 cell;
+            simplexCell(seed, q, cell);
+            return simplexInCell(cell, q);
+        }
+        const Split2 q = splitSimplex(glm::dvec2(x, y));
+        GradientCell2 cell;
+        simplexCell(seed, q, cell);
+        return simplexInCell(cell, q);
+    };
     for (const std::string& target : availableSimdTargets()) {
         useSimdTarget(target);
         for (const auto& [label, block] : testBlocks()) {
             const std::size_t n = block.x.size();
-            for (const LaneBasis basis : {LaneBasis::GRADIENT, LaneBasis::VALUE})
+            for (const LaneBasis basis : {LaneBasis::GRADIENT, LaneBasis::VALUE, LaneBasis::SIMPLEX,
+                                          LaneBasis::CELLULAR_F1, LaneBasis::CELLULAR_F2})
                 for (const bool threeD : {true, false}) {
                     std::vector<double> cells(3 * n), fractions(3 * n), out(n);
                     const SplitPoints split{cells.data(), cells.data() + n, cells.data() + 2 * n,
                                             fractions.data(), fractions.data() + n, fractions.data() + 2 * n};
-                    splitPoints(Lattice::CUBE, block.x.data(), block.y.data(), threeD ? block.z.data() : nullptr, n,
-                                split);
+                    splitPoints(basis == LaneBasis::SIMPLEX ? Lattice::SIMPLEX : Lattice::CUBE, block.x.data(),
+                                block.y.data(), threeD ? block.z.data() : nullptr, n, split);
                     hashedLanes(basis, seed, split, n, threeD, out.data());
                     for (std::size_t i = 0; i < n; ++i) {
-                        const double scalar =
-                            basis == LaneBasis::VALUE ? scalarValue(threeD, block.x[i], block.y[i], block.z[i])
-                            : threeD                  ? noise3(seed, {block.x[i], block.y[i], block.z[i]})
-                                                      : noise2(seed, {block.x[i], block.y[i]});
+                        const glm::dvec3 q(block.x[i], block.y[i], block.z[i]);
+                        const CellularDistances cell =
+                            threeD ? cellularNoise(77, q) : cellularNoise(77, glm::dvec2(q.x, q.y)); // hashes 77 to seed
+                        const double scalar = basis == LaneBasis::VALUE         ? scalarValue(threeD, q.x, q.y, q.z)
+                                              : basis == LaneBasis::SIMPLEX     ? scalarSimplex(threeD, q.x, q.y, q.z)
+                                              : basis == LaneBasis::CELLULAR_F1 ? 2.0 * cell.f1 - 1.0
+                                              : basis == LaneBasis::CELLULAR_F2 ? 2.0 * cell.f2 - 1.4
+                                              : threeD                          ? noise3(seed, q)
+                                                                                : noise2(seed, {q.x, q.y});
                         ASSERT_TRUE(sameBits(out[i], scalar))
-                            << target << ", " << (basis == LaneBasis::VALUE ? "value" : "gradient") << ", "
+                            << target << ", basis " << int(basis) << ", "
                             << (threeD ? "3D" : "2D") << ", " << label << ", point " << i << ": " << out[i] << " vs "
                             << scalar;
                     }
