@@ -209,18 +209,34 @@ void octaveSum(NoiseType type, const Octave* octaves, int count, SeedOf seedOf, 
 
 } // namespace
 
+namespace {
+
+/// octaveSum with FractalNoise::shape() inlined for the sum's fractal type
+/// (the same expressions: the same bits).
+template <class Octave>
+void fractalSum(FractalType fractal, NoiseType type, const Octave* octaves, int count, const double* x,
+                const double* y, const double* z, std::size_t n, double* out)
+{
+    const auto seedOf = [](const Octave& o) { return o.seed; };
+    switch (fractal) {
+    case FractalType::FBM: return octaveSum(type, octaves, count, seedOf, [](double v) { return v; }, x, y, z, n, out);
+    case FractalType::RIDGED:
+        return octaveSum(type, octaves, count, seedOf, [](double v) { return 1.0 - 2.0 * std::abs(v); }, x, y, z, n, out);
+    case FractalType::BILLOW:
+        return octaveSum(type, octaves, count, seedOf, [](double v) { return 2.0 * std::abs(v) - 1.0; }, x, y, z, n, out);
+    }
+}
+
+} // namespace
+
 void FractalNoise::evaluate(const double* x, const double* y, const double* z, std::size_t n, double* out) const
 {
-    octaveSum(
-        mOptions.noise, mOctaves, mCount, [](const Octave& o) { return o.seed; },
-        [this](double v) { return shape(v); }, x, y, z, n, out);
+    fractalSum(mOptions.fractal, mOptions.noise, mOctaves, mCount, x, y, z, n, out);
 }
 
 void FractalNoise::evaluate(const double* x, const double* y, std::size_t n, double* out) const
 {
-    octaveSum(
-        mOptions.noise, mOctaves, mCount, [](const Octave& o) { return o.seed; },
-        [this](double v) { return shape(v); }, x, y, nullptr, n, out);
+    fractalSum(mOptions.fractal, mOptions.noise, mOctaves, mCount, x, y, nullptr, n, out);
 }
 
 void Fbm::evaluate(const double* x, const double* y, const double* z, std::size_t n, float* out) const
