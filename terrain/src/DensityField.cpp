@@ -45,6 +45,11 @@ double DensityField::distanceBound(const glm::dvec3& p) const
     return density(p) / lipschitz();
 }
 
+void DensityField::distanceBounds(const PointBlock& points, double* out) const
+{
+    for (std::size_t i = 0; i < points.count; ++i) out[i] = distanceBound({points.x[i], points.y[i], points.z[i]});
+}
+
 double SphereField::density(const glm::dvec3& p) const
 {
     return glm::length(p - mCenter) - mRadius;

@@ -30,6 +30,7 @@ void SampleArray::init(const terrain::DensityField* field, const EditSnapshot* e
     mMargin = margin;
     mValues.assign(std::size_t(dims[0]) * dims[1] * dims[2], 0.0f);
     mFilled.assign(std::size_t(mBlocks[0]) * mBlocks[1] * mBlocks[2], 0);
+    mBlockBounds.clear();
     if (mCache && mCache->blockDone.size() != mFilled.size()) {
         mCache->blockDone.assign(mFilled.size(), 0);
         mCache->values.clear();
@@ -53,20 +54,64 @@ void SampleArray::fillAll()
             }
 }
 
-bool SampleArray::provablyFar(const std::int64_t v0[3], const std::int64_t v1[3])
+glm::dvec3 SampleArray::centre(const std::int64_t v0[3], const std::int64_t v1[3]) const
 {
     const glm::dvec3 c0{double(v0[0]), double(v0[1]), double(v0[2])};
     const glm::dvec3 c1{double(v1[0]), double(v1[1]), double(v1[2])};
+    return 0.5 * (c0 + c1) * mVoxelSize;
+}
+
+bool SampleArray::provablyFar(const std::int64_t v0[3], const std::int64_t v1[3], double bound)
+{
     // The distance bound at the centre: no surface within it.
-    const glm::dvec3 centre = 0.5 * (c0 + c1) * mVoxelSize;
+    const glm::dvec3 c0{double(v0[0]), double(v0[1]), double(v0[2])};
+    const glm::dvec3 c1{double(v1[0]), double(v1[1]), double(v1[2])};
     const double radius = 0.5 * glm::length(c1 - c0) * mVoxelSize;
     const double reach = double(mMargin) * mVoxelSize;
-    const double bound = mField->distanceBound(centre);
     if (std::abs(bound) > radius + reach) {
         mFarValue = bound > 0.0 ? float(bound - radius) : float(bound + radius);
         return true;
     }
     return false;
+}
+
+void SampleArray::blockSpan(int bi, int bj, int bk, std::int64_t v0[3], std::int64_t v1[3]) const
+{
+    const int lo[3] = {bi * BLOCK, bj * BLOCK, bk * BLOCK};
+    for (int a = 0; a < 3; ++a) {
+        v0[a] = mOrigin[a] + lo[a] * mStep;
+        v1[a] = mOrigin[a] + (std::min(lo[a] + BLOCK, mDims[a]) - 1) * mStep;
+    }
+}
+
+double SampleArray::blockBound(std::size_t b)
+{
+    if (mBlockBounds.empty()) {
+        // Every block's centre in one block evaluation (the same bits as
+        // distanceBound() at each): a chunk's blocks cost one field call.
+        const std::size_t count = mFilled.size();
+        mX.resize(count);
+        mY.resize(count);
+        mZ.resize(count);
+        std::size_t n = 0;
+        for (int bk = 0; bk < mBlocks[2]; ++bk)
+            for (int bj = 0; bj < mBlocks[1]; ++bj)
+                for (int bi = 0; bi < mBlocks[0]; ++bi, ++n) {
+                    std::int64_t v0[3], v1[3];
+                    blockSpan(bi, bj, bk, v0, v1);
+                    const glm::dvec3 c = centre(v0, v1);
+                    mX[n] = c.x;
+                    mY[n] = c.y;
+                    mZ[n] = c.z;
+                }
+        mBlockBounds.resize(count);
+        const glm::dvec3 lo(*std::min_element(mX.begin(), mX.end()), *std::min_element(mY.begin(), mY.end()),
+                            *std::min_element(mZ.begin(), mZ.end()));
+        const glm::dvec3 hi(*std::max_element(mX.begin(), mX.end()), *std::max_element(mY.begin(), mY.end()),
+                            *std::max_element(mZ.begin(), mZ.end()));
+        mField->distanceBounds({mX.data(), mY.data(), mZ.data(), count, {lo, hi}}, mBlockBounds.data());
+    }
+    return mBlockBounds[b];
 }
 
 void SampleArray::fill(int bi, int bj, int bk, std::size_t b)
@@ -76,14 +121,11 @@ void SampleArray::fill(int bi, int bj, int bk, std::size_t b)
     const int hi[3] = {std::min(lo[0] + BLOCK, mDims[0]), std::min(lo[1] + BLOCK, mDims[1]),
                        std::min(lo[2] + BLOCK, mDims[2])};
     std::int64_t v0[3], v1[3];
-    for (int a = 0; a < 3; ++a) {
-        v0[a] = mOrigin[a] + lo[a] * mStep;
-        v1[a] = mOrigin[a] + (hi[a] - 1) * mStep;
-    }
+    blockSpan(bi, bj, bk, v0, v1);
     const CoordBBox box(Coord(int(v0[0] - mMargin), int(v0[1] - mMargin), int(v0[2] - mMargin)),
                         Coord(int(v1[0] + mMargin), int(v1[1] + mMargin), int(v1[2] + mMargin)));
     const bool edited = mEdits && !mEdits->empty() && mEdits->overlaps(box);
-    if (!edited && provablyFar(v0, v1)) {
+    if (!edited && provablyFar(v0, v1, blockBound(b))) {
         for (int k = lo[2]; k < hi[2]; ++k)
             for (int j = lo[1]; j < hi[1]; ++j)
                 for (int i = lo[0]; i < hi[0]; ++i) mValues[index(i, j, k)] = mFarValue;
@@ -164,23 +206,40 @@ bool SampleArray::fillByOctants(const int lo[3], const int hi[3])
         float farValue = 0.0f;
     };
     Octant octants[8];
-    bool anyFar = false, anyNear = false;
+    std::int64_t v0[8][3], v1[8][3];
+    double cx[8], cy[8], cz[8], bounds[8];
+    int live[8], count = 0;
     for (int o = 0; o < 8; ++o) {
         Octant& q = octants[o];
-        std::int64_t v0[3], v1[3];
         bool empty = false;
         for (int a = 0; a < 3; ++a) {
             q.lo[a] = lo[a] + ((o >> a) & 1) * HALF;
             q.hi[a] = std::min(q.lo[a] + HALF, hi[a]);
             empty = empty || q.lo[a] >= q.hi[a];
-            v0[a] = mOrigin[a] + q.lo[a] * mStep;
-            v1[a] = mOrigin[a] + (q.hi[a] - 1) * mStep;
+            v0[o][a] = mOrigin[a] + q.lo[a] * mStep;
+            v1[o][a] = mOrigin[a] + (q.hi[a] - 1) * mStep;
         }
         if (empty) {
             q.hi[0] = q.lo[0]; // no points
             continue;
         }
-        q.far = provablyFar(v0, v1);
+        const glm::dvec3 c = centre(v0[o], v1[o]);
+        cx[count] = c.x;
+        cy[count] = c.y;
+        cz[count] = c.z;
+        live[count++] = o;
+    }
+    // The octants' centres in one block evaluation.
+    glm::dvec3 blockLo, blockHi;
+    for (int a = 0; a < 3; ++a) {
+        blockLo[a] = double(mOrigin[a] + lo[a] * mStep) * mVoxelSize;
+        blockHi[a] = double(mOrigin[a] + (hi[a] - 1) * mStep) * mVoxelSize;
+    }
+    mField->distanceBounds({cx, cy, cz, std::size_t(count), {blockLo, blockHi}}, bounds);
+    bool anyFar = false, anyNear = false;
+    for (int l = 0; l < count; ++l) {
+        Octant& q = octants[live[l]];
+        q.far = provablyFar(v0[live[l]], v1[live[l]], bounds[l]);
         q.farValue = mFarValue;
         anyFar = anyFar || q.far;
         anyNear = anyNear || !q.far;

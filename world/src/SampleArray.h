@@ -10,6 +10,8 @@
 #include "EditLayer.h"
 #include "Lattice.h"
 
+#include <glm/vec3.hpp>
+
 #include <array>
 #include <cstdint>
 #include <mutex>
@@ -67,7 +69,14 @@ private:
     /// mFarValue to a value of its sign. (The field's interval over the
     /// block was tried too: on the World benchmark's field it cost more
     /// than it pruned.)
-    bool provablyFar(const std::int64_t v0[3], const std::int64_t v1[3]);
+    bool provablyFar(const std::int64_t v0[3], const std::int64_t v1[3], double bound);
+    /// The centre (metres) of the block spanning lattice points v0..v1.
+    glm::dvec3 centre(const std::int64_t v0[3], const std::int64_t v1[3]) const;
+    /// Lattice points of block b's first and last sample.
+    void blockSpan(int bi, int bj, int bk, std::int64_t v0[3], std::int64_t v1[3]) const;
+    /// The distance bound at block b's centre: every block's at once, in one
+    /// DensityField::distanceBounds() call, when first asked.
+    double blockBound(std::size_t b);
     /// For a block neither far as a whole nor edited: fills its provably far
     /// 4³ octants with values of their sign and evaluates the others.
     /// Returns false, filling nothing, when no octant is far. A block
@@ -87,6 +96,7 @@ private:
     std::vector<std::uint8_t> mFilled;
     float mFarValue = 0.0f;
     std::vector<double> mX, mY, mZ, mD; ///< one block's points and densities
+    std::vector<double> mBlockBounds;   ///< blockBound() per block; empty until first asked
 };
 
 } // namespace strata::world::detail

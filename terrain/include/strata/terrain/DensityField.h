@@ -81,6 +81,12 @@ public:
     /// default, density(p) / lipschitz(), is right for every field.
     virtual double distanceBound(const glm::dvec3& p) const;
 
+    /// distanceBound() at every point of a block, the same bits point by
+    /// point. The default calls distanceBound() per point; a field whose
+    /// distanceBound() is density() / lipschitz() overrides it to evaluate
+    /// the block at once (the World prunes a chunk's blocks with it).
+    virtual void distanceBounds(const PointBlock& points, double* out) const;
+
     /// Lower bounds of density() and of distanceBound() over all space
     /// (−infinity when unknown). A cave that is never deeper than its radius
     /// says so, and CSG then skips evaluating it where the rock around is

@@ -76,6 +76,8 @@ public:
     /// (x, z) column, the cave noise only where density() needs it.
     void densities(const PointBlock& points, double* out) const override;
     double lipschitz() const override { return 1.0; }
+    /// density() / lipschitz() = densities(): the block path.
+    void distanceBounds(const PointBlock& points, double* out) const override { densities(points, out); }
 
     /// The heightfield alone: surface height at (x, z), metres.
     double height(double x, double z) const;
