@@ -140,7 +140,9 @@ TEST(TerrainTile, CaveMouthIsAHoleAndTheCaveIsMeshedAndWelded)
                 ++ringCells;
                 rim += tile.hole(i, k);
             }
-            if (r > 6.0) EXPECT_FALSE(tile.hole(i, k)) << i << "," << k;
+            if (r > 6.0) {
+                EXPECT_FALSE(tile.hole(i, k)) << i << "," << k;
+            }
         }
     EXPECT_EQ(rim, ringCells) << "every cell on the rim is cut";
     EXPECT_FALSE(tile.hole(int(8.0 / v), int(8.0 / v)));
