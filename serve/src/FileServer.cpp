@@ -112,17 +112,6 @@ bool accepts(const httplib::Request& request, std::string_view coding)
     return false;
 }
 
-// The types cpp-httplib 0.11 compresses by itself when the client accepts
-// gzip or br (detail::can_compress_content_type): the server leaves those
-// to it and gzips the other compressible types (glTF, WebAssembly, .bin).
-bool httplibCompresses(std::string_view mimeType)
-{
-    if (mimeType.starts_with("text/")) return true;
-    constexpr std::array<std::string_view, 5> TYPES = {"image/svg+xml", "application/javascript", "application/json",
-                                                       "application/xml", "application/xhtml+xml"};
-    return std::find(TYPES.begin(), TYPES.end(), mimeType) != TYPES.end();
-}
-
 // A strong entity tag from size and modification time (nanoseconds), with
 // "-z" for the compressed representation.
 std::string entityTag(std::uint64_t size, const timespec& modified, bool compressed)
@@ -230,8 +219,8 @@ void FileServer::Impl::handle(const httplib::Request& request, httplib::Response
     if (request.has_header("If-Range") && request.get_header_value("If-Range") != etag) {
         ranges.clear(); // the client's part is of another version (or a date, which is not checked): send it whole
     }
-    const bool compressWhole = ranges.empty() && size > 0 && compressible && size <= options.maxCompressedFileBytes &&
-                               (accepts(request, "gzip") || (httplibCompresses(mimeType) && accepts(request, "br")));
+    const bool compressWhole =
+        ranges.empty() && size > 0 && compressible && size <= options.maxCompressedFileBytes && accepts(request, "gzip");
     response.set_header("ETag", compressWhole ? etagCompressed : etag);
     if (matchesAny(request.get_header_value("If-None-Match"), {etag, etagCompressed})) {
         ranges.clear();
@@ -263,16 +252,19 @@ void FileServer::Impl::handle(const httplib::Request& request, httplib::Response
         response.set_content("", mimeType);
         return;
     } else if (compressWhole) {
-        // Whole and compressible: held in memory and compressed, by httplib
-        // for its own types (gzip, or brotli where the client asks), by
-        // zlib here for the rest.
-        std::string body = readWhole(file->fd, size);
-        if (httplibCompresses(mimeType)) {
-            response.set_content(std::move(body), mimeType);
-        } else {
-            response.set_header("Content-Encoding", "gzip");
-            response.set_content(detail::gzipCompress(body, options.gzipLevel), mimeType);
-        }
+        // Whole and compressible: held in memory and gzipped here, every
+        // type, and handed over as a sized provider, which httplib sends as
+        // it is. (Given the bytes, httplib 0.11 compresses text itself, with
+        // brotli at quality 11 whenever the client accepts br, as browsers
+        // do: 0.95 s for the viewer's 880 KB script and 0.65 s for a 4 km
+        // world's tileset.json, against 18 and 3 ms for gzip; that was half
+        // of the viewer's first frame.)
+        auto zipped = std::make_shared<const std::string>(detail::gzipCompress(readWhole(file->fd, size), options.gzipLevel));
+        response.set_header("Content-Encoding", "gzip");
+        response.set_content_provider(
+            zipped->size(), mimeType, [zipped](std::size_t offset, std::size_t length, httplib::DataSink& sink) {
+                return sink.write(zipped->data() + offset, std::min(length, zipped->size() - offset));
+            });
         return;
     }
 

@@ -243,6 +243,30 @@ TEST_F(FileServerTest, GzipWhenTheClientAsksForIt)
     }
 }
 
+TEST_F(FileServerTest, ABrowsersAcceptEncodingGetsGzipNotBrotli)
+{
+    // Browsers send "gzip, deflate, br": text is gzipped (brotli at httplib's
+    // quality took a second for the viewer's script), and decodes to the file.
+    auto c = client();
+    for (const std::string path : {"/tileset.json", "/viewer/main.js", "/viewer/index.html", "/viewer/style.css"}) {
+        SCOPED_TRACE(path);
+        const auto response = c.Get(path.c_str(), {{"Accept-Encoding", "gzip, deflate, br, zstd"}});
+        ASSERT_TRUE(response);
+        EXPECT_EQ(response->status, 200);
+        EXPECT_EQ(response->get_header_value("Content-Encoding"), "gzip");
+        EXPECT_EQ(strata::test::gunzip(response->body), readFile(root / path.substr(1)));
+        const auto head = c.Head(path.c_str(), {{"Accept-Encoding", "gzip, deflate, br"}});
+        ASSERT_TRUE(head);
+        EXPECT_EQ(head->get_header_value("Content-Encoding"), "gzip");
+        EXPECT_EQ(head->get_header_value("Content-Length"), std::to_string(response->body.size()));
+    }
+    // A client that takes brotli only gets the file as it is.
+    const auto brOnly = c.Get("/viewer/main.js", {{"Accept-Encoding", "br"}});
+    ASSERT_TRUE(brOnly);
+    EXPECT_FALSE(brOnly->has_header("Content-Encoding"));
+    EXPECT_EQ(brOnly->body, readFile(root / "viewer/main.js"));
+}
+
 TEST_F(FileServerTest, BinaryTilesAreSentAsTheyAreUnlessAllIsCompressed)
 {
     // The default (Compression::Text, for the loopback): text is gzipped,

@@ -8,8 +8,9 @@
 /// from inside the folder (RequestPath.h); Content-Type from the extension
 /// (MimeType.h); byte ranges (206 with Content-Range, several ranges as
 /// multipart/byteranges, 416 with `Content-Range: bytes *\/SIZE` when none
-/// is satisfiable); gzip (or brotli for text, where the client prefers it)
-/// when the client's Accept-Encoding asks and options.compression covers
+/// is satisfiable); gzip (never brotli: at the quality httplib uses it
+/// takes a second for a large script) when the client's Accept-Encoding
+/// asks and options.compression covers
 /// the type (never for a range, never for PNG/JPEG/KTX2). Each file has an
 /// ETag (size and modification time): If-None-Match gives 304, an If-Range
 /// that does not match sends the whole file. A folder serves its
