@@ -30,7 +30,19 @@ void findColumns(const PointBlock& points, BlockColumns& columns)
         std::memcpy(&b, &v, sizeof b);
         return b;
     };
+    // The lattice's period: the distance back to where the first repeated
+    // column was first seen (one row of a block: the same column again one
+    // row later). A point that repeats the column of the point one period
+    // back takes it without hashing; the others are hashed.
+    std::size_t period = 0;
+    thread_local std::vector<std::uint32_t> firstPoint; // per column
+    firstPoint.clear();
     for (std::size_t i = 0; i < n; ++i) {
+        if (period != 0 && i >= period && bits(points.x[i]) == bits(points.x[i - period]) &&
+            bits(points.z[i]) == bits(points.z[i - period])) {
+            columns.of[i] = columns.of[i - period];
+            continue;
+        }
         if (i == PROBE && columns.x.size() == PROBE) {
             // No two of the first PROBE points share a column (a domain warp
             // moved them apart): hashing the rest would find none either, so
@@ -55,10 +67,12 @@ void findColumns(const PointBlock& points, BlockColumns& columns)
                 columns.of[i] = std::uint32_t(columns.x.size());
                 columns.x.push_back(points.x[i]);
                 columns.z.push_back(points.z[i]);
+                firstPoint.push_back(std::uint32_t(i));
                 break;
             }
             if (bits(columns.x[c]) == bx && bits(columns.z[c]) == bz) {
                 columns.of[i] = c;
+                if (period == 0) period = i - firstPoint[c];
                 break;
             }
         }
