@@ -4,9 +4,12 @@
 #pragma once
 // Internal: works through a list of tile indices on TBB, each tile a pure
 // function of its index, while the calling thread reports progress and
-// hears the observer's interrupt.
+// hears the observer's interrupt. Needs no Strata library (the observer is
+// a template), so its own test builds in seconds under ThreadSanitizer
+// (tests/scene/TileWorkersTest.cpp, scripts/sanitizers.sh).
 
-#include <strata/scene/Pipeline.h>
+// TSan annotations only (no Strata library): the World's, header-only.
+#include "../../world/src/TsanHandOver.h"
 
 #include <tbb/global_control.h>
 #include <tbb/info.h>
@@ -15,6 +18,7 @@
 
 #include <algorithm>
 #include <condition_variable>
+#include <cstdint>
 #include <exception>
 #include <functional>
 #include <memory>
@@ -52,15 +56,27 @@ struct TileWorkResult
 /// wins (TBB takes the lowest), and then fewer tiles run at once.
 /// Each tile runs isolated (tbb::this_task_arena::isolate): a thread
 /// waiting inside a tile's parallel_for never picks up another tile.
-inline TileWorkResult runTileWorkers(const std::vector<int>& todo, int threads, PipelineObserver* observer,
-                                     const std::function<void(int index)>& work)
+/// `Observer` (a PipelineObserver, or a test's) has
+/// bool progressCount(std::uint64_t done, std::uint64_t total, const std::string& unit).
+template <class Observer>
+TileWorkResult runTileWorkers(const std::vector<int>& todo, int threads, Observer* observer,
+                              const std::function<void(int index)>& work)
 {
     TileWorkResult result;
     if (todo.empty()) return result;
-    std::mutex mutex;
-    std::condition_variable changed;
-    std::size_t next = 0;
-    bool drained = false; // every runner has returned
+    // What the runners share, under `mutex` (but `todo` and `work`, which
+    // nobody writes while they run).
+    struct Shared
+    {
+        const std::vector<int>& todo;
+        const std::function<void(int index)>& work;
+        TileWorkResult& result;
+        std::mutex mutex;
+        std::condition_variable changed;
+        std::size_t next = 0;
+        bool drained = false; // every runner has returned
+    } shared{todo, work, result, {}, {}, 0, false};
+    std::mutex& mutex = shared.mutex;
     const int count = std::max(1, std::min<int>(threads > 0 ? threads : tbb::info::default_concurrency(), int(todo.size())));
 
     std::unique_ptr<tbb::global_control> raise;
@@ -69,28 +85,34 @@ inline TileWorkResult runTileWorkers(const std::vector<int>& todo, int threads, 
     tbb::task_arena arena(count, 1);
 
     // A runner takes the next index until none is left or the observer
-    // interrupted; `count` runners, one per slot.
-    const auto runner = [&] {
+    // interrupted; `count` runners, one per slot. It captures one pointer,
+    // and tells ThreadSanitizer that what the entry thread did before
+    // spawning it happens before (TBB's spawn orders it; libtbb is not
+    // instrumented, so TSan cannot see that; see world/src/TsanHandOver.h).
+    Shared* const state = &shared;
+    const auto runner = [state] {
+        Shared& s = *world::detail::tsanUncheckedRead(state); // the capture lives in TBB's task memory
+        world::detail::tsanTakeOver(&s);
         for (;;) {
             int index;
             {
-                std::lock_guard<std::mutex> hold(mutex);
-                if (result.interrupted || next >= todo.size()) return;
-                index = todo[next++];
+                std::lock_guard<std::mutex> hold(s.mutex);
+                if (s.result.interrupted || s.next >= s.todo.size()) return;
+                index = s.todo[s.next++];
             }
             std::string failure;
             try {
-                tbb::this_task_arena::isolate([&] { work(index); });
+                tbb::this_task_arena::isolate([&] { s.work(index); });
             } catch (const std::exception& e) {
                 failure = e.what();
                 if (failure.empty()) failure = "unknown error";
             } catch (...) {
                 failure = "unknown error";
             }
-            std::lock_guard<std::mutex> hold(mutex);
-            if (!failure.empty()) result.failures.emplace_back(index, failure);
-            ++result.finished;
-            changed.notify_all();
+            std::lock_guard<std::mutex> hold(s.mutex);
+            if (!failure.empty()) s.result.failures.emplace_back(index, failure);
+            ++s.result.finished;
+            s.changed.notify_all();
         }
     };
     std::exception_ptr lost; // from TBB itself (e.g. out of memory), not from a tile
@@ -98,6 +120,7 @@ inline TileWorkResult runTileWorkers(const std::vector<int>& todo, int threads, 
         try {
             arena.execute([&] {
                 tbb::task_group group;
+                world::detail::tsanHandOff(&shared);
                 for (int r = 0; r < count; ++r) group.run(runner);
                 group.wait();
             });
@@ -105,18 +128,27 @@ inline TileWorkResult runTileWorkers(const std::vector<int>& todo, int threads, 
             lost = std::current_exception();
         }
         std::lock_guard<std::mutex> hold(mutex);
-        drained = true;
-        changed.notify_all();
+        shared.drained = true;
+        shared.changed.notify_all();
     });
     {
+        // Reports each new count of finished tiles (the last one too), also
+        // one that came before this thread first waited; then waits for the
+        // next change.
         std::unique_lock<std::mutex> hold(mutex);
-        while (!drained && result.finished < todo.size() && !(result.interrupted && result.finished == next)) {
-            changed.wait(hold);
-            const std::size_t done = result.finished;
-            hold.unlock();
-            const bool go = !observer || observer->progressCount(done, todo.size(), "tiles");
-            hold.lock();
-            if (!go) result.interrupted = true;
+        std::size_t reported = 0;
+        for (;;) {
+            if (result.finished != reported) {
+                reported = result.finished;
+                hold.unlock();
+                const bool go = !observer || observer->progressCount(reported, todo.size(), "tiles");
+                hold.lock();
+                if (!go) result.interrupted = true;
+                continue;
+            }
+            if (shared.drained || result.finished >= todo.size() || (result.interrupted && result.finished == shared.next))
+                break;
+            shared.changed.wait(hold);
         }
     }
     entry.join();
