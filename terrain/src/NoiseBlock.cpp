@@ -34,6 +34,8 @@ struct BasisScratch
     std::vector<double> split;     ///< cellX, cellY, cellZ, x, y, z: n each
     std::vector<std::uint32_t> end; ///< run ends
     std::vector<double> cells;     ///< cell data, cellSize() per run
+    std::vector<std::uint32_t> first; ///< each run's first point
+    std::vector<double> floors;       ///< each run's cell floors: x, then y, then z
 };
 
 /// NoiseKernels.h's cell types per dimension.
@@ -160,23 +162,42 @@ void basisAt(NoiseType type, std::uint64_t s, const double* x, const double* y, 
     // Pass 2. Equal floors are one cell; floors that differ but saturate to
     // one lattice index (beyond 2^62) only cost a second, identical cell.
     scratch.end.clear();
-    scratch.cells.clear();
+    scratch.first.clear();
     for (std::size_t i = 0; i < n; ++i) {
         if (i > 0 && sameCell(i, i - 1)) continue;
         if (i > 0) scratch.end.push_back(std::uint32_t(i));
-        scratch.cells.resize(scratch.cells.size() + size);
-        double* data = scratch.cells.data() + scratch.cells.size() - size;
-        if (threeD) {
-            const Split3 q{latticeIndex(split.cellX[i]), latticeIndex(split.cellY[i]), latticeIndex(split.cellZ[i]), 0,
-                           0, 0};
-            cellData<3>(kind, s, q, data);
-        } else {
-            const Split2 q{latticeIndex(split.cellX[i]), latticeIndex(split.cellY[i]), 0, 0};
-            cellData<2>(kind, s, q, data);
-        }
+        scratch.first.push_back(std::uint32_t(i));
     }
     scratch.end.push_back(std::uint32_t(n));
-
+    const std::size_t count = scratch.first.size();
+    scratch.cells.resize(count * size);
+    const bool cellular = type == NoiseType::CELLULAR_F1 || type == NoiseType::CELLULAR_F2;
+    if (!cellular && count >= 4 && nativeLaneHashing()) {
+        // Cells hashed in lanes, eight at a time (fewer than four would
+        // mostly hash padding: then the scalar path below).
+        scratch.floors.resize(3 * count);
+        double *fx = scratch.floors.data(), *fy = fx + count, *fz = fy + count;
+        for (std::size_t r = 0; r < count; ++r) {
+            const std::uint32_t i = scratch.first[r];
+            fx[r] = split.cellX[i];
+            fy[r] = split.cellY[i];
+            fz[r] = threeD ? split.cellZ[i] : 0.0;
+        }
+        cellDataLanes(kind, s, fx, fy, threeD ? fz : nullptr, count, scratch.cells.data());
+    } else {
+        for (std::size_t r = 0; r < count; ++r) {
+            const std::uint32_t i = scratch.first[r];
+            double* data = scratch.cells.data() + r * size;
+            if (threeD) {
+                const Split3 q{latticeIndex(split.cellX[i]), latticeIndex(split.cellY[i]), latticeIndex(split.cellZ[i]),
+                               0, 0, 0};
+                cellData<3>(kind, s, q, data);
+            } else {
+                const Split2 q{latticeIndex(split.cellX[i]), latticeIndex(split.cellY[i]), 0, 0};
+                cellData<2>(kind, s, q, data);
+            }
+        }
+    }
     const CellRuns runs{scratch.end.data(), scratch.end.size(), scratch.cells.data()};
     evaluateRuns(kind, runs, split.x, split.y, threeD ? split.z : nullptr, out);
 }

@@ -421,16 +421,63 @@ HWY_INLINE hn::Vec<hn::ScalableTag<double>> cellularLanes(VU s, VU ci, VU cj, VU
     return hn::Sub(hn::Mul(hn::Set(d, 2.0), hn::Sqrt(f1)), hn::Set(d, 1.0));
 }
 
+/// The corner values of value noise cells (NoiseKernels.h's valueCell),
+/// each lane its own cell: corner (a, b, c) in v[4a + 2b + c] (3D; 2D:
+/// (a, b) in v[2a + b]).
+HWY_INLINE void valueCorners(VU s, VU ci, VU cj, VU ck, bool threeD, hn::Vec<hn::ScalableTag<double>> (&v)[8])
+{
+    const VU one = hn::Set(DU(), 1);
+    const VU hx[2] = {hashCombine(s, ci), hashCombine(s, hn::Add(ci, one))};
+    for (int a = 0; a < 2; ++a) {
+        if (!threeD) {
+            v[2 * a] = latticeValue(hashCombine(hx[a], cj));
+            v[2 * a + 1] = latticeValue(hashCombine(hx[a], hn::Add(cj, one)));
+            continue;
+        }
+        for (int b = 0; b < 2; ++b) {
+            const VU h = hashCombine(hx[a], b ? hn::Add(cj, one) : cj);
+            v[4 * a + 2 * b] = latticeValue(hashCombine(h, ck));
+            v[4 * a + 2 * b + 1] = latticeValue(hashCombine(h, hn::Add(ck, one)));
+        }
+    }
+}
+
+/// The corner gradients of gradient (and simplex) noise cells
+/// (gradientCell, simplexCell: the same hashes), each lane its own cell:
+/// corner (a, b, c)'s in g[4a + 2b + c][0..2] (3D; 2D: (a, b)'s in
+/// g[2a + b][0..1]).
+HWY_INLINE void gradientCorners(VU s, VU ci, VU cj, VU ck, bool threeD, hn::Vec<hn::ScalableTag<double>> (&g)[8][3])
+{
+    const hn::ScalableTag<double> d;
+    const VU one = hn::Set(DU(), 1);
+    const VU hx[2] = {hashCombine(s, ci), hashCombine(s, hn::Add(ci, one))};
+    for (int a = 0; a < 2; ++a) {
+        if (!threeD) {
+            hn::Vec<decltype(d)> g2[2][2];
+            gradient2(d, pick(hashCombine(hx[a], cj), 8), g2[0]);
+            gradient2(d, pick(hashCombine(hx[a], hn::Add(cj, one)), 8), g2[1]);
+            for (int b = 0; b < 2; ++b) {
+                g[2 * a + b][0] = g2[b][0];
+                g[2 * a + b][1] = g2[b][1];
+            }
+            continue;
+        }
+        for (int b = 0; b < 2; ++b) {
+            const VU h = hashCombine(hx[a], b ? hn::Add(cj, one) : cj);
+            gradient3(d, pick(hashCombine(h, ck), 12), g[4 * a + 2 * b]);
+            gradient3(d, pick(hashCombine(h, hn::Add(ck, one)), 12), g[4 * a + 2 * b + 1]);
+        }
+    }
+}
+
 void HashedLanesImpl(LaneBasis basis, std::uint64_t seed, const SplitPoints& p, std::size_t n, bool threeD, double* out)
 {
-    const bool valueBasis = basis == LaneBasis::VALUE, simplexBasis = basis == LaneBasis::SIMPLEX;
-    const bool cellular = basis == LaneBasis::CELLULAR_F1 || basis == LaneBasis::CELLULAR_F2;
     using DD = hn::ScalableTag<double>;
     using VD = hn::Vec<DD>;
     const DD d;
     const DU du;
     const std::size_t lanes = hn::Lanes(d);
-    const VU s = hn::Set(du, seed), one = hn::Set(du, 1);
+    const VU s = hn::Set(du, seed);
     HWY_ALIGN double b[6][MAX_LANES] = {};
     HWY_ALIGN double result[MAX_LANES];
     for (std::size_t i = 0; i < n; i += lanes) {
@@ -444,49 +491,34 @@ void HashedLanesImpl(LaneBasis basis, std::uint64_t seed, const SplitPoints& p, 
             }
         }
         const VU ci = latticeIndex(d, hn::LoadU(d, src[0])), cj = latticeIndex(d, hn::LoadU(d, src[1]));
-        const VU hx[2] = {hashCombine(s, ci), hashCombine(s, hn::Add(ci, one))};
-        const VD x = hn::LoadU(d, src[3]), y = hn::LoadU(d, src[4]);
+        const VU ck = threeD ? latticeIndex(d, hn::LoadU(d, src[2])) : hn::Zero(du);
+        const VD x = hn::LoadU(d, src[3]), y = hn::LoadU(d, src[4]), z = threeD ? hn::LoadU(d, src[5]) : hn::Zero(d);
         VD value;
-        if (cellular) {
-            const VU ck = threeD ? latticeIndex(d, hn::LoadU(d, src[2])) : hn::Zero(du);
-            const VD z = threeD ? hn::LoadU(d, src[5]) : hn::Zero(d);
-            value = basis == LaneBasis::CELLULAR_F2 ? cellularLanes<true>(s, ci, cj, ck, threeD, x, y, z)
-                                                    : cellularLanes<false>(s, ci, cj, ck, threeD, x, y, z);
-        } else if (threeD && valueBasis) {
-            const VU ck = latticeIndex(d, hn::LoadU(d, src[2]));
+        switch (basis) {
+        case LaneBasis::CELLULAR_F1: value = cellularLanes<false>(s, ci, cj, ck, threeD, x, y, z); break;
+        case LaneBasis::CELLULAR_F2: value = cellularLanes<true>(s, ci, cj, ck, threeD, x, y, z); break;
+        case LaneBasis::VALUE: {
             VD c[8];
-            for (int a = 0; a < 2; ++a)
-                for (int bj = 0; bj < 2; ++bj) {
-                    const VU h = hashCombine(hx[a], bj ? hn::Add(cj, one) : cj);
-                    c[4 * a + 2 * bj] = latticeValue(hashCombine(h, ck));
-                    c[4 * a + 2 * bj + 1] = latticeValue(hashCombine(h, hn::Add(ck, one)));
-                }
-            value = valueInCell3(d, c, x, y, hn::LoadU(d, src[5]));
-        } else if (valueBasis) {
-            VD c[4];
-            for (int a = 0; a < 2; ++a) {
-                c[2 * a] = latticeValue(hashCombine(hx[a], cj));
-                c[2 * a + 1] = latticeValue(hashCombine(hx[a], hn::Add(cj, one)));
+            valueCorners(s, ci, cj, ck, threeD, c);
+            if (threeD) {
+                value = valueInCell3(d, c, x, y, z);
+            } else {
+                const VD c2[4] = {c[0], c[1], c[2], c[3]};
+                value = valueInCell2(d, c2, x, y);
             }
-            value = valueInCell2(d, c, x, y);
-        } else if (threeD) {
-            const VU ck = latticeIndex(d, hn::LoadU(d, src[2]));
+            break;
+        }
+        default: {
             VD g[8][3];
-            for (int a = 0; a < 2; ++a)
-                for (int bj = 0; bj < 2; ++bj) {
-                    const VU h = hashCombine(hx[a], bj ? hn::Add(cj, one) : cj);
-                    gradient3(d, pick(hashCombine(h, ck), 12), g[4 * a + 2 * bj]);
-                    gradient3(d, pick(hashCombine(h, hn::Add(ck, one)), 12), g[4 * a + 2 * bj + 1]);
-                }
-            value = simplexBasis ? simplexInCell3(d, g, x, y, hn::LoadU(d, src[5]))
-                                 : gradientInCell3(d, g, x, y, hn::LoadU(d, src[5]));
-        } else {
-            VD g[4][2];
-            for (int a = 0; a < 2; ++a) {
-                gradient2(d, pick(hashCombine(hx[a], cj), 8), g[2 * a]);
-                gradient2(d, pick(hashCombine(hx[a], hn::Add(cj, one)), 8), g[2 * a + 1]);
+            gradientCorners(s, ci, cj, ck, threeD, g);
+            const bool simplex = basis == LaneBasis::SIMPLEX;
+            if (threeD) {
+                value = simplex ? simplexInCell3(d, g, x, y, z) : gradientInCell3(d, g, x, y, z);
+            } else {
+                const VD g2[4][2] = {{g[0][0], g[0][1]}, {g[1][0], g[1][1]}, {g[2][0], g[2][1]}, {g[3][0], g[3][1]}};
+                value = simplex ? simplexInCell2(d, g2, x, y) : gradientInCell2(d, g2, x, y);
             }
-            value = simplexBasis ? simplexInCell2(d, g, x, y) : gradientInCell2(d, g, x, y);
+        }
         }
         if (full) {
             hn::StoreU(value, d, out + i);
@@ -494,6 +526,49 @@ void HashedLanesImpl(LaneBasis basis, std::uint64_t seed, const SplitPoints& p, 
             hn::Store(value, d, result);
             std::copy(result, result + (n - i), out + i);
         }
+    }
+}
+
+void CellDataLanesImpl(InCell kind, std::uint64_t seed, const double* cellX, const double* cellY, const double* cellZ,
+                       std::size_t count, double* out)
+{
+    using DD = hn::ScalableTag<double>;
+    using VD = hn::Vec<DD>;
+    const DD d;
+    const DU du;
+    const std::size_t lanes = hn::Lanes(d);
+    const bool threeD = kind == InCell::GRADIENT3 || kind == InCell::SIMPLEX3 || kind == InCell::VALUE3;
+    const bool value = kind == InCell::VALUE3 || kind == InCell::VALUE2;
+    const std::size_t size = cellSize(kind);
+    const VU s = hn::Set(du, seed);
+    HWY_ALIGN double b[3][MAX_LANES] = {};
+    HWY_ALIGN double lane[24][MAX_LANES];
+    for (std::size_t i = 0; i < count; i += lanes) {
+        const std::size_t m = std::min(lanes, count - i);
+        const double* src[3] = {cellX + i, cellY + i, threeD ? cellZ + i : nullptr};
+        if (m < lanes) {
+            for (int a = 0; a < 3; ++a) {
+                if (src[a]) std::copy(src[a], src[a] + m, b[a]);
+                src[a] = b[a];
+            }
+        }
+        const VU ci = latticeIndex(d, hn::LoadU(d, src[0])), cj = latticeIndex(d, hn::LoadU(d, src[1]));
+        const VU ck = threeD ? latticeIndex(d, hn::LoadU(d, src[2])) : hn::Zero(du);
+        const int corners = threeD ? 8 : 4;
+        if (value) {
+            VD v[8];
+            valueCorners(s, ci, cj, ck, threeD, v);
+            for (int c = 0; c < corners; ++c) hn::Store(v[c], d, lane[c]);
+        } else {
+            VD g[8][3];
+            gradientCorners(s, ci, cj, ck, threeD, g);
+            const int dims = threeD ? 3 : 2;
+            for (int c = 0; c < corners; ++c)
+                for (int k = 0; k < dims; ++k) hn::Store(g[c][k], d, lane[dims * c + k]);
+        }
+        // NoiseSimd.h's layouts: cell r's data at out + r·size, in the order stored above.
+        for (std::size_t r = 0; r < m; ++r)
+            for (std::size_t k = 0; k < size; ++k) out[(i + r) * size + k] = lane[k][r];
     }
 }
 
@@ -652,6 +727,7 @@ HWY_EXPORT(EvaluateRuns);
 HWY_EXPORT(SplitPointsImpl);
 HWY_EXPORT(TargetInUse);
 HWY_EXPORT(HashedLanesImpl);
+HWY_EXPORT(CellDataLanesImpl);
 HWY_EXPORT(NativeLaneHashingImpl);
 
 namespace {
@@ -688,6 +764,12 @@ bool nativeLaneHashing() { return STRATA_DISPATCH(NativeLaneHashingImpl)(); }
 void hashedLanes(LaneBasis basis, std::uint64_t seed, const SplitPoints& split, std::size_t n, bool threeD, double* out)
 {
     STRATA_DISPATCH(HashedLanesImpl)(basis, seed, split, n, threeD, out);
+}
+
+void cellDataLanes(InCell kind, std::uint64_t seed, const double* cellX, const double* cellY, const double* cellZ,
+                   std::size_t count, double* out)
+{
+    STRATA_DISPATCH(CellDataLanesImpl)(kind, seed, cellX, cellY, cellZ, count, out);
 }
 
 std::size_t cellSize(InCell kind)

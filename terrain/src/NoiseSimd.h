@@ -87,6 +87,13 @@ enum class LaneBasis
 void hashedLanes(LaneBasis basis, std::uint64_t seed, const SplitPoints& split, std::size_t n, bool threeD,
                  double* out);
 
+/// The data of `count` cells (NoiseSimd.h's layouts, cellSize(kind) doubles
+/// each, cell r at out + r·size) from their floors, hashed in lanes, the
+/// same values as NoiseKernels.h's cell functions. Gradient, simplex and
+/// value kinds only (not cellular).
+void cellDataLanes(InCell kind, std::uint64_t seed, const double* cellX, const double* cellY, const double* cellZ,
+                   std::size_t count, double* out);
+
 /// Whether the target in use multiplies 64-bit lanes natively (AVX-512),
 /// which makes hashedLanes() the faster path where runs are short.
 bool nativeLaneHashing();

@@ -294,6 +294,65 @@ TEST(BlockEvaluation, EveryLaneHashedBasisGivesTheScalarBitsOnEveryTarget)
     useSimdTarget("");
 }
 
+TEST(BlockEvaluation, CellsHashedInLanesHoldTheScalarCellsOnEveryTarget)
+{
+    // The library hashes runs' cells in lanes only on AVX-512; the kernel
+    // exists for every target and must give NoiseKernels.h's cells on all,
+    // far from the origin and past the 2^62 saturation too.
+    using namespace strata::terrain::detail;
+    const std::uint64_t seed = seedHash(91);
+    const std::vector<double> floors = {0.0, -1.0, 7.0, -123456.0, 3.0e9, -4.5e15, 1.0e19, -1.0e300, 42.0, -17.0, 5.0};
+    const std::size_t n = floors.size();
+    std::vector<double> fx(floors), fy(n), fz(n);
+    for (std::size_t r = 0; r < n; ++r) {
+        fy[r] = floors[(r + 3) % n];
+        fz[r] = floors[(r + 7) % n];
+    }
+    for (const std::string& target : availableSimdTargets()) {
+        useSimdTarget(target);
+        for (const InCell kind : {InCell::GRADIENT3, InCell::SIMPLEX3, InCell::VALUE3, InCell::GRADIENT2,
+                                  InCell::SIMPLEX2, InCell::VALUE2}) {
+            const bool threeD = kind == InCell::GRADIENT3 || kind == InCell::SIMPLEX3 || kind == InCell::VALUE3;
+            const std::size_t size = cellSize(kind);
+            std::vector<double> lanes(n * size);
+            cellDataLanes(kind, seed, fx.data(), fy.data(), threeD ? fz.data() : nullptr, n, lanes.data());
+            for (std::size_t r = 0; r < n; ++r) {
+                std::vector<double> scalar;
+                if (threeD) {
+                    const Split3 q{latticeIndex(fx[r]), latticeIndex(fy[r]), latticeIndex(fz[r]), 0, 0, 0};
+                    if (kind == InCell::VALUE3) {
+                        ValueCell3 c;
+                        valueCell(seed, q, c);
+                        scalar.assign(c.v, c.v + 8);
+                    } else {
+                        GradientCell3 c;
+                        if (kind == InCell::GRADIENT3) gradientCell(seed, q, c);
+                        else simplexCell(seed, q, c);
+                        for (const auto& g : c.g) scalar.insert(scalar.end(), {g[0], g[1], g[2]});
+                    }
+                } else {
+                    const Split2 q{latticeIndex(fx[r]), latticeIndex(fy[r]), 0, 0};
+                    if (kind == InCell::VALUE2) {
+                        ValueCell2 c;
+                        valueCell(seed, q, c);
+                        scalar.assign(c.v, c.v + 4);
+                    } else {
+                        GradientCell2 c;
+                        if (kind == InCell::GRADIENT2) gradientCell(seed, q, c);
+                        else simplexCell(seed, q, c);
+                        for (const auto& g : c.g) scalar.insert(scalar.end(), {g[0], g[1]});
+                    }
+                }
+                ASSERT_EQ(scalar.size(), size);
+                for (std::size_t k = 0; k < size; ++k)
+                    ASSERT_TRUE(sameBits(lanes[r * size + k], scalar[k]))
+                        << target << ", kind " << int(kind) << ", cell " << r << ", value " << k;
+            }
+        }
+    }
+    useSimdTarget("");
+}
+
 TEST(BlockEvaluation, EveryNodeTypeGivesTheScalarBits)
 {
     // Children: a heightfield (block path: columns) and a sphere (default path).
