@@ -5,8 +5,10 @@
 // passes per octave:
 //   1. split every point into its lattice cell and its fraction (SIMD);
 //   2. walk the points in order and hash a cell only when a point leaves the
-//      previous point's cell (scalar: 64-bit mixes, 14 to 81 per cell), which
-//      in a block of voxels smaller than the noise's cells is rare;
+//      previous point's cell (64-bit mixes, 14 to 81 per cell: scalar, or
+//      eight cells at a time in lanes on AVX-512), which in a block of
+//      voxels smaller than the noise's cells is rare; where it is not (runs
+//      under 8 points), AVX-512 hashes each point's cell in its own lane;
 //   3. the arithmetic inside the cell for each run of points sharing one,
 //      the cell broadcast to every lane (SIMD).
 // Passes 1 and 3 do the scalar path's operations in its order (NoiseSimd.h)

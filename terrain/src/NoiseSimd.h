@@ -11,8 +11,10 @@
 ///   2. the arithmetic inside a cell (NoiseKernels.h's *InCell functions) for
 ///      runs of consecutive points that share one cell, the cell's data
 ///      broadcast to every lane.
-/// Hashing the cells stays scalar, between the two (64-bit multiplies, once
-/// per cell). Every lane performs the scalar code's operations in its order,
+/// Hashing the cells (64-bit multiplies, once per cell) is scalar between
+/// the two, or in lanes where 64-bit lanes multiply natively (AVX-512):
+/// cellDataLanes() for runs' cells, hashedLanes() where each point has a
+/// cell of its own. Every lane performs the scalar code's operations in its order,
 /// unfused (-ffp-contract=off; no MulAdd), and Floor and Sqrt are exact, so
 /// every target gives the scalar path's bits.
 
