@@ -44,6 +44,7 @@ double threadCpuSeconds()
 
 double percentile(std::vector<double> v, double q)
 {
+    if (v.empty()) return 0.0;
     std::sort(v.begin(), v.end());
     const double pos = q * double(v.size() - 1);
     const std::size_t i = std::size_t(pos);
@@ -140,7 +141,7 @@ void streaming(const std::shared_ptr<terrain::TerrainField>& field, bool quick)
         const double duration = quick ? 2.0 : 6.0;
         const world::WorldStats before = w.stats();
         const Clock::time_point start = Clock::now();
-        std::vector<double> pollMs, pollCpuMs;
+        std::vector<double> pollMs, pollCpuMs, pending;
         std::size_t retained = 0;
         int frames = 0;
         while (seconds(Clock::now() - start) < duration) {
@@ -151,7 +152,10 @@ void streaming(const std::shared_ptr<terrain::TerrainField>& field, bool quick)
             w.poll();
             pollCpuMs.push_back(1e3 * (threadCpuSeconds() - c0));
             pollMs.push_back(1e3 * seconds(Clock::now() - f0));
-            retained = std::max(retained, w.stats().retained);
+            const world::WorldStats now = w.stats();
+            retained = std::max(retained, now.retained);
+            // Pending after the first second: the backlog once the motion is under way.
+            if (seconds(Clock::now() - start) >= 1.0) pending.push_back(double(now.pending));
             ++frames;
             std::this_thread::sleep_until(f0 + std::chrono::duration_cast<Clock::duration>(
                                                    std::chrono::duration<double>(frame)));
@@ -159,12 +163,14 @@ void streaming(const std::shared_ptr<terrain::TerrainField>& field, bool quick)
         const double elapsed = seconds(Clock::now() - start);
         const world::WorldStats after = w.stats();
         std::printf("POI at %3.0f m/s for %.1f s: %.0f chunks generated/s, %.0f re-meshed/s (LOD changes), "
-                    "%.0f evicted/s, %zu pending at the end, poll() median %.2f ms, p99 %.2f ms, max %.2f ms over %d "
+                    "%.0f evicted/s, %zu pending at the end (after the first second: median %.0f, p95 %.0f, max %.0f), "
+                    "poll() median %.2f ms, p99 %.2f ms, max %.2f ms over %d "
                     "frames (CPU time of the polling thread: median %.2f ms, p99 %.2f ms, max %.2f ms); at most %zu "
                     "chunks retained until replaced\n",
                     speed, elapsed, double(after.generated - before.generated) / elapsed,
                     double(after.remeshed - before.remeshed) / elapsed,
-                    double(after.evicted - before.evicted) / elapsed, after.pending, percentile(pollMs, 0.5),
+                    double(after.evicted - before.evicted) / elapsed, after.pending, percentile(pending, 0.5),
+                    percentile(pending, 0.95), percentile(pending, 1.0), percentile(pollMs, 0.5),
                     percentile(pollMs, 0.99), percentile(pollMs, 1.0), frames, percentile(pollCpuMs, 0.5),
                     percentile(pollCpuMs, 0.99), percentile(pollCpuMs, 1.0), retained);
     }
