@@ -910,14 +910,7 @@ private:
         const int y = std::clamp(int(std::floor(p[1])), -1, 1);
         const int z = std::clamp(int(std::floor(p[2])), -1, 1);
         const double u = p[0] - x, v = p[1] - y, w = p[2] - z;
-        const std::ptrdiff_t sx = mS.stride[0], sy = mS.stride[1], sz = mS.stride[2];
-        const std::ptrdiff_t i = std::ptrdiff_t(base) + x * sx + y * sy + z * sz;
-        const float* d = mS.values;
-        auto lerp = [](double a, double b, double t) { return a + (b - a) * t; };
-        const double c00 = lerp(d[i], d[i + sz], w), c01 = lerp(d[i + sy], d[i + sy + sz], w);
-        const double c10 = lerp(d[i + sx], d[i + sx + sz], w);
-        const double c11 = lerp(d[i + sx + sy], d[i + sx + sy + sz], w);
-        return lerp(lerp(c00, c01, v), lerp(c10, c11, v), u);
+        return trilinearIn(std::ptrdiff_t(base) + x * mS.stride[0] + y * mS.stride[1] + z * mS.stride[2], u, v, w);
     }
 
     // trilinear() in the cell at sample `i` (its corner 0), weights u, v, w:

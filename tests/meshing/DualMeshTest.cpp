@@ -13,6 +13,8 @@
 
 #include <gtest/gtest.h>
 
+#include "ByteHash.h"
+
 #include <array>
 #include <cstdint>
 #include <cstdio>
@@ -25,23 +27,7 @@ using namespace strata::meshing;
 
 namespace {
 
-// FNV-1a over raw bytes.
-struct Hash
-{
-    std::uint64_t h = 0xcbf29ce484222325ull;
-    void bytes(const void* data, std::size_t n)
-    {
-        const auto* p = static_cast<const unsigned char*>(data);
-        for (std::size_t i = 0; i < n; ++i) h = (h ^ p[i]) * 0x100000001b3ull;
-    }
-    template <typename T>
-    void vec(const std::vector<T>& v)
-    {
-        const std::uint64_t n = v.size();
-        bytes(&n, sizeof(n));
-        if (!v.empty()) bytes(v.data(), v.size() * sizeof(T));
-    }
-};
+using Hash = strata::test::ByteHash;
 
 std::uint64_t meshHash(const TriangleMesh& mesh)
 {
