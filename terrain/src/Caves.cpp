@@ -400,6 +400,9 @@ std::shared_ptr<const WormCaves::Region> WormCaves::region(const Key& regionKey)
     // either way).
     const bool narrow = extent < 0x1.0p40;
     const glm::dvec3 firstD(static_cast<double>(first[0]), static_cast<double>(first[1]), static_cast<double>(first[2]));
+    // The region's box grown by CAP and a metre (far more than the rounding
+    // there): a segment whose box misses it comes within CAP of no bucket.
+    const glm::dvec3 reachLo = targets.front().lo - (CAP + 1.0), reachHi = targets.back().hi + (CAP + 1.0);
     for (std::int64_t cx = cx0; any && cx <= cx1; ++cx) {
         for (std::int64_t cz = cz0; cz <= cz1; ++cz) {
             // Hold the cell while reading it: the cache may evict it meanwhile.
@@ -409,6 +412,9 @@ std::shared_ptr<const WormCaves::Region> WormCaves::region(const Key& regionKey)
                 const glm::dvec3 smin = glm::min(s.a, s.b) - r, smax = glm::max(s.a, s.b) + r;
                 int from[3] = {0, 0, 0}, to[3] = {REGION_SIDE - 1, REGION_SIDE - 1, REGION_SIDE - 1};
                 if (narrow) {
+                    if (smax.x < reachLo.x || smin.x > reachHi.x || smax.z < reachLo.z || smin.z > reachHi.z ||
+                        smax.y < reachLo.y || smin.y > reachHi.y)
+                        continue;
                     for (int axis = 0; axis < 3; ++axis) {
                         from[axis] = clampedOffset(smin[axis] - CAP, firstD[axis], -2, REGION_SIDE + 1) - 1;
                         to[axis] = clampedOffset(smax[axis] + CAP, firstD[axis], -2, REGION_SIDE + 1) + 1;
