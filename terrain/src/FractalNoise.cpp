@@ -205,9 +205,9 @@ double FractalNoise::basis(std::uint64_t s, const glm::dvec2& p) const
 double FractalNoise::shape(double n) const
 {
     switch (mOptions.fractal) {
-    case FractalType::FBM: return n;
-    case FractalType::RIDGED: return 1.0 - 2.0 * std::abs(n);
-    case FractalType::BILLOW: return 2.0 * std::abs(n) - 1.0;
+    case FractalType::FBM: return fractalShape<FractalType::FBM>(n);
+    case FractalType::RIDGED: return fractalShape<FractalType::RIDGED>(n);
+    case FractalType::BILLOW: return fractalShape<FractalType::BILLOW>(n);
     }
     return n;
 }

@@ -234,19 +234,23 @@ void octaveSum(NoiseType type, const Octave* octaves, int count, SeedOf seedOf, 
 
 namespace {
 
-/// octaveSum with FractalNoise::shape() inlined for the sum's fractal type
-/// (the same expressions: the same bits).
+/// octaveSum with the sum's fractal shape inlined (fractalShape<>, which
+/// FractalNoise::shape() calls too: the same bits).
 template <class Octave>
 void fractalSum(FractalType fractal, NoiseType type, const Octave* octaves, int count, const double* x,
                 const double* y, const double* z, std::size_t n, double* out)
 {
     const auto seedOf = [](const Octave& o) { return o.seed; };
     switch (fractal) {
-    case FractalType::FBM: return octaveSum(type, octaves, count, seedOf, [](double v) { return v; }, x, y, z, n, out);
+    case FractalType::FBM:
+        return octaveSum(
+            type, octaves, count, seedOf, [](double v) { return fractalShape<FractalType::FBM>(v); }, x, y, z, n, out);
     case FractalType::RIDGED:
-        return octaveSum(type, octaves, count, seedOf, [](double v) { return 1.0 - 2.0 * std::abs(v); }, x, y, z, n, out);
+        return octaveSum(
+            type, octaves, count, seedOf, [](double v) { return fractalShape<FractalType::RIDGED>(v); }, x, y, z, n, out);
     case FractalType::BILLOW:
-        return octaveSum(type, octaves, count, seedOf, [](double v) { return 2.0 * std::abs(v) - 1.0; }, x, y, z, n, out);
+        return octaveSum(
+            type, octaves, count, seedOf, [](double v) { return fractalShape<FractalType::BILLOW>(v); }, x, y, z, n, out);
     }
 }
 

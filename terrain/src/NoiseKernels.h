@@ -14,6 +14,8 @@
 
 #include "NoiseHash.h"
 
+#include <strata/terrain/FractalNoise.h>
+
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
@@ -21,6 +23,17 @@
 #include <cstdint>
 
 namespace strata::terrain::detail {
+
+/// A fractal sum's shape of one octave's basis value: the identity (fBm),
+/// 1 − 2|n| (ridged) or 2|n| − 1 (billow). One definition for the scalar
+/// path (FractalNoise::shape) and the block path (inlined per sum).
+template <FractalType F>
+inline double fractalShape(double n)
+{
+    if constexpr (F == FractalType::RIDGED) return 1.0 - 2.0 * std::abs(n);
+    else if constexpr (F == FractalType::BILLOW) return 2.0 * std::abs(n) - 1.0;
+    else return n;
+}
 
 /// The 12 cube-edge directions of improved Perlin noise (length sqrt 2).
 inline constexpr double GRAD3[12][3] = {
