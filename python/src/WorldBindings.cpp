@@ -53,7 +53,7 @@ py::dict editResult(const world::EditResult& r)
 
 std::unique_ptr<World> makeWorld(const std::shared_ptr<const scene::Scene>& scene, std::optional<double> voxelSize,
                                  int chunkSize, int levels, double lodDistance, double viewRadius, int threads,
-                                 std::optional<std::uint64_t> seed)
+                                 std::optional<std::uint64_t> seed, bool lookAhead)
 {
     world::WorldOptions options;
     options.voxelSize = voxelSize.value_or(scene->voxelSize);
@@ -62,6 +62,7 @@ std::unique_ptr<World> makeWorld(const std::shared_ptr<const scene::Scene>& scen
     options.lodDistance = lodDistance;
     options.viewRadius = viewRadius;
     options.threads = threads;
+    options.lookAhead = lookAhead;
     options.landform = scene::landformMasksForSeed(*scene, seed);
     auto field = scene::fieldForSeed(*scene, seed);
     py::gil_scoped_release release;
@@ -103,9 +104,10 @@ void bindWorld(py::module_& m)
                       "interest, meshed in the background, edited by dig() and fill(). poll() hands out new meshes.")
         .def(py::init(&makeWorld), py::arg("scene"), py::arg("voxel_size") = py::none(), py::arg("chunk_size") = 32,
              py::arg("levels") = 4, py::arg("lod_distance") = 0.0, py::arg("view_radius") = 0.0, py::arg("threads") = 0,
-             py::arg("seed") = py::none(),
+             py::arg("seed") = py::none(), py::arg("look_ahead") = true,
              "voxel_size: metres at level 0 (default the scene's); chunk_size: cells per chunk edge (8..128, power of 2);\n"
-             "levels: 1..8; lod_distance, view_radius: metres (0: chosen from the chunk size); threads: 0 = all cores.")
+             "levels: 1..8; lod_distance, view_radius: metres (0: chosen from the chunk size); threads: 0 = all cores;\n"
+             "look_ahead: mesh the chunks a moving point needs after its next chunk border before it crosses.")
         .def("set_points_of_interest", [](World& w, const py::sequence& points) {
             std::vector<glm::dvec3> p;
             for (const py::handle& point : points) p.push_back(toVec3(point, "points"));
@@ -190,6 +192,9 @@ void bindWorld(py::module_& m)
             d["pending"] = s.pending;
             d["in_flight"] = s.inFlight;
             d["mesh_bytes"] = s.meshBytes;
+            d["prefetched"] = s.prefetched;
+            d["prefetch_dropped"] = s.prefetchDropped;
+            d["prefetch_held"] = s.prefetchHeld;
             return d;
         });
 }

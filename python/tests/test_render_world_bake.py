@@ -71,6 +71,20 @@ def test_world_streams_digs_and_fills(small_scene):
         strata.EditShape.sphere((0, 0, 0), -1.0)
 
 
+def test_world_meshes_ahead_of_a_moving_point(small_scene):
+    stats = {}
+    for look_ahead in (True, False):
+        world = strata.World(small_scene, chunk_size=16, levels=2, view_radius=24.0, threads=2,
+                             look_ahead=look_ahead)
+        for x in range(0, 7):  # heading +x inside the chunk at 0..8 m
+            world.move_to((float(x), 0.0, 0.0))
+        world.wait_idle()
+        stats[look_ahead] = world.stats
+    assert stats[True]["prefetch_held"] > 0 and stats[True]["prefetched"] == 0
+    assert stats[False]["prefetch_held"] == 0
+    assert stats[True]["resident"] == stats[False]["resident"]
+
+
 def test_bake_writes_a_tileset_like_the_cli(tmp_path, small_scene_text):
     scene_file = tmp_path / "small.toml"
     scene_file.write_text(small_scene_text)

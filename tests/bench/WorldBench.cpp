@@ -8,7 +8,7 @@
 // (fBm hills and cave tunnels, seed 1), 0.5 m voxels, 32³ chunks.
 //
 //   world_bench [--quick|--lod|--stream]   (--quick: fewer repetitions, shorter runs; --lod: LOD levels
-//                                           only; --stream: streaming only)
+//                                           only; --stream: streaming only, with look-ahead and without)
 
 #include <strata/terrain/TerrainField.h>
 #include <strata/world/World.h>
@@ -108,10 +108,12 @@ void editLatency(const std::shared_ptr<terrain::TerrainField>& field, bool quick
                 double(s.editBytes) / (1024.0 * 1024.0));
 }
 
-void streaming(const std::shared_ptr<terrain::TerrainField>& field, bool quick)
+void streaming(const std::shared_ptr<terrain::TerrainField>& field, bool quick, bool lookAhead)
 {
+    std::printf("-- look-ahead %s --\n", lookAhead ? "on (the default)" : "off");
     world::WorldOptions options;
     options.viewRadius = 200.0;
+    options.lookAhead = lookAhead;
     world::World w(field, options);
     double x = 0.0;
     w.setPointsOfInterest({groundBelow(w, x, 0.0)});
@@ -166,13 +168,17 @@ void streaming(const std::shared_ptr<terrain::TerrainField>& field, bool quick)
                     "%.0f evicted/s, %zu pending at the end (after the first second: median %.0f, p95 %.0f, max %.0f), "
                     "poll() median %.2f ms, p99 %.2f ms, max %.2f ms over %d "
                     "frames (CPU time of the polling thread: median %.2f ms, p99 %.2f ms, max %.2f ms); at most %zu "
-                    "chunks retained until replaced\n",
+                    "chunks retained until replaced; meshed ahead: %.0f used/s, %.0f dropped/s, %zu held at the end "
+                    "(%.1f MiB)\n",
                     speed, elapsed, double(after.generated - before.generated) / elapsed,
                     double(after.remeshed - before.remeshed) / elapsed,
                     double(after.evicted - before.evicted) / elapsed, after.pending, percentile(pending, 0.5),
                     percentile(pending, 0.95), percentile(pending, 1.0), percentile(pollMs, 0.5),
                     percentile(pollMs, 0.99), percentile(pollMs, 1.0), frames, percentile(pollCpuMs, 0.5),
-                    percentile(pollCpuMs, 0.99), percentile(pollCpuMs, 1.0), retained);
+                    percentile(pollCpuMs, 0.99), percentile(pollCpuMs, 1.0), retained,
+                    double(after.prefetched - before.prefetched) / elapsed,
+                    double(after.prefetchDropped - before.prefetchDropped) / elapsed, after.prefetchHeld,
+                    double(after.prefetchBytes) / (1024.0 * 1024.0));
     }
 }
 
@@ -223,7 +229,8 @@ int main(int argc, char** argv)
     const auto field = terrainField();
     if (streamOnly) {
         std::printf("== streaming ==\n");
-        streaming(field, false);
+        streaming(field, false, true);
+        streaming(field, false, false);
         return 0;
     }
     std::printf("== LOD levels ==\n");
@@ -232,6 +239,7 @@ int main(int argc, char** argv)
     std::printf("== edits ==\n");
     editLatency(field, quick);
     std::printf("== streaming ==\n");
-    streaming(field, quick);
+    streaming(field, quick, true);
+    if (!quick) streaming(field, quick, false);
     return 0;
 }

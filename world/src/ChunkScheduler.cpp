@@ -38,24 +38,32 @@ ChunkScheduler::ChunkScheduler(std::shared_ptr<const terrain::DensityField> fiel
 {
 }
 
+double ChunkScheduler::order(const ChunkKey& key, double distance) const
+{
+    if (mParams.taskOrderSeed == 0) return distance;
+    const std::uint64_t h = mix(mParams.taskOrderSeed ^ mix(std::uint64_t(key.level) * 0x9e3779b97f4a7c15ull ^
+                                                        mix(std::uint64_t(std::uint32_t(key.x)) << 32 ^
+                                                            std::uint64_t(std::uint32_t(key.y))) ^
+                                                        std::uint64_t(std::uint32_t(key.z))));
+    return double(h >> 11);
+}
+
 void ChunkScheduler::schedule()
 {
     std::vector<std::pair<double, ChunkKey>> candidates;
     for (auto& [key, state] : mTracker.chunks) {
-        if (state.inFlight || !state.dirty()) continue;
-        double order = state.distance;
-        if (mParams.taskOrderSeed != 0) {
-            const std::uint64_t h = mix(mParams.taskOrderSeed ^ mix(std::uint64_t(key.level) * 0x9e3779b97f4a7c15ull ^
-                                                                mix(std::uint64_t(std::uint32_t(key.x)) << 32 ^
-                                                                    std::uint64_t(std::uint32_t(key.y))) ^
-                                                                std::uint64_t(std::uint32_t(key.z))));
-            order = double(h >> 11);
-        }
-        candidates.push_back({order, key});
+        if (state.inFlight || !state.dirty() || mTracker.aheadCovers(key, state)) continue;
+        candidates.push_back({order(key, state.distance), key});
     }
     std::sort(candidates.begin(), candidates.end());
     mQueue.clear();
-    for (const auto& candidate : candidates) mQueue.push_back(candidate.second);
+    for (const auto& candidate : candidates) mQueue.push_back({candidate.second, false});
+    // Then the chunks the points will need next.
+    candidates.clear();
+    for (auto& [key, chunk] : mTracker.ahead)
+        if (chunk.wanted && !chunk.inFlight && !chunk.mesh) candidates.push_back({order(key, chunk.distance), key});
+    std::sort(candidates.begin(), candidates.end());
+    for (const auto& candidate : candidates) mQueue.push_back({candidate.second, true});
     mQueueNext = 0;
     launchQueued();
 }
@@ -63,23 +71,33 @@ void ChunkScheduler::schedule()
 void ChunkScheduler::launchQueued()
 {
     while (inFlight < mParams.maxInFlight && mQueueNext < mQueue.size()) {
-        const ChunkKey key = mQueue[mQueueNext++];
+        const Queued next = mQueue[mQueueNext++];
         // The tracker may have changed since schedule() (a chunk evicted,
         // accepted, or launched): only a chunk still waiting goes.
-        const auto found = mTracker.chunks.find(key);
+        if (next.ahead) {
+            const auto found = mTracker.ahead.find(next.key);
+            if (found == mTracker.ahead.end()) continue;
+            AheadChunk& chunk = found->second;
+            if (!chunk.wanted || chunk.inFlight || chunk.mesh) continue;
+            chunk.inFlight = true;
+            ++inFlight;
+            launch(next.key, chunk.signature, 0, chunk.cache, true);
+            continue;
+        }
+        const auto found = mTracker.chunks.find(next.key);
         if (found == mTracker.chunks.end()) continue;
         ChunkState& state = found->second;
-        if (state.inFlight || !state.dirty()) continue;
+        if (state.inFlight || !state.dirty() || mTracker.aheadCovers(next.key, state)) continue;
         state.inFlight = true;
         ++inFlight;
-        launch(key, state.signature, state.generation, state.cache);
+        launch(next.key, state.signature, state.generation, state.cache, false);
     }
 }
 
 void ChunkScheduler::launch(const ChunkKey& key, const Signature& signature, std::uint64_t generation,
-                            std::shared_ptr<SampleCache> cache)
+                            std::shared_ptr<SampleCache> cache, bool ahead)
 {
-    Job* job = new Job{this, key, signature, generation, std::move(cache)};
+    Job* job = new Job{this, key, signature, generation, std::move(cache), ahead};
     // task_arena::enqueue() orders everything before it (the Job written
     // here) before the task runs: TBB's guarantee, so no lock is needed. A
     // process-wide mutex taken here and first thing in every task only made
@@ -96,7 +114,7 @@ void ChunkScheduler::launch(const ChunkKey& key, const Signature& signature, std
 
 void ChunkScheduler::runTask(Job& job)
 {
-    Finished result{job.key, job.signature, job.generation, nullptr};
+    Finished result{job.key, job.signature, job.generation, nullptr, job.ahead};
     std::exception_ptr error;
     bool stop;
     {
@@ -118,7 +136,7 @@ void ChunkScheduler::runTask(Job& job)
     job.cache.reset(); // before the world may be destroyed
     std::lock_guard<std::mutex> lock(mMutex);
     if (result.mesh) finished.push_back(std::move(result));
-    else mTracker.abandoned(job.key);
+    else mTracker.abandoned(job.key, job.ahead);
     if (error && !failure) failure = std::move(error);
     --inFlight;
     // Refill the pool now rather than at the next poll(): between two polls

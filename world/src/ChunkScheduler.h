@@ -4,8 +4,9 @@
 #pragma once
 // Internal: runs the World's chunk tasks. Picks the dirty resident chunks
 // nearest the points of interest (or in a seeded random order, for tests),
-// meshes each on the World's task arena from a snapshot of the edits, and
-// collects the finished meshes for the World to accept. The state below is
+// then the look-ahead chunks (AheadChunk) the same way, meshes each on the
+// World's task arena from a snapshot of the edits, and collects the finished
+// meshes for the World to accept. The state below is
 // guarded by the World's mutex (passed in); tasks take it to report.
 
 #include "ChunkMesher.h"
@@ -42,8 +43,9 @@ public:
                    const EditLayer& edits, ReplacementTracker& tracker, std::mutex& mutex,
                    std::condition_variable& finishedSignal);
 
-    /// With the mutex held: orders the dirty chunks not in flight and
-    /// launches them, up to maxInFlight tasks. The World calls it at each
+    /// With the mutex held: orders the dirty chunks not in flight, then the
+    /// look-ahead chunks not meshed yet, and launches them, up to maxInFlight
+    /// tasks. The World calls it at each
     /// poll(); the rest wait in the queue for launchQueued().
     void schedule();
 
@@ -70,15 +72,22 @@ private:
         Signature signature;
         std::uint64_t generation;
         std::shared_ptr<SampleCache> cache;
+        bool ahead; ///< for the look-ahead partition
+    };
+    struct Queued
+    {
+        ChunkKey key;
+        bool ahead;
     };
 
+    double order(const ChunkKey& key, double distance) const;
     void launch(const ChunkKey& key, const Signature& signature, std::uint64_t generation,
-                std::shared_ptr<SampleCache> cache);
+                std::shared_ptr<SampleCache> cache, bool ahead);
     void runTask(Job& job);
 
     std::shared_ptr<const terrain::DensityField> mField;
     SchedulerParams mParams;
-    std::vector<ChunkKey> mQueue; ///< dirty chunks in launch order, from the last schedule()
+    std::vector<Queued> mQueue; ///< chunks in launch order, from the last schedule()
     std::size_t mQueueNext = 0;   ///< the first entry of mQueue not taken yet
     const EditLayer& mEdits;
     ReplacementTracker& mTracker;

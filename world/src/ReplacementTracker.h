@@ -37,6 +37,22 @@ struct ChunkState
     bool dirty() const { return meshedGeneration != generation; }
 };
 
+/// A chunk of the look-ahead partition (where the points of interest go
+/// next) that is not resident with the signature it will have there: new,
+/// or its neighbours' levels change. Meshed ahead of time when the pool has
+/// nothing resident to do; rebuild() hands the mesh to the chunk when the
+/// partition it was made for arrives.
+struct AheadChunk
+{
+    Signature signature{};
+    double distance = 0.0;
+    bool inFlight = false;
+    bool stale = false;  ///< an edit touched its samples while its task ran: the result is dropped
+    bool wanted = true;  ///< still in the look-ahead partition; if not, erased once its task ends
+    std::shared_ptr<const ChunkMeshData> mesh;
+    std::shared_ptr<SampleCache> cache; ///< handed to the chunk with the mesh; null for levels without one
+};
+
 /// An entry of the update queue: `groupSize` > 0 starts a group of that many
 /// updates that poll() hands out together (the replacement of chunks after an
 /// LOD change); 0 continues the group.
@@ -52,6 +68,7 @@ struct Finished
     Signature signature{};
     std::uint64_t generation = 0;
     std::shared_ptr<const ChunkMeshData> mesh;
+    bool ahead = false; ///< meshed for the look-ahead partition (AheadChunk), not for a resident chunk
 };
 
 class ReplacementTracker
@@ -69,17 +86,27 @@ public:
     /// change), else they are reported removed at once (eviction).
     void rebuild(const std::map<ChunkKey, PartitionEntry>& target);
 
+    /// Sets the look-ahead partition: the resident set after the points'
+    /// next level-0 chunk border (empty: none). Call after rebuild().
+    void setLookAhead(const std::map<ChunkKey, PartitionEntry>& next);
+
     /// Hands out every group whose covering chunks are all meshed: their
     /// withheld meshes, then the removals of the retired chunks, as one group
     /// of updates. O(groups · covering chunks).
     void release();
 
     /// Takes a finished mesh: delivered, withheld for a replacement group,
-    /// or discarded when the chunk left or changed meanwhile.
+    /// or discarded when the chunk left or changed meanwhile. A look-ahead
+    /// mesh is kept for its chunk, or handed to it at once when the chunk
+    /// became resident meanwhile and waits for it.
     void accept(Finished& f);
 
     /// A task for `key` ended without a mesh (an error, or the world stops).
-    void abandoned(const ChunkKey& key);
+    void abandoned(const ChunkKey& key, bool ahead);
+
+    /// Is a look-ahead task running that will give this resident chunk its
+    /// current mesh? Then the scheduler does not launch the chunk again.
+    bool aheadCovers(const ChunkKey& key, const ChunkState& state) const;
 
     /// Marks the resident chunks whose sample footprint holds a changed
     /// lattice point (`chunkSize` cells per chunk edge).
@@ -97,10 +124,16 @@ public:
     /// Chunks that left the resident set by a split or merge while the caller
     /// holds their meshes: kept until every chunk covering them is meshed.
     std::map<ChunkKey, ChunkState> retired;
-    WorldStats counters; ///< generated, remeshed, evicted, discarded
+    /// The look-ahead partition's chunks that differ from the resident ones.
+    std::map<ChunkKey, AheadChunk> ahead;
+    WorldStats counters; ///< generated, remeshed, evicted, discarded, prefetched, prefetchDropped
 
 private:
     void push(ChunkUpdate update) { updates.push_back(QueuedUpdate{std::move(update), 1}); }
+    /// Gives a resident chunk its mesh of `generation` (checked by the caller).
+    void install(const ChunkKey& key, ChunkState& state, std::uint64_t generation,
+                 std::shared_ptr<const ChunkMeshData> mesh);
+    void acceptAhead(Finished& f);
 
     /// The resident chunks covering a retired chunk's box: its resident
     /// ancestor, or the resident descendants that tile it; empty when the

@@ -31,8 +31,8 @@ void SampleArray::init(const terrain::DensityField* field, const EditSnapshot* e
     mValues.assign(std::size_t(dims[0]) * dims[1] * dims[2], 0.0f);
     mFilled.assign(std::size_t(mBlocks[0]) * mBlocks[1] * mBlocks[2], 0);
     mBlockBounds.clear();
-    if (mCache && mCache->blockDone.size() != mFilled.size()) {
-        mCache->blockDone.assign(mFilled.size(), 0);
+    if (mCache && mCache->blockMargin.size() != mFilled.size()) {
+        mCache->blockMargin.assign(mFilled.size(), 0);
         mCache->values.clear();
     }
 }
@@ -131,8 +131,14 @@ void SampleArray::fill(int bi, int bj, int bk, std::size_t b)
                 for (int i = lo[0]; i < hi[0]; ++i) mValues[index(i, j, k)] = mFarValue;
         return;
     }
-    const bool cached = mCache && mCache->blockDone[b];
-    if (!edited && !cached && fillByOctants(lo, hi)) return;
+    const std::int64_t cachedAt = mCache ? mCache->blockMargin[b] : 0;
+    const bool cached = cachedAt != 0;
+    if (!edited && !(cached && mMargin >= cachedAt)) {
+        // Octants this margin prunes get values of their sign only, cached
+        // or not: the same values as a chunk meshed without a cache.
+        if (fillByOctants(lo, hi)) return;
+        if (cached) mCache->blockMargin[b] = mMargin;
+    }
     if (mCache && mCache->values.empty()) mCache->values.assign(mValues.size(), 0.0f);
     if (!cached) {
         // The block's procedural samples in one block evaluation: the same
@@ -193,7 +199,7 @@ void SampleArray::fill(int bi, int bj, int bk, std::size_t b)
             }
         }
     }
-    if (mCache) mCache->blockDone[b] = 1;
+    if (mCache && !cached) mCache->blockMargin[b] = edited ? SampleCache::UNTESTED : mMargin;
 }
 
 bool SampleArray::fillByOctants(const int lo[3], const int hi[3])

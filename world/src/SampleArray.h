@@ -24,10 +24,22 @@ namespace strata::world::detail {
 /// task at a time (`mutex`); the values are the same whether cached or not.
 struct SampleCache
 {
+    /// blockMargin of a block cached from an edited block, whose octants
+    /// were not tested.
+    static constexpr std::int64_t UNTESTED = INT64_MAX;
+
     std::mutex mutex;
-    std::vector<float> values;          ///< empty until a block is evaluated
-    std::vector<std::uint8_t> blockDone; ///< per 8³ block: values hold the procedural samples
-    std::size_t bytes() const { return values.capacity() * sizeof(float) + blockDone.capacity(); }
+    std::vector<float> values; ///< empty until a block is evaluated
+    /// Per 8³ block: 0 = not cached; else `values` hold its procedural
+    /// samples, and no octant of it was prunable with this margin (voxels)
+    /// or any wider one. A narrower margin may prune octants: the array
+    /// tests them again, so a mesh never depends on which signatures (and
+    /// margins) the chunk was meshed with before.
+    std::vector<std::int64_t> blockMargin;
+    std::size_t bytes() const
+    {
+        return values.capacity() * sizeof(float) + blockMargin.capacity() * sizeof(std::int64_t);
+    }
 };
 
 /// The lattice points origin + i·step (voxels), i in [0, dims), filled lazily

@@ -9,6 +9,7 @@
 #include "ChunkScheduler.h"
 #include "EditLayer.h"
 #include "LodPartition.h"
+#include "MotionLookAhead.h"
 #include "ReplacementTracker.h"
 #include "WorldQueries.h"
 
@@ -42,12 +43,21 @@ struct World::Impl
     std::condition_variable finishedSignal;
     std::condition_variable partitionSignal;
     /// The level-0 chunks holding the points of interest (the partition's
-    /// input) and a version bumped when they change.
+    /// input), those they enter next (the look-ahead partition's), and a
+    /// version bumped when either changes.
     std::vector<ChunkKey> interest;
+    std::vector<ChunkKey> nextInterest;
+    detail::MotionLookAhead motion;
     std::uint64_t interestVersion = 0;
     std::uint64_t appliedVersion = 0; ///< the version `tracker.chunks` follows
-    /// A partition computed by the partition thread, not yet applied.
-    std::optional<std::pair<std::uint64_t, std::map<ChunkKey, detail::PartitionEntry>>> partitionResult;
+    /// Partitions computed by the partition thread, not yet applied.
+    struct PartitionResult
+    {
+        std::uint64_t version = 0;
+        std::map<ChunkKey, detail::PartitionEntry> now;
+        std::map<ChunkKey, detail::PartitionEntry> next; ///< empty when the points stand still
+    };
+    std::optional<PartitionResult> partitionResult;
     std::thread partitionThread;
     detail::ReplacementTracker tracker;
     detail::ChunkScheduler scheduler;
@@ -81,8 +91,9 @@ struct World::Impl
             std::rethrow_exception(std::move(e));
         }
         if (partitionResult) {
-            tracker.rebuild(partitionResult->second);
-            appliedVersion = partitionResult->first;
+            tracker.rebuild(partitionResult->now);
+            tracker.setLookAhead(partitionResult->next);
+            appliedVersion = partitionResult->version;
             partitionResult.reset();
         }
         for (detail::Finished& f : scheduler.finished) tracker.accept(f);
@@ -102,11 +113,13 @@ struct World::Impl
             if (scheduler.stopping) return;
             const std::uint64_t version = interestVersion;
             const std::vector<ChunkKey> input = interest;
+            const std::vector<ChunkKey> nextInput = nextInterest;
             lock.unlock();
-            std::map<ChunkKey, detail::PartitionEntry> target;
+            PartitionResult result{version, {}, {}};
             std::exception_ptr error;
             try {
-                target = detail::computePartition(input, lod);
+                result.now = detail::computePartition(input, lod);
+                if (nextInput != input) result.next = detail::computePartition(nextInput, lod);
             } catch (...) {
                 error = std::current_exception();
             }
@@ -115,7 +128,7 @@ struct World::Impl
             if (error) {
                 if (!scheduler.failure) scheduler.failure = std::move(error);
             } else {
-                partitionResult.emplace(version, std::move(target));
+                partitionResult = std::move(result);
             }
             finishedSignal.notify_all();
         }
@@ -193,8 +206,15 @@ void World::setPointsOfInterest(std::vector<glm::dvec3> points)
     }
     std::vector<ChunkKey> interest = detail::interestChunks(points, mImpl->lod);
     std::lock_guard<std::mutex> lock(mImpl->mutex);
-    if (interest == mImpl->interest) return; // the same level-0 chunks: the same partition
+    std::vector<ChunkKey> next = interest;
+    if (mImpl->options.lookAhead) {
+        mImpl->motion.update(points);
+        next = mImpl->motion.nextInterest(mImpl->lod);
+    }
+    // The same level-0 chunks, now and next: the same partitions.
+    if (interest == mImpl->interest && next == mImpl->nextInterest) return;
     mImpl->interest = std::move(interest);
+    mImpl->nextInterest = std::move(next);
     ++mImpl->interestVersion;
     mImpl->partitionSignal.notify_all();
 }
@@ -280,6 +300,11 @@ WorldStats World::stats() const
         s.resident = mImpl->tracker.chunks.size();
         s.inFlight = mImpl->scheduler.inFlight;
         s.retained = mImpl->tracker.retired.size();
+        for (const auto& [key, chunk] : mImpl->tracker.ahead)
+            if (chunk.mesh) {
+                ++s.prefetchHeld;
+                s.prefetchBytes += chunk.mesh->memoryBytes() + sizeof(ChunkMeshData);
+            }
         for (const auto& [key, state] : mImpl->tracker.chunks) {
             if (state.dirty()) ++s.pending;
             if (state.cache) {

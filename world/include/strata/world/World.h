@@ -26,6 +26,17 @@
 /// left the view (evicted: reported removed by that poll(), edits stay) or
 /// were split or merged (replaced, below).
 ///
+/// **Look-ahead.** A point of interest that moved since the previous
+/// setPointsOfInterest() (the point with the same index) is heading for the
+/// level-0 chunk its ray of motion enters next. The partition thread also
+/// computes the resident set for those chunks, and when the pool has no
+/// resident chunk to mesh it meshes the chunks of that set that are not
+/// resident as they will be (new, or with other neighbour levels). When the
+/// point crosses the border, those chunks arrive meshed: a crossing no
+/// longer leaves a few hundred chunks pending at once. The meshes are the
+/// same bytes as if made on arrival (a chunk mesh is a pure function, see
+/// Determinism); an edit drops those it touches. WorldOptions::lookAhead.
+///
 /// **LOD changes without holes ("keep until replaced").** A chunk the caller
 /// holds a mesh for that is split into its children or merged into its parent
 /// is not reported removed at once: it is *retained* (WorldStats::retained)
@@ -147,6 +158,13 @@ struct WorldOptions
     /// none. Its global pass has run when the node was built, before the
     /// World exists.
     std::shared_ptr<const terrain::LandformMasks> landform;
+    /// Mesh ahead of time the chunks of the partition the points of
+    /// interest will need after their next level-0 chunk border, along the
+    /// direction each last moved (see the file comment, "Look-ahead"), so a
+    /// moving point finds them ready. Costs the chunks meshed for a
+    /// direction not taken (WorldStats::prefetchDropped); false: mesh only
+    /// for the resident set.
+    bool lookAhead = true;
 };
 
 class World

@@ -138,6 +138,13 @@ struct WorldStats
     std::uint64_t remeshed = 0;  ///< chunk meshes replaced after an edit or an LOD change of a neighbour
     std::uint64_t evicted = 0;   ///< chunks dropped from the resident set
     std::uint64_t discarded = 0; ///< finished meshes thrown away (chunk evicted or neighbours changed meanwhile)
+    /// Of `generated` and `remeshed`: meshes made ahead for the partition
+    /// the points were heading to (WorldOptions::lookAhead), handed to their
+    /// chunk when it arrived.
+    std::uint64_t prefetched = 0;
+    /// Meshes made ahead and thrown away: the points turned, or an edit
+    /// changed their samples.
+    std::uint64_t prefetchDropped = 0;
     std::size_t resident = 0;    ///< chunks in the resident set now (empty ones included)
     std::size_t withSurface = 0; ///< resident chunks whose current mesh has triangles
     std::size_t pending = 0;     ///< resident chunks waiting for a (re)mesh
@@ -147,6 +154,8 @@ struct WorldStats
     std::size_t inFlight = 0;    ///< chunk tasks running or queued on the task pool
     std::size_t meshBytes = 0;   ///< heap bytes of all resident chunk meshes
     std::size_t cacheBytes = 0;  ///< heap bytes of the kept samples (WorldOptions::sampleCacheLevels)
+    std::size_t prefetchHeld = 0;  ///< meshes made ahead, waiting for their partition
+    std::size_t prefetchBytes = 0; ///< heap bytes of those meshes (not in meshBytes)
     std::size_t editVoxels = 0;  ///< active voxels of the edit grid
     std::size_t editBytes = 0;   ///< memory of the edit grid
 };
