@@ -24,6 +24,18 @@ namespace strata::world::detail {
 using openvdb::Coord;
 using openvdb::CoordBBox;
 
+namespace {
+
+/// Tree::leafCount() without TBB: a walk on this thread.
+std::size_t countLeaves(const openvdb::FloatTree& tree)
+{
+    std::size_t count = 0;
+    for (auto it = tree.cbeginLeaf(); it; ++it) ++count;
+    return count;
+}
+
+} // namespace
+
 EditSnapshot::EditSnapshot()
     : mTree(new openvdb::FloatTree(0.0f))
 {
@@ -137,6 +149,7 @@ std::vector<Coord> EditLayer::apply(const Edit& edit, const terrain::DensityFiel
                 changed.push_back(ch.first);
             }
         }
+        mLeafCount = countLeaves(mGrid->tree());
     }
     return changed;
 }
@@ -147,7 +160,7 @@ std::unique_ptr<EditSnapshot> EditLayer::snapshot(const CoordBBox& box) const
     {
         std::shared_lock<std::shared_mutex> lock(mLock);
         const openvdb::FloatTree& tree = mGrid->tree();
-        const std::size_t leafCount = tree.leafCount();
+        const std::size_t leafCount = mLeafCount;
         const Coord lo = box.min() & ~(openvdb::FloatTree::LeafNodeType::DIM - 1);
         const Coord hi = box.max();
         const std::int64_t dim = openvdb::FloatTree::LeafNodeType::DIM;
@@ -189,7 +202,7 @@ bool EditLayer::anyIn(const CoordBBox& box) const
 {
     std::shared_lock<std::shared_mutex> lock(mLock);
     const openvdb::FloatTree& tree = mGrid->tree();
-    if (tree.leafCount() == 0) return false;
+    if (mLeafCount == 0) return false;
     ConstTreeAccessor acc(tree);
     const int dim = openvdb::FloatTree::LeafNodeType::DIM;
     const Coord lo = box.min() & ~(dim - 1);
@@ -264,9 +277,11 @@ std::vector<Coord> EditLayer::load(const std::filesystem::path& path)
             }
         }
     }
+    const std::size_t leaves = countLeaves(grid->tree());
     {
         std::unique_lock<std::shared_mutex> lock(mLock);
         mGrid = grid;
+        mLeafCount = leaves;
     }
     return changed;
 }

@@ -70,7 +70,12 @@ public:
 private:
     double mVoxelSize;
     openvdb::FloatGrid::Ptr mGrid;
-    mutable std::shared_mutex mLock; ///< guards mGrid's contents
+    /// mGrid's leaves, counted on the editing thread when it changes: the
+    /// chunk tasks' snapshot() must not call Tree::leafCount(), a TBB
+    /// reduction nested in the task (its join is invisible to
+    /// ThreadSanitizer, which then reported the task's later stack use).
+    std::size_t mLeafCount = 0;
+    mutable std::shared_mutex mLock; ///< guards mGrid's contents and mLeafCount
     std::mutex mWriteMutex;          ///< serialises edits and loads
 };
 
