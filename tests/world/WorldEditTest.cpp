@@ -24,14 +24,7 @@ using world::WorldOptions;
 
 WorldOptions editOptions()
 {
-    WorldOptions o;
-    o.voxelSize = 0.5;
-    o.chunkSize = 16; // 8 m chunks at level 0
-    o.levels = 3;
-    o.lodDistance = 28.0;
-    o.viewRadius = 64.0;
-    o.threads = 2;
-    return o;
+    return smallWorldOptions(64.0);
 }
 
 std::shared_ptr<terrain::DensityField> ground()

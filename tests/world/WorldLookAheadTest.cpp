@@ -28,13 +28,7 @@ using world::detail::nextChunk;
 
 WorldOptions lookAheadOptions(bool lookAhead)
 {
-    WorldOptions o;
-    o.voxelSize = 0.5;
-    o.chunkSize = 16; // 8 m chunks at level 0
-    o.levels = 3;
-    o.lodDistance = 28.0;
-    o.viewRadius = 64.0;
-    o.threads = 2;
+    WorldOptions o = smallWorldOptions(64.0);
     o.lookAhead = lookAhead;
     return o;
 }

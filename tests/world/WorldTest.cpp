@@ -27,14 +27,7 @@ using world::WorldOptions;
 
 WorldOptions smallOptions()
 {
-    WorldOptions o;
-    o.voxelSize = 0.5;
-    o.chunkSize = 16; // 8 m chunks at level 0
-    o.levels = 3;
-    o.lodDistance = 28.0;
-    o.viewRadius = 96.0;
-    o.threads = 2;
-    return o;
+    return smallWorldOptions(96.0);
 }
 
 TEST(World, RejectsBadOptions)

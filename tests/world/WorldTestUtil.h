@@ -17,6 +17,20 @@ namespace strata::test {
 
 using MeshMap = std::map<world::ChunkKey, std::shared_ptr<const world::ChunkMeshData>>;
 
+/// A small world for tests: 0.5 m voxels, 8 m chunks at level 0, 3 levels,
+/// 2 threads.
+inline world::WorldOptions smallWorldOptions(double viewRadius)
+{
+    world::WorldOptions o;
+    o.voxelSize = 0.5;
+    o.chunkSize = 16;
+    o.levels = 3;
+    o.lodDistance = 28.0;
+    o.viewRadius = viewRadius;
+    o.threads = 2;
+    return o;
+}
+
 /// The current meshes of all resident chunks (after waitIdle()).
 inline MeshMap currentMeshes(const world::World& w)
 {
