@@ -26,15 +26,17 @@ double boxDistance(const LodParams& params, const ChunkKey& key, const glm::dvec
     return glm::length(d);
 }
 
+ChunkKey level0Chunk(const glm::dvec3& p, const LodParams& params)
+{
+    const glm::dvec3 k = glm::floor(p / chunkWidth(params, 0));
+    return ChunkKey{0, std::int32_t(k.x), std::int32_t(k.y), std::int32_t(k.z)};
+}
+
 std::vector<ChunkKey> interestChunks(const std::vector<glm::dvec3>& points, const LodParams& params)
 {
-    const double w = chunkWidth(params, 0);
     std::vector<ChunkKey> out;
     out.reserve(points.size());
-    for (const glm::dvec3& p : points) {
-        const glm::dvec3 k = glm::floor(p / w);
-        out.push_back(ChunkKey{0, std::int32_t(k.x), std::int32_t(k.y), std::int32_t(k.z)});
-    }
+    for (const glm::dvec3& p : points) out.push_back(level0Chunk(p, params));
     std::sort(out.begin(), out.end());
     out.erase(std::unique(out.begin(), out.end()), out.end());
     return out;

@@ -37,6 +37,9 @@ double chunkWidth(const LodParams& params, int level);
 /// Distance from `p` to the chunk's box (0 inside).
 double boxDistance(const LodParams& params, const ChunkKey& key, const glm::dvec3& p);
 
+/// The level-0 chunk holding `p`.
+ChunkKey level0Chunk(const glm::dvec3& p, const LodParams& params);
+
 /// The level-0 chunks holding `points`, sorted, without repeats.
 std::vector<ChunkKey> interestChunks(const std::vector<glm::dvec3>& points, const LodParams& params);
 

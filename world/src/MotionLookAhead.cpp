@@ -36,8 +36,8 @@ std::vector<ChunkKey> MotionLookAhead::nextInterest(const LodParams& params) con
 ChunkKey nextChunk(const glm::dvec3& p, const glm::dvec3& direction, const LodParams& params)
 {
     const double w = chunkWidth(params, 0);
-    const glm::dvec3 cell = glm::floor(p / w);
-    ChunkKey key{0, std::int32_t(cell.x), std::int32_t(cell.y), std::int32_t(cell.z)};
+    ChunkKey key = level0Chunk(p, params);
+    const glm::dvec3 cell(key.x, key.y, key.z);
     // The ray's exit parameter through each axis' far face; the axes that
     // reach theirs first (ties: an edge or a corner) step.
     double t[3];

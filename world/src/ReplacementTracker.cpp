@@ -94,8 +94,7 @@ void ReplacementTracker::rebuild(const std::map<ChunkKey, PartitionEntry>& targe
         const auto a = ahead.find(key);
         if (a == ahead.end() || !a->second.mesh) continue;
         ChunkState& state = chunks.at(key);
-        if (a->second.signature != state.signature) continue;
-        if (a->second.cache) state.cache = a->second.cache;
+        if (a->second.signature != state.signature) continue; // (the chunk already shares its cache)
         ++counters.prefetched;
         install(key, state, state.generation, std::move(a->second.mesh));
         ahead.erase(a);

@@ -108,6 +108,10 @@ struct World::Impl
     {
         std::unique_lock<std::mutex> lock(mutex);
         std::uint64_t computed = 0;
+        // The last look-ahead partition and its input: when the points cross
+        // as predicted, it is the new resident set, not computed again.
+        std::vector<ChunkKey> lastNextInput;
+        std::map<ChunkKey, detail::PartitionEntry> lastNext;
         for (;;) {
             partitionSignal.wait(lock, [&] { return scheduler.stopping || interestVersion != computed; });
             if (scheduler.stopping) return;
@@ -118,8 +122,11 @@ struct World::Impl
             PartitionResult result{version, {}, {}};
             std::exception_ptr error;
             try {
-                result.now = detail::computePartition(input, lod);
+                result.now = input == lastNextInput && !lastNext.empty() ? lastNext
+                                                                        : detail::computePartition(input, lod);
                 if (nextInput != input) result.next = detail::computePartition(nextInput, lod);
+                lastNextInput = nextInput;
+                lastNext = result.next;
             } catch (...) {
                 error = std::current_exception();
             }
