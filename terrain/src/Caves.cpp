@@ -272,8 +272,14 @@ std::vector<WormCaves::Segment> WormCaves::wormsOfCell(std::int64_t cx, std::int
             h = mix64(h + 0x9e3779b97f4a7c15ULL);
             return unit(h);
         };
-        glm::dvec3 at((double(cx) + next()) * o.cellSize, o.minY + next() * (o.maxY - o.minY),
-                      (double(cz) + next()) * o.cellSize);
+        // One draw a statement: as arguments of one call their order would
+        // be the compiler's (gcc drew z first, clang x). This is gcc's order,
+        // so the worlds gcc built keep their bytes.
+        const double startZ = next();
+        const double startY = next();
+        const double startX = next();
+        glm::dvec3 at((double(cx) + startX) * o.cellSize, o.minY + startY * (o.maxY - o.minY),
+                      (double(cz) + startZ) * o.cellSize);
         const double yaw0 = 6.283185307179586 * next();
         const std::uint64_t yawSeed = mix64(h ^ 1), pitchSeed = mix64(h ^ 2), radiusSeed = mix64(h ^ 3);
         const auto radiusAt = [&](int i) {

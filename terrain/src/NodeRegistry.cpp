@@ -181,6 +181,7 @@ const NodeRegistry& NodeRegistry::builtin()
         registerCsgNodes(r);
         registerPrimitiveNodes(r);
         registerHeightGraphNodes(r);
+        registerGeologyNodes(r);
         return r;
     }();
     return registry;

@@ -4,6 +4,7 @@
 #include <strata/Error.h>
 #include <strata/terrain/Caves.h>
 #include <strata/terrain/Csg.h>
+#include <strata/terrain/DifferentialErosion.h>
 #include <strata/terrain/Heightfield.h>
 #include <strata/terrain/Primitives.h>
 #include <strata/terrain/Transforms.h>
@@ -45,6 +46,22 @@ std::shared_ptr<const NoiseHeightfield> hills(std::uint64_t seed = 1)
     return std::make_shared<NoiseHeightfield>(seed, NoiseHeightfieldOptions{});
 }
 
+/// Beds with every option that shapes them: dip, folds, a fault.
+std::shared_ptr<const Lithology> foldedBeds()
+{
+    LithologyOptions o;
+    o.beds = {{3.0, 0.9}, {4.0, 0.1}, {1.5, 0.6}};
+    o.dip = 15.0;
+    o.dipDirection = 120.0;
+    o.foldAmplitude = 4.0;
+    o.foldWavelength = 50.0;
+    o.faultThrow = 3.0;
+    o.faultStrike = 45.0;
+    o.faultDip = 70.0;
+    o.faultWidth = 2.0;
+    return std::make_shared<Lithology>(6, o);
+}
+
 /// Every node of the library, each over ground it is meant for.
 std::vector<std::pair<std::string, DensityFieldPtr>> allNodes()
 {
@@ -71,6 +88,8 @@ std::vector<std::pair<std::string, DensityFieldPtr>> allNodes()
         {"warp", std::make_shared<WarpField>(ground, 5, WarpOptions{})},
         {"terrace", std::make_shared<TerraceField>(ground, 4.0, 3.0)},
         {"translate", std::make_shared<TranslateField>(ground, glm::dvec3(1e6, 0, -1e6))},
+        {"beds", std::make_shared<DifferentialErosionField>(
+                     std::make_shared<WarpField>(ground, 5, WarpOptions{}), foldedBeds(), DifferentialErosionOptions{})},
     };
 }
 

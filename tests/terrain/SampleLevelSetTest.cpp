@@ -4,6 +4,7 @@
 #include <strata/Error.h>
 #include <strata/terrain/Caves.h>
 #include <strata/terrain/Csg.h>
+#include <strata/terrain/DifferentialErosion.h>
 #include <strata/terrain/Heightfield.h>
 #include <strata/terrain/SampleLevelSet.h>
 #include <strata/terrain/SimdTarget.h>
@@ -253,6 +254,95 @@ TEST(SampleLevelSet, SolidRegionIsSignedAndClosedRegionIsCapped)
     const openvdb::FloatGrid::Ptr closed = sampleLevelSet(solid, options);
     EXPECT_GT(closed->activeVoxelCount(), 6u * 120u * 120u);
     expectMatchesDenseSampling(solid, options, *closed);
+}
+
+namespace {
+
+/// The default scene's tree (terraced, warped, tunnelled: cliffs and
+/// caves) cut into folded, faulted beds that retreat up to 4 m.
+DensityFieldPtr bedsOverTheDefaultScene()
+{
+    LithologyOptions o;
+    o.beds = {{3.0, 0.9}, {4.0, 0.1}, {1.5, 0.6}};
+    o.dip = 8.0;
+    o.dipDirection = 30.0;
+    o.foldAmplitude = 3.0;
+    o.foldWavelength = 40.0;
+    o.faultThrow = 2.5;
+    o.faultPoint = {5.0, 0.0, 0.0};
+    o.faultStrike = 100.0;
+    DifferentialErosionOptions d;
+    d.retreat = 4.0;
+    return std::make_shared<DifferentialErosionField>(strata::test::defaultSceneTree(true),
+                                                      std::make_shared<Lithology>(3, o), d);
+}
+
+} // namespace
+
+TEST(SampleLevelSet, BedsWithOverhangsAndCavesMatchDenseSampling)
+{
+    // Pruning by the beds' bounds() drops no band voxel: every voxel as
+    // dense sampling gives it, open and closed.
+    const DensityFieldPtr field = bedsOverTheDefaultScene();
+    for (const bool closed : {false, true}) {
+        SampleOptions options = regionOptions({-14.3, -17.1, -12.7}, {13.9, 11.2, 15.6}, 0.5);
+        options.closed = closed;
+        SampleStats stats;
+        const openvdb::FloatGrid::Ptr grid = sampleLevelSet(*field, options, &stats);
+        SCOPED_TRACE(closed ? "closed" : "open");
+        EXPECT_GT(stats.activeVoxels, 15000u);
+        expectMatchesDenseSampling(*field, options, *grid);
+        std::cout << "beds " << (closed ? "closed" : "open") << ": " << stats.activeVoxels << " active, "
+                  << double(stats.evaluatedPoints) / double(stats.activeVoxels) << " points per active voxel\n";
+    }
+}
+
+TEST(SampleLevelSet, BedsAreTheSameBitsInAnyTilingThreadCountAndSimdTarget)
+{
+    // One open region against 2 × 2 and 3 × 3 tiles of it (every voxel of
+    // each tile as the whole grid has it), and the whole on every SIMD target
+    // and 1, 2 and 3 threads.
+    const DensityFieldPtr field = bedsOverTheDefaultScene();
+    const glm::dvec3 lo(-18.0, -20.0, -18.0), hi(18.0, 16.0, 18.0);
+    const double vs = 0.5;
+    const auto openRegion = [vs](const glm::dvec3& min, const glm::dvec3& max) {
+        SampleOptions options = regionOptions(min, max, vs);
+        options.closed = false; // tiles that share voxels give them the same values
+        return options;
+    };
+    const openvdb::FloatGrid::Ptr whole = sampleLevelSet(*field, openRegion(lo, hi));
+    ASSERT_GT(whole->activeVoxelCount(), 30000u);
+    const openvdb::FloatGrid::ConstAccessor all = whole->getConstAccessor();
+    for (const int split : {2, 3}) {
+        for (int i = 0; i < split; ++i)
+            for (int k = 0; k < split; ++k) {
+                const double w = (hi.x - lo.x) / split;
+                const glm::dvec3 tileLo(lo.x + i * w, lo.y, lo.z + k * w), tileHi(tileLo.x + w, hi.y, tileLo.z + w);
+                const openvdb::FloatGrid::Ptr tile = sampleLevelSet(*field, openRegion(tileLo, tileHi));
+                const openvdb::FloatGrid::ConstAccessor part = tile->getConstAccessor();
+                std::uint64_t differing = 0, compared = 0;
+                for (int x = int(std::ceil(tileLo.x / vs)); x < int(std::ceil(tileHi.x / vs)); ++x)
+                    for (int y = int(std::ceil(tileLo.y / vs)); y < int(std::ceil(tileHi.y / vs)); ++y)
+                        for (int z = int(std::ceil(tileLo.z / vs)); z < int(std::ceil(tileHi.z / vs)); ++z) {
+                            const openvdb::Coord c(x, y, z);
+                            ++compared;
+                            const float a = all.getValue(c), b = part.getValue(c);
+                            differing += std::memcmp(&a, &b, sizeof a) != 0 || all.isValueOn(c) != part.isValueOn(c);
+                        }
+                EXPECT_EQ(differing, 0u) << split << " x " << split << " tile " << i << ", " << k << " of " << compared;
+            }
+    }
+    const std::vector<std::string> targets = availableSimdTargets();
+    for (const std::string& target : targets) {
+        useSimdTarget(target);
+        for (const int threads : {1, 2, 3}) {
+            if (target != targets.front() && threads != 2) continue;
+            tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+            SCOPED_TRACE(target + ", " + std::to_string(threads) + " threads");
+            expectBitwiseEqual(*whole, *sampleLevelSet(*field, openRegion(lo, hi)));
+        }
+    }
+    useSimdTarget("");
 }
 
 TEST(SampleLevelSet, SameBitsOnOneThreadAndMany)

@@ -7,6 +7,9 @@
 // density bits.
 
 #include <strata/terrain/Caves.h>
+#include <strata/terrain/Noise.h>
+
+#include "NoiseHash.h"
 
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
@@ -200,4 +203,41 @@ TEST(WormBuckets, TheSameBitsFromAnyRegionOrder)
         ASSERT_EQ(got.size(), first[n].size());
         for (std::size_t m = 0; m < got.size(); ++m) ASSERT_TRUE(sameSegment(got[m], first[n][m]));
     }
+}
+
+TEST(WormBuckets, WormStartsDrawTheirCoordinatesInAFixedOrder)
+{
+    // The start of a worm takes three draws from its hash stream: z, then
+    // y, then x. They were once the three arguments of one constructor, so
+    // their order was the compiler's and clang built other worlds than gcc
+    // (issue 39). The start is recomputed here from the stream itself.
+    const std::uint64_t seed = 77;
+    WormOptions options;
+    options.wormsPerCell = 1.0;
+    const WormCaves worms(seed, options);
+    const std::uint64_t step = 0x9e3779b97f4a7c15ULL;
+    const auto unit = [](std::uint64_t h) { return double(h >> 11) * 0x1.0p-53; };
+    int checked = 0;
+    for (const std::int64_t cx : {-3, 0, 5})
+        for (const std::int64_t cz : {-1, 2}) {
+            const std::vector<WormCaves::Segment> segments = worms.wormsOfCell(cx, cz);
+            ASSERT_EQ(segments.size(), std::size_t(options.segments)) << "one worm per cell";
+            const std::uint64_t cell =
+                strata::terrain::detail::hashCombine(
+                    strata::terrain::detail::hashCombine(strata::terrain::detail::seedHash(deriveSeed(seed, 5)), cx), cz);
+            std::uint64_t h = strata::terrain::detail::mix64(cell + step);
+            double draws[3];
+            for (double& d : draws) {
+                h = strata::terrain::detail::mix64(h + step);
+                d = unit(h);
+            }
+            const glm::dvec3 expected((double(cx) + draws[2]) * options.cellSize,
+                                      options.minY + draws[1] * (options.maxY - options.minY),
+                                      (double(cz) + draws[0]) * options.cellSize);
+            EXPECT_EQ(segments.front().a.x, expected.x) << cx << ", " << cz;
+            EXPECT_EQ(segments.front().a.y, expected.y) << cx << ", " << cz;
+            EXPECT_EQ(segments.front().a.z, expected.z) << cx << ", " << cz;
+            ++checked;
+        }
+    EXPECT_EQ(checked, 6);
 }
