@@ -4,11 +4,13 @@
 // `strata bench landforms [SCENE.toml] [--dem FILE]`: how much a terrain's
 // top surface looks like real land. The scene is loaded (its node tree built,
 // which is when an `erode` node evolves: the "global pass"), its top surface
-// sampled (terrain::sampleTopSurface), measured (terrain::measureLandforms)
-// and checked against the project's goals (terrain/LandformGoals.h); or a
-// digital elevation model is read (terrain::readElevationFile) and measured
-// the same way. This file parses flags and prints; docs/landform-statistics.md
-// says what the numbers mean.
+// sampled (terrain::sampleTopSurface), measured (terrain::measureLandforms,
+// its texture at several cell sizes with terrain::measureSurfaceTextureAtCells,
+// its overhangs with terrain::measureOverhangs) and checked against the
+// project's goals (terrain/LandformGoals.h); or a digital elevation model is
+// read (terrain::readElevationFile) and measured the same way (no overhangs: a
+// DEM has no volume). This file parses flags and prints;
+// docs/landform-statistics.md says what the numbers mean.
 
 #include "Commands.h"
 #include "Progress.h"
@@ -21,6 +23,8 @@
 #include <strata/terrain/ElevationFile.h>
 #include <strata/terrain/LandformGoals.h>
 #include <strata/terrain/LandformStatistics.h>
+#include <strata/terrain/OverhangFraction.h>
+#include <strata/terrain/SurfaceTexture.h>
 #include <strata/terrain/TopSurface.h>
 
 #include <tbb/global_control.h>
@@ -30,6 +34,7 @@
 #include <iostream>
 #include <memory>
 #include <optional>
+#include <vector>
 
 namespace strata::app {
 
@@ -49,6 +54,9 @@ struct LandformArguments
     std::string regionMin, regionMax; ///< "X,Z"
     std::string dem;
     std::optional<double> demCell;
+    std::vector<double> textureCells; ///< metres; empty: the grid's cell times 1, 2 and 8
+    double overhangDepth = terrain::OverhangOptions{}.depth; ///< metres
+    double overhangStep = terrain::OverhangOptions{}.step;   ///< metres
     int threads = 0;
 };
 
@@ -57,18 +65,48 @@ std::string range(double lo, double hi)
     return formatNumber(lo) + ".." + formatNumber(hi);
 }
 
-/// Measures `heights` and prints the statistics and the goals table; the
-/// stage is named `stage` (padded to line up with the stages before it).
+/// The cell sizes the texture is measured at: --texture-cells, or the grid's
+/// cell times 1, 2 and 8. Throws strata::Error (BadInput, naming the flag)
+/// for one that is not a whole multiple of the grid's cell.
+std::vector<double> textureCells(const LandformArguments& args, double gridCell)
+{
+    const std::vector<double> cells =
+        args.textureCells.empty() ? std::vector<double>{gridCell, 2.0 * gridCell, 8.0 * gridCell} : args.textureCells;
+    for (const double cell : cells) {
+        try {
+            terrain::blockFactor(gridCell, cell);
+        } catch (const Error& e) {
+            throw Error(e.kind(), std::string("--texture-cells: ") + e.what(),
+                        ErrorPlace{"", 0, "--texture-cells", formatNumber(cell)});
+        }
+    }
+    return cells;
+}
+
+/// Measures `heights` and prints the statistics, the texture at `cells`, the
+/// overhangs (n/a without) and the goals table; the stages are named
+/// `stage` and `textureStage` (padded to line up with the stages before).
 void measureAndPrint(const std::vector<double>& heights, int width, int height, double cellSize,
-                     const std::string& stage, TerminalProgress& progress)
+                     const std::vector<double>& cells, const std::optional<terrain::OverhangStatistics>& overhangs,
+                     const std::string& stage, const std::string& textureStage, TerminalProgress& progress)
 {
     progress.beginStage(stage);
-    const auto start = Clock::now();
+    auto start = Clock::now();
     const terrain::LandformStatistics stats = terrain::measureLandforms(heights, width, height, cellSize);
     progress.endStage(stage, secondsSince(start), "");
-    std::cout << '\n'
-              << terrain::formatLandformStatistics(stats) << '\n'
-              << terrain::formatLandformGoals(terrain::checkLandformGoals(stats)) << std::flush;
+    progress.beginStage(textureStage);
+    start = Clock::now();
+    const std::vector<terrain::SurfaceTexture> texture =
+        terrain::measureSurfaceTextureAtCells(heights, width, height, cellSize, cells);
+    progress.endStage(textureStage, secondsSince(start), "roughness, spectrum and slopes at " +
+                                                             std::to_string(cells.size()) + " cell sizes");
+    std::cout << '\n' << terrain::formatLandformStatistics(stats) << terrain::formatSurfaceTexture(texture);
+    if (overhangs) {
+        std::cout << terrain::formatOverhangs(*overhangs);
+    } else {
+        std::cout << "overhangs               n/a (a DEM is a height grid: it has no volume)\n";
+    }
+    std::cout << '\n' << terrain::formatLandformGoals(terrain::checkLandformGoals(stats)) << std::flush;
 }
 
 int runDem(const LandformArguments& args, const std::string& threads, TerminalProgress& progress)
@@ -101,7 +139,9 @@ int runDem(const LandformArguments& args, const std::string& threads, TerminalPr
         std::cout << "  note: a cell size under 1 cm looks like degrees (a geographic grid): give --dem-cell METRES"
                   << std::endl;
     }
-    measureAndPrint(dem.heights, dem.width, dem.height, cellSize, "statistics", progress);
+    const std::vector<double> cells = textureCells(args, cellSize);
+    measureAndPrint(dem.heights, dem.width, dem.height, cellSize, cells, std::nullopt, "statistics", "texture   ",
+                    progress);
     return 0;
 }
 
@@ -111,6 +151,15 @@ int runScene(const LandformArguments& args, const std::string& threads, Terminal
     std::optional<glm::dvec2> cropMin, cropMax;
     if (!args.regionMin.empty()) cropMin = parseVec2Flag("--region-min", args.regionMin);
     if (!args.regionMax.empty()) cropMax = parseVec2Flag("--region-max", args.regionMax);
+    const std::vector<double> cells = textureCells(args, args.cell);
+    terrain::OverhangOptions overhangOptions;
+    overhangOptions.depth = args.overhangDepth;
+    overhangOptions.step = args.overhangStep;
+    if (overhangOptions.step > overhangOptions.depth) {
+        throw Error(ErrorKind::BadInput, "--overhang-step = " + formatNumber(overhangOptions.step) +
+                    " m must be at most --overhang-depth = " + formatNumber(overhangOptions.depth) + " m",
+                    ErrorPlace{"", 0, "--overhang-step", formatNumber(overhangOptions.step)});
+    }
 
     const std::string source = args.scenePath.empty() ? std::string("<default scene>") : args.scenePath;
     std::cout << "strata bench landforms: " << source << " (" << threads << ")" << std::endl;
@@ -153,8 +202,16 @@ int runScene(const LandformArguments& args, const std::string& threads, Terminal
                   << " columns have no rock in the region (given y = " << formatNumber(region.min.y) << " m)"
                   << std::endl;
     }
-    measureAndPrint(top.heights, top.width, top.height, top.cellSize, "statistics ",
-                    progress); // as wide as "top surface"
+    progress.beginStage("overhangs  ");
+    start = Clock::now();
+    const terrain::OverhangStatistics overhangs = terrain::measureOverhangs(
+        *scene.field, top, overhangOptions, [&progress](double fraction) { return progress.progress(fraction); });
+    progress.endStage("overhangs  ", secondsSince(start),
+                      withThousands(overhangs.columns) + " columns, " + withThousands(overhangs.samplesPerColumn) +
+                          " density samples each");
+    // Stage names as wide as "top surface".
+    measureAndPrint(top.heights, top.width, top.height, top.cellSize, cells, overhangs, "statistics ", "texture    ",
+                    progress);
     return 0;
 }
 
@@ -165,6 +222,10 @@ int runLandforms(const LandformArguments& args, const CLI::App& command)
             command.count("--cell") > 0) {
             throw Error(ErrorKind::BadInput, "--dem measures a DEM file: give no scene, --cell, --region-min or --region-max with it "
                         "(--dem-cell sets the DEM's cell size)");
+        }
+        if (command.count("--overhang-depth") > 0 || command.count("--overhang-step") > 0) {
+            throw Error(ErrorKind::BadInput, "--overhang-depth and --overhang-step measure a scene's volume: a --dem "
+                        "file has none");
         }
     } else if (args.demCell) {
         throw Error(ErrorKind::BadInput, "--dem-cell is the cell size of a --dem file: give --dem FILE, or --cell for a scene");
@@ -187,7 +248,8 @@ Command registerBenchLandformsCommand(CLI::App& bench)
     auto args = std::make_shared<LandformArguments>();
     CLI::App* landforms = bench.add_subcommand(
         "landforms", "How much a scene's top surface (or a DEM file) looks like real land: closed depressions, "
-                     "flats, Hack's law, slope-area concavity, against the project's goals");
+                     "flats, Hack's law, slope-area concavity, against the project's goals; surface texture "
+                     "(roughness, spectral slopes, slope angles, cliffs) at several cell sizes; overhangs");
     landforms->add_option("scene", args->scenePath, "Scene file (TOML); without one, the embedded default scene")
         ->check(CLI::ExistingFile);
     landforms->add_option("--cell", args->cell, "Distance between the top surface's columns, metres")
@@ -205,6 +267,24 @@ Command registerBenchLandformsCommand(CLI::App& bench)
                      "The DEM's cell size in metres: needed for .npy and .npz (they hold none); overrides an "
                      ".asc file's cellsize")
         ->check(CLI::Range(1e-3, 1e6));
+    landforms
+        ->add_option("--texture-cells", args->textureCells,
+                     "Cell sizes (metres, comma-separated, whole multiples of the grid's cell) to block-average the "
+                     "grid to and measure its texture at: roughness exponent, spectral slopes, slope percentiles, "
+                     "cliffs (default: the grid's cell times 1, 2 and 8)")
+        ->delimiter(',')
+        ->check(CLI::Range(1e-3, 1e9));
+    landforms
+        ->add_option("--overhang-depth", args->overhangDepth,
+                     "Overhangs: how far below the top surface each column is sampled, metres (deeper caves are "
+                     "left out)")
+        ->check(CLI::Range(1e-3, 1e5))
+        ->capture_default_str();
+    landforms
+        ->add_option("--overhang-step", args->overhangStep,
+                     "Overhangs: the largest step between density samples along a column, metres")
+        ->check(CLI::Range(1e-3, 1e5))
+        ->capture_default_str();
     landforms
         ->add_option("--threads", args->threads,
                      "Worker threads (0 = all cores); the numbers are the same for any count")

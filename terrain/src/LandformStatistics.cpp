@@ -3,6 +3,8 @@
 
 #include <strata/terrain/LandformStatistics.h>
 
+#include "HeightGridChecks.h"
+
 #include <strata/Error.h>
 #include <strata/Format.h>
 #include <strata/terrain/FlowRouting.h>
@@ -35,41 +37,6 @@ void checkOptions(const LandformStatisticsOptions& o)
         bad("minChannelSlope", o.minChannelSlope, "a finite number >= 0");
     if (o.slopeAreaBins < 2 || o.slopeAreaBins > 1000) bad("slopeAreaBins", o.slopeAreaBins, "in 2..1000");
     if (o.minCellsPerBin < 1) bad("minCellsPerBin", o.minCellsPerBin, ">= 1");
-}
-
-/// Least squares y = a + b·x, means first (two passes) for accuracy.
-LogLogFit fitLine(const std::vector<double>& x, const std::vector<double>& y)
-{
-    LogLogFit fit;
-    fit.points = x.size();
-    fit.exponent = fit.coefficient = fit.rSquared = NOT_A_NUMBER;
-    if (x.size() < 2) return fit;
-    double mx = 0.0, my = 0.0;
-    for (std::size_t i = 0; i < x.size(); ++i) {
-        mx += x[i];
-        my += y[i];
-    }
-    mx /= double(x.size());
-    my /= double(x.size());
-    double sxx = 0.0, sxy = 0.0, syy = 0.0;
-    for (std::size_t i = 0; i < x.size(); ++i) {
-        const double dx = x[i] - mx, dy = y[i] - my;
-        sxx += dx * dx;
-        sxy += dx * dy;
-        syy += dy * dy;
-    }
-    if (!(sxx > 0.0)) return fit; // all x equal: no line
-    const double b = sxy / sxx, a = my - b * mx;
-    double residual = 0.0;
-    for (std::size_t i = 0; i < x.size(); ++i) {
-        const double e = y[i] - (a + b * x[i]);
-        residual += e * e;
-    }
-    fit.exponent = b;
-    fit.coefficient = std::exp(a);
-    // A constant y lies exactly on the (horizontal) line: r² = 1.
-    fit.rSquared = syy > 0.0 ? std::max(0.0, 1.0 - residual / syy) : 1.0;
-    return fit;
 }
 
 } // namespace
@@ -146,7 +113,7 @@ LandformStatistics measureLandforms(const std::vector<double>& heights, int widt
             x.push_back(std::log(area[c]));
             y.push_back(std::log(longest[c]));
         }
-        s.hack = fitLine(x, y);
+        s.hack = detail::fitLogLog(x, y);
     }
 
     // Slope–area, binned by log A.
@@ -172,7 +139,7 @@ LandformStatistics measureLandforms(const std::vector<double>& heights, int widt
                 y.push_back(sumS[b] / double(count[b]));
             }
         }
-        s.slopeArea = fitLine(x, y);
+        s.slopeArea = detail::fitLogLog(x, y);
         s.concavity = -s.slopeArea.exponent;
         s.steepness = s.slopeArea.coefficient;
     }

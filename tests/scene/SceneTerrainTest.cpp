@@ -105,7 +105,15 @@ TEST(SceneTerrain, EveryNodeTypeIsReachableFromTheSceneFile)
 root = "all"
 [terrain.nodes.all]
 type = "union"
-children = ["cut", "shapes", "stepped", "moved", "image", "graph"]
+children = ["cut", "shapes", "stepped", "moved", "image", "graph", "layered"]
+[terrain.nodes.layered]
+type = "beds"
+child = "moved"
+beds = [[3, 0.9], [5, 0.1], [0, 0.5]]
+dip = 10
+fold_amplitude = 2
+fault_throw = 3
+retreat = 2
 [terrain.nodes.graph]
 type = "heightfield"
 height = "detail"
@@ -400,7 +408,7 @@ TEST(SceneTerrain, TunnelsReachTheSurfaceInTheDefaultScene)
 TEST(SceneTerrain, BadNodesNameFileLineKeyAndValue)
 {
     EXPECT_EQ(parseError(oneNode("blob", "")),
-              "test.toml:4: terrain.nodes.a.type = 'blob' is not a node type (one of box, capsule, cheese, erode, "
+              "test.toml:4: terrain.nodes.a.type = 'blob' is not a node type (one of beds, box, capsule, cheese, erode, "
               "erode_detail, height_add, height_blend, height_clamp, height_constant, height_curve, height_max, "
               "height_min, height_multiply, height_scale, height_subtract, height_terrace, height_warp, heightfield, "
               "image_heightfield, intersect, mask_curvature, mask_height, mask_slope, plane, spaghetti, sphere, "
@@ -428,6 +436,10 @@ TEST(SceneTerrain, BadNodesNameFileLineKeyAndValue)
     EXPECT_EQ(parseError("[terrain.nodes.a]\ntype = \"sphere\"\n"),
               "test.toml:1: terrain.root is required with [terrain.nodes]: the name of the node to sample");
     EXPECT_EQ(parseError("[region]\nmin = [0, 0, 0]\nmax = [0, 1, 1]\n").substr(0, 32), "test.toml:3: region.max must be ");
+    EXPECT_EQ(parseError(oneNode("beds", "child = \"b\"\ntransition = 5\n[terrain.nodes.b]\ntype = \"sphere\"\n")),
+              "test.toml:6: terrain.nodes.a.transition = 5 must be > 0 and at most the thinnest bed (4 m)");
+    EXPECT_EQ(parseError(oneNode("beds", "child = \"b\"\nbeds = [[4, 0.5], [2, 1.5]]\n[terrain.nodes.b]\ntype = \"sphere\"\n")),
+              "test.toml:6: terrain.nodes.a.beds = [ [ 4, 0.5 ], [ 2, 1.5 ] ] [1] hardness = 1.5 must be in 0 .. 1");
     const std::string missing = parseError(oneNode("image_heightfield", "file = \"/nonexistent/h.png\"\n"));
     EXPECT_EQ(missing, "test.toml:5: terrain.nodes.a.file = '/nonexistent/h.png': no such file");
 }

@@ -11,6 +11,8 @@
 #include <strata/Error.h>
 #include <strata/terrain/LandformStatistics.h>
 
+#include "TerrainTestHelpers.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -23,18 +25,14 @@
 namespace {
 
 using namespace strata::terrain;
-
-std::size_t at(int width, int x, int z)
-{
-    return std::size_t(z) * std::size_t(width) + std::size_t(x);
-}
+using strata::test::at;
+using strata::test::errorOf;
+using strata::test::tiltedPlane;
 
 TEST(LandformStatistics, TiltedPlaneHasNoDepressionsNorFlats)
 {
     constexpr int W = 30, H = 20;
-    std::vector<double> heights(W * H);
-    for (int z = 0; z < H; ++z)
-        for (int x = 0; x < W; ++x) heights[at(W, x, z)] = 100.0 - 0.2 * x - 0.05 * z;
+    const std::vector<double> heights = tiltedPlane(W, H, 100.0, -0.2, -0.05);
     const LandformStatistics s = measureLandforms(heights, W, H, 1.0);
     EXPECT_EQ(s.interiorCells, std::size_t((W - 2) * (H - 2)));
     EXPECT_EQ(s.depressionFraction, 0.0);
@@ -195,17 +193,6 @@ TEST(LandformStatistics, TableNamesEachQuantityAndNaForMissingFits)
     const std::string table = formatLandformStatistics(s);
     for (const char* word : {"grid", "relief", "flats", "depressions", "Hack", "slope-area", "n/a", "100 %"})
         EXPECT_NE(table.find(word), std::string::npos) << word << " in\n" << table;
-}
-
-template <class F> std::string errorOf(F f)
-{
-    try {
-        f();
-    } catch (const strata::Error& e) {
-        return e.what();
-    }
-    ADD_FAILURE() << "no strata::Error";
-    return "";
 }
 
 TEST(LandformStatistics, BadInputThrows)
