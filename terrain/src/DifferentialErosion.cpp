@@ -97,6 +97,24 @@ double DifferentialErosionField::density(const glm::dvec3& p) const
     return out;
 }
 
+double DifferentialErosionField::distanceBound(const glm::dvec3& p) const
+{
+    const double d = density(p);
+    if (d == 0.0) return 0.0;
+    const double child = mChild->density(p);
+    const double loose = d / mLipschitz;
+    if (d > 0.0) {
+        // Every surface point q has child(q) <= 0: in the child's air, the
+        // child's own bound holds.
+        return child > 0.0 ? std::max(loose, mChild->distanceBound(p)) : loose;
+    }
+    // Air needs child(q) >= −R, at least (−child − R) / L_child away.
+    const double deepest = mOptions.retreat * (1.0 - mLithology->minHardness());
+    const double L = mChild->lipschitz();
+    const double solid = (-child - deepest) / L;
+    return solid > 0.0 ? std::min(loose, -solid) : loose;
+}
+
 double DifferentialErosionField::exposure(const glm::dvec3& p) const
 {
     const double step = mOptions.smoothing;

@@ -465,3 +465,31 @@ TEST(SceneTerrain, CliRefusesBadNodesAndOverBudgetScenesWithExitTwoWritingNothin
     EXPECT_EQ(runStrata("generate -o " + (dir / "x").string() + " --max-memory lots", dir, output), 2);
     EXPECT_NE(output.find("--max-memory 'lots'"), std::string::npos) << output;
 }
+
+TEST(SceneTerrain, TheCanyonShowcaseLoadsAndItsWallsOverhang)
+{
+    // examples/worlds/canyon2k.toml: the beds node over the canyon. Along a
+    // canyon wall the columns a few metres inside it cross out of rock more
+    // than once (hard beds over the soft beds' alcoves); the plateau's air
+    // above and the rock below are where the scene puts them.
+    const Scene scene = strata::scene::loadScene(std::filesystem::path(STRATA_SOURCE_DIR) / "examples/worlds/canyon2k.toml");
+    ASSERT_TRUE(scene.field);
+    EXPECT_GT(scene.field->density({0.0, 190.0, 0.0}), 0.0);
+    EXPECT_LT(scene.field->density({0.0, -10.0, 0.0}), 0.0);
+    // The floor at (-60, 425) is at about 12 m; walk north to the wall and
+    // count columns with rock over air within 60 m of the floor.
+    int overhanging = 0, columns = 0;
+    for (double z = 330.0; z <= 400.0; z += 1.0) {
+        int ceilings = 0;
+        bool wasRock = true;
+        for (double y = 5.0; y <= 70.0; y += 0.25) {
+            const bool rock = scene.field->density({-60.0, y, z}) < 0.0;
+            ceilings += rock && !wasRock;
+            wasRock = rock;
+        }
+        ++columns;
+        overhanging += ceilings > 0;
+    }
+    std::cout << overhanging << " of " << columns << " columns overhang\n";
+    EXPECT_GT(overhanging, 0);
+}

@@ -54,8 +54,14 @@ public:
     void densities(const PointBlock& points, double* out) const override;
     /// The child's, plus retreat times the gradient bounds of hardness and
     /// of the exposure. The exposure's is loose (it divides by the
-    /// differences' step), so distanceBound() is conservative near faces.
+    /// differences' step); distanceBound() avoids it away from faces.
     double lipschitz() const override { return mLipschitz; }
+    /// Tighter than density / lipschitz() where it can be: rock is only
+    /// removed, and by at most R = retreat · (1 − softest bed), so a point
+    /// in the child's air is at least the child's distanceBound() from any
+    /// surface, and a point in rock at least (−child − R) / L_child; near a
+    /// weathered face, density / lipschitz(). Costs five child evaluations.
+    double distanceBound(const glm::dvec3& p) const override;
     double minDensity() const override { return mChild->minDensity(); }
     /// [child.lo, child.hi + retreat · (1 − min hardness over the box)]:
     /// exposure lies in [0, 1] and rock is only removed.
