@@ -31,6 +31,16 @@ void checkOptions(const StreamPowerOptions& o)
     check(std::isfinite(o.cellSize) && o.cellSize > 0.0, "cell_size", o.cellSize, "must be a finite number > 0");
     check(std::isfinite(o.years) && o.years >= 0.0, "years", o.years, "must be a finite number >= 0");
     check(std::isfinite(o.timeStep) && o.timeStep > 0.0, "time_step", o.timeStep, "must be a finite number > 0");
+    // years / time_step can be 1e13 within the keys' ranges: an int of it
+    // overflowed (and ran 0 steps, a silently uneroded world).
+    const double steps = std::ceil(o.years / o.timeStep - 1e-9);
+    if (!(steps <= MAX_EROSION_STEPS)) {
+        throw Error(ErrorKind::BadInput,
+                    "years / time_step = " + show(o.years) + " / " + show(o.timeStep) + " is " + show(steps) +
+                        " steps, more than the " + show(MAX_EROSION_STEPS) +
+                        " a run may take: raise time_step or lower years",
+                    {"", 0, "time_step", ""});
+    }
     check(std::isfinite(o.uplift), "uplift", o.uplift, "must be a finite number");
     check(std::isfinite(o.erodibility) && o.erodibility >= 0.0, "erodibility", o.erodibility,
           "must be a finite number >= 0");

@@ -179,5 +179,20 @@ TEST(StreamPowerErosion, BadOptionsAreNamed)
     o = {};
     o.diffusivity = -1.0;
     fails(o, "diffusivity");
+    // Step counts that overflowed an int (and ran 0 steps) or cannot finish
+    // are refused before any work, naming both keys.
+    o = {};
+    o.years = 1e10;
+    o.timeStep = 1.0;
+    fails(o, "time_step");
+    try {
+        evolveLandscape(g, 4, 4, {}, o);
+    } catch (const strata::Error& e) {
+        EXPECT_NE(std::string(e.what()).find("years / time_step = 1e+10 / 1"), std::string::npos) << e.what();
+    }
+    o.timeStep = 1e4; // 1e6 steps: the most allowed
+    StreamPowerOptions tiny = o;
+    tiny.years = 2.0 * tiny.timeStep;
+    EXPECT_EQ(evolveLandscape(g, 4, 4, {}, tiny).steps, 2);
     EXPECT_THROW(evolveLandscape(g, 5, 4, {}, StreamPowerOptions{}), strata::Error);
 }

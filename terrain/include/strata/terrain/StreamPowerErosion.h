@@ -34,6 +34,11 @@ struct StreamPowerOptions
     double diffusivity = 0.02;   ///< D, m² per year (hillslope creep), >= 0
 };
 
+/// The most implicit steps one run may take (ceil(years / timeStep)): each
+/// step routes the whole grid, so more cannot finish in any sensible time,
+/// and the count must fit an int. Refused before any work.
+inline constexpr double MAX_EROSION_STEPS = 1e6;
+
 /// What a run leaves, per cell (row-major, width × height).
 struct StreamPowerResult
 {
@@ -54,7 +59,8 @@ struct StreamPowerResult
 /// (uniform uplift) or one factor per cell. `progress` (may be empty) gets
 /// the done fraction after each step; returning false stops with
 /// strata::Error("erosion interrupted"). Throws strata::Error for options out
-/// of range (naming the option) and for a wrong-sized input.
+/// of range (naming the option; more than MAX_EROSION_STEPS steps names
+/// years and time_step) and for a wrong-sized input.
 StreamPowerResult evolveLandscape(std::vector<double> heights, int width, int height,
                                   const std::vector<double>& upliftMap, const StreamPowerOptions& options,
                                   const std::function<bool(double)>& progress = {});
