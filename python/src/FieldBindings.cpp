@@ -9,12 +9,15 @@
 
 #include <strata/Error.h>
 #include <strata/terrain/DensityField.h>
+#include <strata/terrain/NodeRegistry.h>
+#include <strata/Format.h>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
 #include <algorithm>
+#include <cmath>
 #include <array>
 
 namespace strata::python {
@@ -68,6 +71,17 @@ py::array_t<double> evaluate(const FieldPtr& field, const py::array_t<double, py
     const std::size_t count = std::size_t(points.shape(0));
     py::array_t<double> out(count);
     const double* in = points.data();
+    // NaN reached int(NaN) in the heightfields' column lookups (undefined
+    // behaviour): refuse it, and coordinates beyond any scene's, by row.
+    for (std::size_t i = 0; i < 3 * count; ++i) {
+        if (!(std::abs(in[i]) <= terrain::HUGE_LENGTH)) {
+            const std::string at = "points[" + std::to_string(i / 3) + ", " + std::to_string(i % 3) + "]";
+            throw Error(ErrorKind::BadInput,
+                        at + " = " + formatNumber(in[i]) + " must be a finite number of metres within ±" +
+                            formatNumber(terrain::HUGE_LENGTH),
+                        {"", 0, at, formatNumber(in[i])});
+        }
+    }
     double* values = out.mutable_data();
     {
         py::gil_scoped_release release;

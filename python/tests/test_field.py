@@ -39,6 +39,16 @@ def test_evaluate_refuses_bad_shapes(small_scene):
     assert caught.value.key == "threads"
 
 
+def test_evaluate_refuses_non_finite_and_far_points_naming_the_row(small_scene):
+    points = np.zeros((6, 3))
+    for value, column in ((np.nan, 1), (np.inf, 0), (2e9, 2)):
+        bad = points.copy()
+        bad[4, column] = value
+        with pytest.raises(strata.BadInputError, match=r"points\[4, %d\]" % column) as caught:
+            small_scene.field.evaluate(bad)
+        assert caught.value.key == "points[4, %d]" % column
+
+
 def test_lattice_is_the_field_at_its_points(small_scene):
     field = small_scene.field
     origin, spacing, shape = (-3.0, -2.0, 1.5), (0.5, 0.25, 0.75), (9, 17, 5)
