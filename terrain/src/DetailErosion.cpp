@@ -181,7 +181,11 @@ void erodeDetail(std::vector<double>& heights, int width, int height, std::int64
             const int count = whole + (unit(cellHash(wx, wz, 0xFFFF, seed)) < fraction ? 1 : 0);
             for (int k = 0; k < count; ++k) {
                 const std::uint64_t bits = cellHash(wx, wz, std::uint64_t(k), seed);
-                runDroplet(patch, i + unit(bits), j + unit(mix(bits)), o);
+                // i + unit() can round up to i + 1 (unit() < 1, but the sum
+                // rounds to even): a droplet there would read past the row.
+                const double x = std::min(i + unit(bits), std::nextafter(double(i + 1), 0.0));
+                const double z = std::min(j + unit(mix(bits)), std::nextafter(double(j + 1), 0.0));
+                runDroplet(patch, x, z, o);
             }
         }
     }
