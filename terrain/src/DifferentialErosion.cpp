@@ -51,8 +51,7 @@ DifferentialErosionField::DifferentialErosionField(DensityFieldPtr child, std::s
     // difference gradient's Jacobian is at most 2√3·L/step, and normalizing
     // by at least √MIN_GRADIENT_SQUARED = 0.5 doubles it.
     const double childL = mChild->lipschitz();
-    const LithologyOptions& lo = mLithology->options();
-    const bool planar = lo.foldAmplitude == 0.0 && lo.faultThrow == 0.0; // the beds' normal is then exact
+    const bool planar = mLithology->planar(); // the beds' normal is then exact
     const double jacobian = 2.0 * std::sqrt(3.0) / options.smoothing / std::sqrt(MIN_GRADIENT_SQUARED);
     const double stratigraphicL = planar ? 0.0 : mLithology->stratigraphicLipschitz();
     const double exposureL = 2.0 * jacobian * (childL + stratigraphicL);
@@ -64,13 +63,12 @@ double DifferentialErosionField::combine(const glm::dvec3& p, double d0, double 
                                          double* exposureOut) const
 {
     const Lithology& lith = *mLithology;
-    const LithologyOptions& lo = lith.options();
     const double step = mOptions.smoothing;
     const double s0 = lith.stratigraphicHeight(p);
     // The beds' normal: exact for planar beds, by the same differences as
     // the face's where folds or a fault bend them.
     double bx = lith.normal().x, by = lith.normal().y, bz = lith.normal().z;
-    if (lo.foldAmplitude != 0.0 || lo.faultThrow != 0.0) {
+    if (!lith.planar()) {
         bx = lith.stratigraphicHeight({p.x + step, p.y, p.z}) - s0;
         by = lith.stratigraphicHeight({p.x, p.y + step, p.z}) - s0;
         bz = lith.stratigraphicHeight({p.x, p.y, p.z + step}) - s0;

@@ -96,6 +96,9 @@ public:
     /// The unit normal of the bedding planes before folds and faults
     /// (pointing up the sequence).
     const glm::dvec3& normal() const { return mNormal; }
+    /// Whether the beds are parallel planes (no folds, no fault): normal()
+    /// is then the exact gradient of stratigraphicHeight().
+    bool planar() const { return mOptions.foldAmplitude == 0.0 && mOptions.faultThrow == 0.0; }
 
     double minHardness() const { return mMinHardness; }
     double maxHardness() const { return mMaxHardness; }
