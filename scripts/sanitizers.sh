@@ -3,15 +3,15 @@
 # SPDX-FileCopyrightText: The Strata authors
 # SPDX-License-Identifier: MIT
 
-# Sanitizers and fuzzers over the whole test suite, bounded in time (CI runs
-# this after the README's test command, on 2 cores; docs/testing.md has the
-# coverage and the times):
-#  1. ASan + UBSan (clang) in build-sanitize/: every target (the same build
-#     also makes the fuzzers: -DSTRATA_FUZZ=ON instruments all of Strata), then
-#     EVERY ctest test except the few in ASAN_EXCLUDE below, each excluded for
-#     the reason given there. LeakSanitizer is on, with fuzz/lsan.supp (exact
-#     OpenVDB functions, never a whole library).
-#  2. Each fuzzer for FUZZ_SECONDS (default 20 in CI; 0 skips them) on its
+# Sanitizers and fuzzers, bounded in time (CI runs this after the README's
+# test command, on 2 cores; docs/testing.md has the coverage and the times):
+#  1. ASan + UBSan (clang) in build-sanitize/: the libraries' test executables
+#     (ASAN_SUITES below) and what they start (the strata program), then
+#     their tests except ASAN_SLOW, each excluded for the
+#     reason given there. LeakSanitizer is on, with fuzz/lsan.supp (exact
+#     OpenVDB functions, never a whole library). -DSTRATA_FUZZ=ON instruments
+#     all of Strata, so the same build makes the fuzzers.
+#  2. Each fuzzer for FUZZ_SECONDS (default 10 in CI; 0 skips them) on its
 #     seed corpus (scripts/fuzz.sh), with libFuzzer's seed FUZZ_SEED (default
 #     1: reproducible; FUZZ_SEED=0 explores anew). Longer runs are by hand and
 #     documented in docs/testing.md ("Longer fuzzing"), e.g.
@@ -58,7 +58,7 @@
 set -eu
 root=$(cd "$(dirname "$0")/.." && pwd)
 jobs=${JOBS:-2}
-fuzz_seconds=${FUZZ_SECONDS:-20}
+fuzz_seconds=${FUZZ_SECONDS:-10}
 tests=${SANITIZE_TESTS:-.}
 san=$root/build-sanitize
 tsan=$root/build-tsan
@@ -67,60 +67,50 @@ cc=$(command -v clang-15 || command -v clang-14 || command -v clang)
 now() { date +%s; }
 begin=$(now)
 
-# Tests that do not run under the sanitizers, each for a real reason (keep
-# this list short: everything else runs). ctest regular expressions.
-#  - InstalledPackage.*: they install the build and compile the examples
-#    against it with the plain compiler flags, which cannot link an
-#    instrumented library; the installed package is checked in CI's main run.
-#  - GltfValidator.*, TilesClient.*: the work is node's (not instrumented);
-#    the Strata programs they start (strata generate/mesh/bake,
-#    write_glb_samples) run under the sanitizers in the CLI, bake and mesher
-#    tests; and they would need a second npm install into each build folder.
-#  - WebViewer.*: the work is Chromium's and node's (not instrumented); the
-#    strata bake and render it runs are covered by Bake.*, BakeViewer.* and
-#    Cli.* here; and the npm packages would need a second npm ci per folder.
-#  - Python.* are not in this build at all: python/ leaves the module out of
-#    sanitizer builds (an instrumented extension cannot be loaded into
-#    Debian's uninstrumented python3 or Blender); the library code they call
-#    runs here through the C++ tests.
-#  - Slurm.*: starts munge, slurmctld and slurmd as root for a real cluster;
-#    the bakes it runs are the bakes of Bake.* (run here); CI's main run has it.
-#  - ReadmeFigures.*: it compares README.md's figures with the Release (gcc)
-#    build's; this clang build samples the default scene to other counts
-#    (3,211,607 active voxels and 2.486 points per voxel against 3,151,246
-#    and 2.515: a gcc/clang difference not explained yet, see issue 30's
-#    note); its generate run is covered by Cli.* here.
-ASAN_EXCLUDE='^(InstalledPackage|GltfValidator|TilesClient|WebViewer|Slurm|ReadmeFigures)\.|_NOT_BUILT$'
-# Run apart, under ASan + UBSan but without LeakSanitizer:
-#  - StrataView.*: the viewer under Xvfb leaks 240 bytes in 3 allocations made
-#    by the GLX driver that GLFW dlopens and unloads at glfwTerminate(); by
-#    LeakSanitizer's check at exit the module is gone, its frames are
-#    "<unknown module>", and no suppression can name an exact function there.
-NO_LEAK_CHECK='^StrataView\.'
-#  ThreadSanitizer only (on top of the above):
-#  - none.
-TSAN_EXCLUDE=$ASAN_EXCLUDE
-# The GoogleTest executables run under ThreadSanitizer (ctest labels, see above).
+# The GoogleTest executables (ctest labels, tests/CMakeLists.txt) run under
+# ASan + UBSan: the libraries', where all of Strata's code lives (apps/ only
+# parses flags and prints). Not here, each for a reason:
+#  - app_tests, viewer_tests (the CLI and strata-view): flag parsing and
+#    printing around the library calls run here; their hostile flags and
+#    files run in CI's main run, the files' readers under the fuzzers too.
+#  - InstalledPackage.*, Slurm.*, Python.*, GltfValidator.*, TilesClient.*,
+#    WebViewer.*, ReadmeFigures.* (no label): an uninstrumented compiler,
+#    python3, Blender, node or Chromium does the work, or (ReadmeFigures) the
+#    figures are gcc's; CI's main run has them.
+ASAN_SUITES='common_tests|terrain_tests|meshing_tests|world_tests|scene_tests|tile_workers_tests|render_tests|serve_tests'
+# Tests of those suites that run in CI's main run only: each takes 2 s or
+# more in Release (3 to 6 times that under ASan) and repeats, on a whole
+# scene or bake, code that the suite's smaller tests run here:
+#  - every shader variant on llvmpipe (Mesa's compiler at work, not Strata;
+#    the program cache's code runs in the other GlRendererCache tests), and
+#    GL/CPU parity over every feature combination or the default scene;
+#  - bakes of whole worlds (one bake, TheTilesetIsValid3DTiles, and the
+#    compact tile format stay), resumes, renders from tiles, georeferencing;
+#  - sampling the beds, every node or every SIMD target over a region
+#    (the same code runs in the small SampleLevelSet and DensityNodes tests);
+#  - the chunk mesher's dual contouring golden over a large chunk, the noise
+#    throughput measurement, many processes racing for one lock.
+ASAN_SLOW='^Shards/GlRendererVariants\.|^GlRendererCache\.EachVariant|^CpuRenderer\.EveryFeatureCombination|^SnapshotParity\.|^TerrainLayers\.(FarFromTheOrigin|GlMatchesTheCpuWithFour)|^MaterialShading\.HeightWeightsAreAPartition|^Bake\.(TheCli|Resume|EveryTile|AnotherScene|TheWorldRenders)|^BakeTileFormat\.(TheWorldRenders|TheDefaultIsCompact|DecodedCompactTiles)|^BakeViewer\.WritesThePage|^Georeference\.(TheBakesTileset|TheCliTakes)|^Quality\.(Bilinear|Generate|RenderApplies|ReportMeasures)|^Pipeline\.(AMapLarger|ABadMaterialMap)|^Scene(Material\.MapFiles|Layers\.FourLayers)|^SampleLevelSet\.(Beds|SameBitsOnEverySimd|Pruning)|^SampleRegions\.Renormalisation|^BlockEvaluation\.EveryNodeType|^FastNoiseLiteReference\.TheThroughput|^ChunkMeshGolden\.DualContouring|^OutputLock\.ManyProcesses|^World\.DeterministicAcrossThreadCounts'
+#  ThreadSanitizer: no test excluded.
+# The GoogleTest executables run under ThreadSanitizer (ctest labels).
 tsan_suites=${TSAN_SUITES:-world_tests}
 
 start=$(now)
-echo "== ASan + UBSan build ($san), every target"
+echo "== ASan + UBSan build ($san): $ASAN_SUITES and what they start"
 if [ ! -f "$san/CMakeCache.txt" ]; then
   # No web viewer here (-DSTRATA_BUILD_WEB_VIEWER=OFF): its npm ci and bundle are
-  # node's work, and its browser test is excluded above (WebViewer.*).
+  # node's work, and its browser test is not run here.
   cmake -S "$root" -B "$san" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSTRATA_FUZZ=ON \
     -DSTRATA_BUILD_WEB_VIEWER=OFF -DCMAKE_CXX_COMPILER="$cxx" -DCMAKE_C_COMPILER="$cc" >/dev/null
 fi
-nice -n 10 cmake --build "$san" -j "$jobs"
+# scene_tests and serve_tests depend on the strata program they start.
+nice -n 10 cmake --build "$san" -j "$jobs" --target $(echo "$ASAN_SUITES" | tr '|' ' ')
 echo "   built in $(($(now) - start)) s"
 
 start=$(now)
-echo "== ASan + UBSan: the tests matching '$tests', except '$ASAN_EXCLUDE'"
+echo "== ASan + UBSan: $ASAN_SUITES, the tests matching '$tests', except '$ASAN_SLOW'"
 ASAN_OPTIONS="detect_leaks=1:${ASAN_OPTIONS:-}" LSAN_OPTIONS="suppressions=$root/fuzz/lsan.supp:${LSAN_OPTIONS:-}" UBSAN_OPTIONS="print_stacktrace=1:${UBSAN_OPTIONS:-}" \
-  nice -n 10 ctest --test-dir "$san" --output-on-failure -j "$jobs" -R "$tests" -E "$ASAN_EXCLUDE|$NO_LEAK_CHECK"
-echo "== ASan + UBSan without LeakSanitizer: the tests matching '$NO_LEAK_CHECK'"
-ASAN_OPTIONS="detect_leaks=0:${ASAN_OPTIONS:-}" UBSAN_OPTIONS="print_stacktrace=1:${UBSAN_OPTIONS:-}" \
-  nice -n 10 ctest --test-dir "$san" --output-on-failure -j "$jobs" -R "$NO_LEAK_CHECK"
+  nice -n 10 ctest --test-dir "$san" --output-on-failure -j "$jobs" -L "^($ASAN_SUITES)\$" -R "$tests" -E "$ASAN_SLOW"
 echo "   ran in $(($(now) - start)) s"
 
 if [ "$fuzz_seconds" -gt 0 ]; then
@@ -152,10 +142,10 @@ for kind in thread tbb; do
   echo "   $kind: reported, as it must be"
 done
 start=$(now)
-echo "== ThreadSanitizer: every test of $tsan_suites, except '$TSAN_EXCLUDE'"
+echo "== ThreadSanitizer: every test of $tsan_suites"
 # Each GoogleTest executable labels its tests with its name (tests/CMakeLists.txt).
 TSAN_OPTIONS="suppressions=$root/tests/world/tsan.supp halt_on_error=1 ${TSAN_OPTIONS:-}" \
-  nice -n 10 ctest --test-dir "$tsan" --output-on-failure -j "$jobs" -L "^($tsan_suites)\$" -E "$TSAN_EXCLUDE"
+  nice -n 10 ctest --test-dir "$tsan" --output-on-failure -j "$jobs" -L "^($tsan_suites)\$"
 echo "== ThreadSanitizer: the bake's tile pool (tile_workers_tests)"
 TSAN_OPTIONS="suppressions=$root/tests/world/tsan.supp halt_on_error=1 ignore_noninstrumented_modules=1 ${TSAN_OPTIONS:-}" \
   nice -n 10 ctest --test-dir "$tsan" --output-on-failure -j "$jobs" -L '^tile_workers_tests$'

@@ -17,8 +17,11 @@
 #include <tbb/task_arena.h>
 
 #include <algorithm>
-#include <cmath>
 #include <array>
+#include <cmath>
+#include <cstdint>
+#include <utility>
+#include <vector>
 
 namespace strata::python {
 
@@ -37,23 +40,72 @@ template <class Body> void inArena(int threads, const Body& body)
     arena.execute(body);
 }
 
-/// Densities of rows of (x, y, z), `count` of them, into `out`.
+/// Spreads the low 21 bits of v over every third bit (a Morton code's axis).
+std::uint64_t spreadBits(std::uint64_t v)
+{
+    v &= 0x1fffffu;
+    v = (v | v << 32) & 0x1f00000000ffffull;
+    v = (v | v << 16) & 0x1f0000ff0000ffull;
+    v = (v | v << 8) & 0x100f00f00f00f00full;
+    v = (v | v << 4) & 0x10c30c30c30c30c3ull;
+    v = (v | v << 2) & 0x1249249249249249ull;
+    return v;
+}
+
+/// The rows in Z order (Morton order over the points' bounding box, 2^21
+/// steps an axis), ties by row. Scattered points in row order make every
+/// block span the whole scene, so no node can skip work for it and cached
+/// structures (the worm caves' regions) are rebuilt at nearly every point;
+/// in Z order a block is a small box. Values do not depend on the order:
+/// each point's density is the same bits in any block.
+std::vector<std::uint32_t> zOrder(const double* xyz, std::size_t count)
+{
+    if (count == 0) return {};
+    std::array<double, 3> lo{xyz[0], xyz[1], xyz[2]}, hi = lo;
+    for (std::size_t i = 0; i < count; ++i) {
+        for (int a = 0; a < 3; ++a) {
+            lo[a] = std::min(lo[a], xyz[3 * i + a]);
+            hi[a] = std::max(hi[a], xyz[3 * i + a]);
+        }
+    }
+    const double extent = std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
+    const double scale = extent > 0.0 ? double((1u << 21) - 1) / extent : 0.0;
+    std::vector<std::pair<std::uint64_t, std::uint32_t>> keyed(count);
+    for (std::size_t i = 0; i < count; ++i) {
+        std::uint64_t key = 0;
+        for (int a = 0; a < 3; ++a) key |= spreadBits(std::uint64_t((xyz[3 * i + a] - lo[a]) * scale)) << a;
+        keyed[i] = {key, std::uint32_t(i)};
+    }
+    std::sort(keyed.begin(), keyed.end());
+    std::vector<std::uint32_t> order(count);
+    for (std::size_t i = 0; i < count; ++i) order[i] = keyed[i].second;
+    return order;
+}
+
+/// Densities of rows of (x, y, z), `count` of them, into `out`, evaluated
+/// in blocks of nearby points (zOrder).
 void evaluateRows(const DensityField& field, const double* xyz, std::size_t count, double* out, int threads)
 {
+    if (count > std::size_t(UINT32_MAX)) {
+        throw Error(ErrorKind::BadInput, "points: at most " + std::to_string(UINT32_MAX) + " rows a call", {"", 0, "points"});
+    }
+    const std::vector<std::uint32_t> order = zOrder(xyz, count);
     const std::size_t blocks = (count + BLOCK - 1) / BLOCK;
     inArena(threads, [&] {
         tbb::parallel_for(tbb::blocked_range<std::size_t>(0, blocks), [&](const tbb::blocked_range<std::size_t>& r) {
-            std::array<double, BLOCK> x, y, z;
+            std::array<double, BLOCK> x, y, z, values;
             for (std::size_t b = r.begin(); b != r.end(); ++b) {
                 const std::size_t first = b * BLOCK, n = std::min(BLOCK, count - first);
                 for (std::size_t i = 0; i < n; ++i) {
-                    x[i] = xyz[3 * (first + i)];
-                    y[i] = xyz[3 * (first + i) + 1];
-                    z[i] = xyz[3 * (first + i) + 2];
+                    const std::size_t row = order[first + i];
+                    x[i] = xyz[3 * row];
+                    y[i] = xyz[3 * row + 1];
+                    z[i] = xyz[3 * row + 2];
                 }
                 terrain::PointBlock block{x.data(), y.data(), z.data(), n, {}};
                 block.box = terrain::spannedBox(block);
-                field.densities(block, out + first);
+                field.densities(block, values.data());
+                for (std::size_t i = 0; i < n; ++i) out[order[first + i]] = values[i];
             }
         });
     });

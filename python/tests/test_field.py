@@ -20,6 +20,19 @@ def test_evaluate_shape_dtype_and_bits(small_scene):
     assert np.array_equal(field.evaluate(points, threads=1), values)
 
 
+def test_scattered_points_in_any_row_order_give_the_scalar_bits():
+    # Rows are evaluated in blocks of nearby points: a permutation of the
+    # rows permutes the values, and far-apart points (many worm cave
+    # regions) keep the scalar path's bits.
+    field = strata.default_scene().field
+    points = np.random.default_rng(5).uniform(-90.0, 90.0, (20_000, 3))
+    values = field.evaluate(points)
+    permutation = np.random.default_rng(6).permutation(len(points))
+    assert np.array_equal(field.evaluate(points[permutation]), values[permutation])
+    scalar = np.array([field.density(p) for p in points[::97]])
+    assert np.array_equal(values[::97], scalar)
+
+
 def test_evaluate_takes_any_float_layout(small_scene):
     field = small_scene.field
     points = np.random.default_rng(3).uniform(-5.0, 5.0, (777, 3))
