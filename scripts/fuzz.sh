@@ -20,12 +20,7 @@ seconds=${1:-60}
 names=${*:-glb ply obj stl off scene vdb heightmap elevation}
 root=$(cd "$(dirname "$0")/.." && pwd)
 build=${STRATA_FUZZ_BUILD:-$root/build-sanitize}
-cxx=${CXX_FUZZ:-$(command -v clang++-15 || command -v clang++-14 || command -v clang++)}
-cc=${CC_FUZZ:-$(command -v clang-15 || command -v clang-14 || command -v clang)}
-if [ ! -f "$build/CMakeCache.txt" ]; then
-  cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSTRATA_FUZZ=ON \
-    -DCMAKE_CXX_COMPILER="$cxx" -DCMAKE_C_COMPILER="$cc" >/dev/null
-fi
+sh "$root/scripts/configure-sanitize.sh" "$build"
 nice -n 10 cmake --build "$build" --target fuzzers -j "${JOBS:-2}"
 status=0
 for name in $names; do

@@ -62,8 +62,6 @@ fuzz_seconds=${FUZZ_SECONDS:-10}
 tests=${SANITIZE_TESTS:-.}
 san=$root/build-sanitize
 tsan=$root/build-tsan
-cxx=$(command -v clang++-15 || command -v clang++-14 || command -v clang++)
-cc=$(command -v clang-15 || command -v clang-14 || command -v clang)
 now() { date +%s; }
 begin=$(now)
 
@@ -97,12 +95,7 @@ tsan_suites=${TSAN_SUITES:-world_tests}
 
 start=$(now)
 echo "== ASan + UBSan build ($san): $ASAN_SUITES and what they start"
-if [ ! -f "$san/CMakeCache.txt" ]; then
-  # No web viewer here (-DSTRATA_BUILD_WEB_VIEWER=OFF): its npm ci and bundle are
-  # node's work, and its browser test is not run here.
-  cmake -S "$root" -B "$san" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSTRATA_FUZZ=ON \
-    -DSTRATA_BUILD_WEB_VIEWER=OFF -DCMAKE_CXX_COMPILER="$cxx" -DCMAKE_C_COMPILER="$cc" >/dev/null
-fi
+sh "$root/scripts/configure-sanitize.sh" "$san"
 # scene_tests and serve_tests depend on the strata program they start.
 nice -n 10 cmake --build "$san" -j "$jobs" --target $(echo "$ASAN_SUITES" | tr '|' ' ')
 echo "   built in $(($(now) - start)) s"
@@ -123,7 +116,9 @@ fi
 start=$(now)
 echo "== ThreadSanitizer build ($tsan)"
 if [ ! -f "$tsan/CMakeCache.txt" ]; then
+  # -g1: line tables for the reports' stacks, no full debug information.
   cmake -S "$root" -B "$tsan" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSTRATA_TSAN=ON -DSTRATA_BUILD_APPS=OFF \
+    -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 -g1 -DNDEBUG" -DCMAKE_C_FLAGS_RELWITHDEBINFO="-O2 -g1 -DNDEBUG" \
     -DSTRATA_BUILD_WEB_VIEWER=OFF >/dev/null
 fi
 # scene_tests runs the strata executable: it needs the apps.

@@ -127,14 +127,16 @@ MeshoptGlb decodeMeshoptGlb(std::string_view glb, const std::string& name)
         const std::uint64_t viewLength = unsignedMember(view, "byteLength", where, name);
         if (viewLength > std::numeric_limits<std::uint32_t>::max())
             failRead(name, 0, where + " is larger than a GLB can hold");
-        if (job.stride == 0 || job.count > viewLength / job.stride)
-            failRead(name, 0, job.where + ": " + std::to_string(job.count) + " elements of " +
-                                  std::to_string(job.stride) + " bytes do not fit the view's " +
-                                  std::to_string(viewLength) + " bytes");
+        // The extension requires the view's byteLength to be byteStride times
+        // count: the decoded buffer holds exactly that, never a larger claim.
+        if (job.stride == 0 || job.count > viewLength / job.stride || job.count * job.stride != viewLength)
+            failRead(name, 0, where + ": byteLength " + std::to_string(viewLength) + " is not its " +
+                                  std::to_string(job.count) + " elements of " + std::to_string(job.stride) +
+                                  " bytes (EXT_meshopt_compression requires byteStride * count)");
         // No codec inflates more than 64 times (a vertex byte column costs at
-        // least 2 bits per 16 vertices): a larger claim is a broken file, not
-        // a reason to allocate gigabytes.
-        if (job.count * job.stride > 1024 * length + 4096)
+        // least 2 header bits per 16 vertices): a larger claim is a broken
+        // file, not a reason to allocate gigabytes.
+        if (job.count * job.stride > 64 * length + 4096)
             failRead(name, 0, job.where + ": " + std::to_string(job.count * job.stride) + " decoded bytes from " +
                                   std::to_string(length) + " compressed is more than any codec yields");
         if (job.mode == "ATTRIBUTES") {
@@ -162,7 +164,7 @@ MeshoptGlb decodeMeshoptGlb(std::string_view glb, const std::string& name)
                                   "' is not NONE, OCTAHEDRAL, QUATERNION or EXPONENTIAL");
 
         job.at = align4(cursor);
-        cursor = job.at + std::size_t(viewLength); // the view's full length, as declared
+        cursor = job.at + std::size_t(viewLength); // = count * byteStride (checked above)
         if (cursor > std::numeric_limits<std::uint32_t>::max()) failRead(name, 0, "decoded data exceed 4 GiB");
         view["buffer"] = 1; // the decoded buffer, added after parsing
         view["byteOffset"] = job.at;

@@ -36,6 +36,15 @@ namespace detail {
 
 /// Parses "all" or comma-separated indices and ranges "A-B" into ascending
 /// indices below `count`, without repeats.
+int tilesAlong(std::int64_t extentVoxels, std::int64_t tileVoxels, std::int64_t& total, const std::string& shownSize)
+{
+    const std::int64_t n = (extentVoxels + tileVoxels - 1) / tileVoxels;
+    if (n > MAX_TILES_ALONG || total * n > MAX_TILES)
+        badFlag("--tile-size", shownSize, "cuts the region into more than " + std::to_string(MAX_TILES) + " tiles");
+    total *= n;
+    return int(n);
+}
+
 std::vector<int> parseTileSelection(const std::string& text, int count)
 {
     std::vector<int> out;
@@ -155,14 +164,7 @@ BakePlan planBake(const Scene& scene, const BakeOptions& options)
                         formatNumber(double(extent - extent % coarse) * scene.voxelSize) + " m");
     }
     std::int64_t total = 1;
-    for (int a = 0; a < 3; ++a) {
-        const std::int64_t extent = plan.maxVoxel[a] - plan.minVoxel[a];
-        const std::int64_t n = (extent + tileVoxels - 1) / tileVoxels;
-        total *= n;
-        if (n > 1 << 20 || total > 1 << 24)
-            badFlag("--tile-size", shownSize, "cuts the region into more than 16,777,216 tiles");
-        plan.counts[a] = int(n);
-    }
+    for (int a = 0; a < 3; ++a) plan.counts[a] = detail::tilesAlong(plan.maxVoxel[a] - plan.minVoxel[a], tileVoxels, total, shownSize);
     plan.skirtDepth = options.skirtDepth > 0.0 ? options.skirtDepth : 2.0 * double(coarse) * scene.voxelSize;
     plan.tileFormat = options.tileFormat;
     plan.selected = detail::parseTileSelection(options.tiles, plan.tileCount());

@@ -148,9 +148,10 @@ TerrainExportPlan planTerrainExport(const Scene& scene, const TerrainExportOptio
                         std::to_string(MAX_HEIGHT_VOXELS) + " voxels up: lower [region] or raise voxel_size",
                     {scene.source, 0, "region"});
     // Whole tiles over x and z (engines want equal tiles).
+    std::int64_t total = 1;
     const auto tilesAlong = [&](int a) {
-        const std::int64_t extent = std::max<std::int64_t>(maxVoxel[a] - plan.minVoxel[a], 1);
-        return int((extent + plan.tileVoxels - 1) / plan.tileVoxels);
+        return detail::tilesAlong(std::max<std::int64_t>(maxVoxel[a] - plan.minVoxel[a], 1), plan.tileVoxels, total,
+                                  shownSize);
     };
     plan.tilesX = tilesAlong(0);
     plan.tilesZ = tilesAlong(2);

@@ -4,6 +4,7 @@
 #include <strata/terrain/Caves.h>
 
 #include "WormSimd.h"
+#include "DeterministicMath.h"
 
 #include "NodeRegistrations.h"
 #include <strata/Format.h>
@@ -290,7 +291,10 @@ std::vector<WormCaves::Segment> WormCaves::wormsOfCell(std::int64_t cx, std::int
             const double t = 0.13 * (i + 0.5);
             const double yaw = yaw0 + 2.0 * o.turn * wander(yawSeed, t);
             const double pitch = o.maxPitch * std::clamp(1.6 * wander(pitchSeed, t), -1.0, 1.0);
-            const glm::dvec3 dir(std::cos(pitch) * std::cos(yaw), std::sin(pitch), std::cos(pitch) * std::sin(yaw));
+            double sinPitch = 0.0, cosPitch = 1.0, sinYaw = 0.0, cosYaw = 1.0;
+            detail::sinCos(pitch, sinPitch, cosPitch);
+            detail::sinCos(yaw, sinYaw, cosYaw);
+            const glm::dvec3 dir(cosPitch * cosYaw, sinPitch, cosPitch * sinYaw);
             const glm::dvec3 to = at + o.segmentLength * dir;
             const double rb = radiusAt(i + 1);
             segments.push_back({at, to, ra, rb});

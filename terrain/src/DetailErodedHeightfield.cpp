@@ -41,21 +41,31 @@ public:
     void add(std::int64_t bx, std::int64_t bz, std::shared_ptr<const Block> block)
     {
         std::lock_guard<std::mutex> lock(mMutex);
+        const std::size_t bytes = bytesOf(*block);
         if (!mBlocks.emplace(std::make_pair(bx, bz), std::move(block)).second) return;
         mOrder.emplace_back(bx, bz);
+        mBytes += bytes;
         ++mComputed;
-        if (mOrder.size() > CAPACITY) {
-            mBlocks.erase(mOrder.front());
+        while (mOrder.size() > MIN_BLOCKS && mBytes > BYTE_BUDGET) {
+            const auto oldest = mBlocks.find(mOrder.front());
+            mBytes -= bytesOf(*oldest->second);
+            mBlocks.erase(oldest);
             mOrder.pop_front();
         }
     }
     std::size_t computed() const { return mComputed.load(); }
 
 private:
-    static constexpr std::size_t CAPACITY = 1024; // about 40 MiB at 64-cell blocks
+    // Bounded in bytes, not blocks: a block of 64 cells with the default halo
+    // of 24 is 113² floats (51 KiB: about 1,300 fit), one of 1024 cells up to
+    // 2049² (16 MiB: the budget still keeps the 4 a query can blend).
+    static constexpr std::size_t BYTE_BUDGET = std::size_t(64) << 20;
+    static constexpr std::size_t MIN_BLOCKS = 4;
+    static std::size_t bytesOf(const Block& b) { return sizeof(Block) + b.change.capacity() * sizeof(float); }
     std::mutex mMutex;
     std::map<std::pair<std::int64_t, std::int64_t>, std::shared_ptr<const Block>> mBlocks;
     std::deque<std::pair<std::int64_t, std::int64_t>> mOrder;
+    std::size_t mBytes = 0;
     std::atomic<std::size_t> mComputed{0};
 };
 

@@ -4,6 +4,7 @@
 #include <strata/terrain/DetailErosion.h>
 
 #include "ShowValue.h"
+#include "DeterministicMath.h"
 
 #include <strata/Error.h>
 
@@ -84,7 +85,7 @@ void runDroplet(Patch& patch, double x, double z, const DetailErosionOptions& o)
         patch.sample(x, z, h, gx, gz);
         dx = dx * o.inertia - gx * (1.0 - o.inertia);
         dz = dz * o.inertia - gz * (1.0 - o.inertia);
-        const double length = std::hypot(dx, dz);
+        const double length = detail::hypot(dx, dz);
         if (!(length > 1e-12)) break; // a flat: the droplet soaks in
         dx /= length;
         dz /= length;
@@ -115,7 +116,7 @@ void runDroplet(Patch& patch, double x, double z, const DetailErosionOptions& o)
 /// gives it a quarter of the excess difference, all read from the previous sweep.
 void relaxTalus(std::vector<double>& h, int w, int hgt, const DetailErosionOptions& o)
 {
-    const double talus = std::tan(o.talusAngle * M_PI / 180.0) * o.cellSize;
+    const double talus = detail::tanDegrees(o.talusAngle) * o.cellSize;
     std::vector<double> change(h.size());
     for (int sweep = 0; sweep < o.talusSweeps; ++sweep) {
         std::fill(change.begin(), change.end(), 0.0);

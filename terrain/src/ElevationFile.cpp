@@ -27,6 +27,10 @@ namespace strata::terrain {
 namespace {
 
 constexpr std::uint64_t MAX_DIMENSION = std::uint64_t(std::numeric_limits<int>::max());
+/// The most cells a DEM may have: 2^28, a 16384 x 16384 grid, 2 GiB of
+/// heights as doubles. Larger grids (or a few bytes claiming one) are
+/// refused before anything is allocated for them.
+constexpr std::uint64_t MAX_CELLS = std::uint64_t(1) << 28;
 
 [[noreturn]] void fail(const std::string& name, const std::string& what, int line = 0)
 {
@@ -35,6 +39,18 @@ constexpr std::uint64_t MAX_DIMENSION = std::uint64_t(std::numeric_limits<int>::
     place.line = line;
     throw Error(ErrorKind::BadInput, name + (line > 0 ? ":" + std::to_string(line) : std::string()) + ": " + what,
                 place);
+}
+
+/// rows * columns (each <= MAX_DIMENSION, so no overflow), at most MAX_CELLS.
+std::uint64_t gridCells(std::uint64_t rows, std::uint64_t columns, const std::string& name)
+{
+    const std::uint64_t cells = rows * columns;
+    if (cells > MAX_CELLS) {
+        fail(name, std::to_string(rows) + " rows of " + std::to_string(columns) + " values are " + std::to_string(cells) +
+                       " cells, more than the " + std::to_string(MAX_CELLS) +
+                       " (16384 x 16384) a DEM may have: crop or resample it");
+    }
+    return cells;
 }
 
 // ---------------------------------------------------------------------------
@@ -212,19 +228,32 @@ std::string showShape(const std::vector<std::uint64_t>& shape)
     return text + (shape.size() == 1 ? ",)" : ")");
 }
 
-ElevationGrid parseNpy(std::string_view bytes, const std::string& name)
+/// What a .npy header says of its array, checked: a supported type, two
+/// dimensions, at most MAX_CELLS cells. `prefix` needs only hold the header.
+struct NpyLayout
 {
-    const NpyHeader header = parseNpyHeader(bytes, name);
+    NpyHeader header;
+    std::uint64_t rows = 0, columns = 0, cells = 0;
     int itemSize = 0;
     bool isFloat = false;
+
+    /// The bytes a whole .npy of this layout has.
+    std::uint64_t fileSize() const { return header.dataOffset + cells * std::uint64_t(itemSize); }
+};
+
+NpyLayout npyLayout(std::string_view prefix, const std::string& name)
+{
+    NpyLayout layout;
+    layout.header = parseNpyHeader(prefix, name);
+    const NpyHeader& header = layout.header;
     if (header.descr == "<i2")
-        itemSize = 2;
+        layout.itemSize = 2;
     else if (header.descr == "<i4")
-        itemSize = 4;
+        layout.itemSize = 4;
     else if (header.descr == "<f4")
-        itemSize = 4, isFloat = true;
+        layout.itemSize = 4, layout.isFloat = true;
     else if (header.descr == "<f8")
-        itemSize = 8, isFloat = true;
+        layout.itemSize = 8, layout.isFloat = true;
     else {
         fail(name,
              "the array's type '" + header.descr +
@@ -233,15 +262,33 @@ ElevationGrid parseNpy(std::string_view bytes, const std::string& name)
     if (header.shape.size() != 2) {
         fail(name, "the array has shape " + showShape(header.shape) + ": a DEM is a 2D array (rows, columns)");
     }
-    const std::uint64_t rows = header.shape[0], columns = header.shape[1];
-    if (rows == 0 || columns == 0) fail(name, "the array of shape " + showShape(header.shape) + " is empty");
-    const std::uint64_t cells = rows * columns; // both <= 2^31 − 1: no overflow
-    const std::uint64_t available = bytes.size() - header.dataOffset;
-    if (cells > available / std::uint64_t(itemSize) || cells * std::uint64_t(itemSize) != available) {
-        fail(name, "the array of shape " + showShape(header.shape) + " and type '" + header.descr + "' needs " +
-                       std::to_string(cells) + " x " + std::to_string(itemSize) + " bytes, the file holds " +
-                       std::to_string(available) + " after the header");
+    layout.rows = header.shape[0];
+    layout.columns = header.shape[1];
+    if (layout.rows == 0 || layout.columns == 0) fail(name, "the array of shape " + showShape(header.shape) + " is empty");
+    layout.cells = gridCells(layout.rows, layout.columns, name);
+    return layout;
+}
+
+/// Refuses a .npy of `size` bytes whose data is not exactly the layout's.
+void checkNpySize(const NpyLayout& layout, std::uint64_t size, const std::string& name)
+{
+    if (size != layout.fileSize()) {
+        fail(name, "the array of shape " + showShape(layout.header.shape) + " and type '" + layout.header.descr +
+                       "' needs " + std::to_string(layout.cells) + " x " + std::to_string(layout.itemSize) +
+                       " bytes, the file holds " + std::to_string(size - std::min(size, layout.header.dataOffset)) +
+                       " after the header");
     }
+}
+
+ElevationGrid parseNpy(std::string_view bytes, const std::string& name)
+{
+    const NpyLayout layout = npyLayout(bytes, name);
+    checkNpySize(layout, bytes.size(), name);
+    const NpyHeader& header = layout.header;
+    const std::uint64_t rows = layout.rows, columns = layout.columns, cells = layout.cells;
+    const std::uint64_t available = bytes.size() - header.dataOffset;
+    const int itemSize = layout.itemSize;
+    const bool isFloat = layout.isFloat;
 
     ElevationGrid grid;
     grid.format = "npy";
@@ -365,11 +412,15 @@ std::vector<ZipEntry> zipDirectory(std::string_view bytes, const std::string& na
     return entries;
 }
 
-/// The bytes of a member, stored (method 0) or deflated (method 8, as
-/// np.savez_compressed and some packagers write: inflated with zlib); errors
-/// for anything else, a size over 4 GiB or more than 1032 times its packed
-/// size (deflate's limit), and a failed CRC.
-std::string zipMember(std::string_view bytes, const ZipEntry& e, const std::string& name)
+/// The first `limit` bytes of a member (all of it by default), stored
+/// (method 0) or deflated (method 8, as np.savez_compressed and some
+/// packagers write: inflated with zlib). Inflated a step at a time, so
+/// memory follows the bytes the data really yields, never the size its
+/// header claims; the CRC is checked when the whole member is read. Errors
+/// for other methods, 4 GiB or more, more than 1032 times its packed size
+/// (deflate's limit) and a failed CRC.
+std::string zipMember(std::string_view bytes, const ZipEntry& e, const std::string& name,
+                      std::uint64_t limit = std::numeric_limits<std::uint64_t>::max())
 {
     if (e.flags & 1) fail(name, "member '" + e.name + "' is encrypted, which is not supported");
     if (e.method != 0 && e.method != 8) {
@@ -378,7 +429,10 @@ std::string zipMember(std::string_view bytes, const ZipEntry& e, const std::stri
     }
     if (e.method == 0 && e.compressedSize != e.size)
         fail(name, "stored member '" + e.name + "' has different packed and unpacked sizes");
-    if (e.size > (std::uint64_t(1) << 32) || (e.method == 8 && e.size > 1032 * e.compressedSize + 1024))
+    // zlib counts in 32 bits: 2^32 bytes would read as 0.
+    constexpr std::uint64_t FOUR_GIB = std::uint64_t(1) << 32;
+    if (e.size >= FOUR_GIB || e.compressedSize >= FOUR_GIB ||
+        (e.method == 8 && e.size > 1032 * e.compressedSize + 1024))
         fail(name, "member '" + e.name + "' claims " + std::to_string(e.size) + " bytes, more than it can hold");
     if (!fits(bytes, e.localOffset, 30) ||
         bytes.substr(std::size_t(e.localOffset), 4) != std::string_view("PK\x03\x04", 4)) {
@@ -389,28 +443,43 @@ std::string zipMember(std::string_view bytes, const ZipEntry& e, const std::stri
     if (!fits(bytes, data, e.compressedSize))
         fail(name, "member '" + e.name + "' runs past the end of the file (truncated?)");
     const std::string_view packed = bytes.substr(std::size_t(data), std::size_t(e.compressedSize));
+    const bool whole = limit >= e.size;
     std::string content;
     if (e.method == 0) {
-        content = std::string(packed);
+        content = std::string(packed.substr(0, std::size_t(std::min(limit, e.size))));
     } else {
-        content.assign(std::size_t(e.size), '\0');
+        // One byte more than the member claims when reading it whole, so a
+        // stream that yields more is seen.
+        const std::uint64_t room = whole ? e.size + 1 : limit;
         z_stream stream{};
         if (inflateInit2(&stream, -MAX_WBITS) != Z_OK) fail(name, "zlib could not start inflating");
         stream.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(packed.data()));
         stream.avail_in = uInt(packed.size());
-        stream.next_out = reinterpret_cast<Bytef*>(content.data());
-        stream.avail_out = uInt(content.size());
-        const int status = inflate(&stream, Z_FINISH);
-        const std::uint64_t produced = stream.total_out;
+        int status = Z_OK;
+        while (status == Z_OK && content.size() < room) {
+            const std::size_t have = content.size();
+            const std::size_t step = std::size_t(std::min<std::uint64_t>(room - have, std::uint64_t(1) << 20));
+            content.resize(have + step);
+            stream.next_out = reinterpret_cast<Bytef*>(content.data() + have);
+            stream.avail_out = uInt(step);
+            status = inflate(&stream, Z_NO_FLUSH);
+            content.resize(have + step - stream.avail_out);
+        }
         inflateEnd(&stream);
-        if (status != Z_STREAM_END || produced != e.size) {
+        const bool complete = whole ? status == Z_STREAM_END && content.size() == e.size
+                                    : content.size() == limit || status == Z_STREAM_END;
+        if (!complete) {
             fail(name, "member '" + e.name + "' is not valid deflate data of " + std::to_string(e.size) +
                            " bytes (corrupt file)");
         }
     }
-    if (::crc32(0L, reinterpret_cast<const Bytef*>(content.data()), uInt(content.size())) != e.crc) fail(name, "member '" + e.name + "' fails its CRC-32 check (corrupt file)");
+    if (whole && ::crc32(0L, reinterpret_cast<const Bytef*>(content.data()), uInt(content.size())) != e.crc)
+        fail(name, "member '" + e.name + "' fails its CRC-32 check (corrupt file)");
     return content;
 }
+
+/// Enough of a .npy member to hold its header (at most 64 KiB long).
+constexpr std::uint64_t NPY_HEADER_BYTES = 12 + 65536;
 
 ElevationGrid parseNpz(std::string_view bytes, const std::string& name)
 {
@@ -421,13 +490,14 @@ ElevationGrid parseNpz(std::string_view bytes, const std::string& name)
         if (e.name == "elevation.npy") chosen = &e;
     }
     if (!chosen) {
-        // The only 2D array; deflated members cannot be looked into.
+        // The only 2D array, found by each member's header alone.
         std::vector<const ZipEntry*> planes;
         std::string names;
         for (const ZipEntry& e : entries) {
             if (!isArray(e)) continue;
             names += (names.empty() ? "" : ", ") + e.name;
-            const NpyHeader header = parseNpyHeader(zipMember(bytes, e, name), name + " member '" + e.name + "'");
+            const NpyHeader header =
+                parseNpyHeader(zipMember(bytes, e, name, NPY_HEADER_BYTES), name + " member '" + e.name + "'");
             if (header.shape.size() == 2) planes.push_back(&e);
         }
         if (planes.size() > 1) {
@@ -442,7 +512,10 @@ ElevationGrid parseNpz(std::string_view bytes, const std::string& name)
         }
         chosen = planes.front();
     }
-    ElevationGrid grid = parseNpy(zipMember(bytes, *chosen, name), name + " member '" + chosen->name + "'");
+    // The header's layout against the member's size before inflating it all.
+    const std::string member = name + " member '" + chosen->name + "'";
+    checkNpySize(npyLayout(zipMember(bytes, *chosen, name, NPY_HEADER_BYTES), member), chosen->size, member);
+    ElevationGrid grid = parseNpy(zipMember(bytes, *chosen, name), member);
     grid.format = "npz";
     grid.member = chosen->name;
     return grid;
@@ -605,7 +678,7 @@ ElevationGrid parseAsc(std::string_view text, const std::string& name)
     const Field& y = require("yllcorner", "yllcenter");
     const double half = 0.5 * cellSize;
 
-    const std::uint64_t cells = rows * columns; // both <= 2^31 − 1: no overflow
+    const std::uint64_t cells = gridCells(rows, columns, name);
     // Every value takes at least one character and one separator (the last needs none).
     if (cells > tokens.remaining() / 2 + 1) {
         fail(name, std::to_string(rows) + " rows of " + std::to_string(columns) + " values cannot fit in the " +

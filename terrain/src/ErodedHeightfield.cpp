@@ -4,6 +4,7 @@
 #include <strata/terrain/ErodedHeightfield.h>
 
 #include "ShowValue.h"
+#include "DeterministicMath.h"
 
 #include <strata/Error.h>
 #include <strata/Stopwatch.h>
@@ -80,6 +81,11 @@ public:
         std::lock_guard<std::mutex> lock(mMutex);
         mEntries.emplace_back(key, std::move(grid));
         if (mEntries.size() > 4) mEntries.erase(mEntries.begin());
+    }
+    void clear()
+    {
+        std::lock_guard<std::mutex> lock(mMutex);
+        mEntries.clear();
     }
     /// Only one evolution at a time per key: a second thread waits for it.
     std::mutex& running() { return mRunning; }
@@ -186,9 +192,9 @@ std::shared_ptr<ErodedGrid> evolve(const std::vector<double>& input, const std::
     g->heights = std::move(run.heights);
     const std::size_t count = g->heights.size();
     g->masks.resize(count);
-    const double river = std::log10(o.riverArea);
+    const double river = detail::log10(o.riverArea);
     for (std::size_t i = 0; i < count; ++i) {
-        const double flow = std::log10(run.area[i]);
+        const double flow = detail::log10(run.area[i]);
         const double water = std::max(smoothstep(river - 0.25, river + 0.25, flow), smoothstep(0.0, 0.5, run.lakeDepth[i]));
         g->masks[i] = glm::vec4(float(flow), float(run.wear[i]), float(run.sediment[i]), float(water));
     }
@@ -214,7 +220,7 @@ std::shared_ptr<ErodedGrid> evolve(const std::vector<double>& input, const std::
             g->hi = std::max(g->hi, h);
         }
     }
-    g->slopeBound = std::hypot(steepX, steepZ) / g->cellSize;
+    g->slopeBound = detail::hypot(steepX, steepZ) / g->cellSize;
     run.area.clear();
     run.wear.clear();
     run.sediment.clear();
@@ -299,6 +305,11 @@ ErodedHeightfield::ErodedHeightfield(HeightNodePtr input, HeightNodePtr upliftMa
         }
     }
     setSlopeBound(mGrid->slopeBound);
+}
+
+void ErodedHeightfield::clearCache()
+{
+    cache().clear();
 }
 
 double ErodedHeightfield::height(double x, double z) const

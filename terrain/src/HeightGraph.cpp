@@ -4,6 +4,7 @@
 #include <strata/terrain/HeightGraph.h>
 
 #include "ShowValue.h"
+#include "DeterministicMath.h"
 
 #include <strata/Error.h>
 
@@ -309,7 +310,7 @@ HeightTerrace::HeightTerrace(HeightNodePtr child, double step, double sharpness)
 double HeightTerrace::map(double h) const
 {
     const double s = h / mStep, k = std::floor(s);
-    return mStep * (k + std::pow(s - k, mSharpness));
+    return mStep * (k + detail::pow(s - k, mSharpness));
 }
 
 Interval HeightTerrace::heightBounds(const glm::dvec2& min, const glm::dvec2& max) const
@@ -428,7 +429,7 @@ void HeightMask::heights(const double* x, const double* z, std::size_t n, double
         const double c = h[i], e = h[n + i], w = h[2 * n + i], s = h[3 * n + i], nn = h[4 * n + i];
         double v;
         if (mOptions.source == MaskSource::Slope) {
-            v = std::hypot((e - w) / (2.0 * r), (s - nn) / (2.0 * r));
+            v = detail::hypot((e - w) / (2.0 * r), (s - nn) / (2.0 * r));
         } else {
             v = -(e + w + s + nn - 4.0 * c) / (r * r);
         }

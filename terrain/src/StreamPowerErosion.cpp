@@ -6,6 +6,7 @@
 #include <strata/terrain/FlowRouting.h>
 
 #include "ShowValue.h"
+#include "DeterministicMath.h"
 
 #include <strata/Error.h>
 
@@ -60,7 +61,7 @@ double solveIncision(double c, double f, double n)
 {
     double lo = 0.0, hi = c, x = c;
     for (int i = 0; i < 40; ++i) {
-        const double xn = std::pow(x, n);
+        const double xn = detail::pow(x, n);
         const double g = x - c + f * xn;
         if (g > 0.0) hi = x;
         else lo = x;
@@ -171,8 +172,8 @@ StreamPowerResult evolveLandscape(std::vector<double> heights, int width, int he
             const double drop = lifted - heights[rcv];
             if (underwater || drop <= 0.0 || options.erodibility == 0.0) continue;
             const double distance = receiverDistance(routing, i, dx);
-            const double f = options.erodibility * dt * std::pow(area[i], options.areaExponent) /
-                             std::pow(distance, options.slopeExponent);
+            const double f = options.erodibility * dt * detail::pow(area[i], options.areaExponent) /
+                             detail::pow(distance, options.slopeExponent);
             const double x = options.slopeExponent == 1.0 ? drop / (1.0 + f) : solveIncision(drop, f, options.slopeExponent);
             heights[i] = heights[rcv] + x;
         }

@@ -4,6 +4,7 @@
 #include <strata/terrain/Transforms.h>
 
 #include "NodeRegistrations.h"
+#include "DeterministicMath.h"
 #include <strata/Format.h>
 #include <strata/terrain/NodeRegistry.h>
 
@@ -114,7 +115,7 @@ TerraceField::TerraceField(DensityFieldPtr child, double step, double sharpness)
 double TerraceField::terrace(double y) const
 {
     const double s = y / mStep, k = std::floor(s);
-    return mStep * (k + std::pow(s - k, mSharpness));
+    return mStep * (k + detail::pow(s - k, mSharpness));
 }
 
 double TerraceField::density(const glm::dvec3& p) const

@@ -212,7 +212,7 @@ TEST(CliSceneErrors, AnErosionPassOverTheMemoryBudgetIsRefusedBeforeItRuns)
                                                             "cell_size = 1.0\n[terrain.nodes.b]\n"
                                                             "type = \"height_constant\"\n");
     }
-    for (const std::string command : {"generate " + (dir / "big.toml").string() + " -o " + (dir / "out").string() +
+    for (const std::string& command : {"generate " + (dir / "big.toml").string() + " -o " + (dir / "out").string() +
                                           " -q --max-memory 64MiB",
                                       "bake " + (dir / "big.toml").string() + " --plan --max-memory 64MiB"}) {
         const CommandResult run = runStrata(command, dir);

@@ -293,6 +293,61 @@ TEST(GltfCompact, ABrokenCompressedViewIsAnErrorNamingIt)
     EXPECT_THROW(parseGlb(stride, "stride.glb"), strata::Error);
 }
 
+namespace {
+
+/// The same .glb with another JSON chunk (the binary chunk kept).
+std::string withJson(const std::string& glb, const nlohmann::json& gltf)
+{
+    std::uint32_t jsonLength;
+    std::memcpy(&jsonLength, glb.data() + 12, 4);
+    std::string text = gltf.dump();
+    text.resize((text.size() + 3) / 4 * 4, ' ');
+    const std::string bin = glb.substr(20 + jsonLength);
+    std::string out = glb.substr(0, 8);
+    const auto u32 = [&out](std::size_t v) {
+        const auto w = std::uint32_t(v);
+        out.append(reinterpret_cast<const char*>(&w), 4);
+    };
+    u32(20 + text.size() + bin.size());
+    u32(text.size());
+    out += "JSON" + text + bin;
+    return out;
+}
+
+} // namespace
+
+TEST(GltfCompact, AViewClaimingMoreThanItsElementsIsRefusedBeforeAllocating)
+{
+    // Seen in a review: one view's byteLength set to 4,000,000,000 in a
+    // 141 KB tile made the reader allocate 4 GB and succeed.
+    const TriangleMesh mesh = sphereMesh(glm::dvec3(0.0));
+    CompactGlbOptions options;
+    options.positionStep = STEP;
+    const std::string good = encodeCompactGlb({GlbPart{&mesh}}, mesh.origin, "s", options);
+    ASSERT_NO_THROW(parseGlb(withJson(good, glbJson(good)), "same.glb"));
+    for (const std::uint64_t claim : {std::uint64_t(4000000000u), std::uint64_t(1) << 20}) {
+        nlohmann::json gltf = glbJson(good);
+        gltf["bufferViews"][0]["byteLength"] = claim;
+        try {
+            parseGlb(withJson(good, gltf), "huge.glb");
+            FAIL() << "a view of " << claim << " bytes was read";
+        } catch (const strata::Error& e) {
+            const std::string what = e.what();
+            EXPECT_NE(what.find("huge.glb"), std::string::npos) << what;
+            EXPECT_NE(what.find("byteLength " + std::to_string(claim)), std::string::npos) << what;
+        }
+    }
+    // A count that claims more decoded bytes than 64 times the compressed
+    // ones (the most the attribute codec yields) is refused too.
+    nlohmann::json gltf = glbJson(good);
+    auto& ext = gltf["bufferViews"][0]["extensions"]["EXT_meshopt_compression"];
+    const std::uint64_t stride = ext["byteStride"].get<std::uint64_t>();
+    const std::uint64_t count = 64 * ext["byteLength"].get<std::uint64_t>() / stride + 4096;
+    ext["count"] = count;
+    gltf["bufferViews"][0]["byteLength"] = count * stride;
+    EXPECT_THROW(parseGlb(withJson(good, gltf), "ratio.glb"), strata::Error);
+}
+
 TEST(GltfCompact, WiderNormalsAreShortsAndCloser)
 {
     const TriangleMesh mesh = sphereMesh(glm::dvec3(0.0));

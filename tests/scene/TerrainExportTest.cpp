@@ -329,6 +329,16 @@ TEST(TerrainExport, BadSettingsAreRefusedWithTheNumbers)
     o = optionsFor(TerrainEngine::Raw, dir);
     o.tiles = "9";
     EXPECT_NE(message(o).find("4 tiles"), std::string::npos) << message(o);
+    // A region of 2^20 tiles along x and as many along z: refused before
+    // the tile count overflows an int (it had no cap; the bake's is shared).
+    Scene wide = scene;
+    for (int a : {0, 2}) wide.region.max[a] = wide.region.min[a] + 1e12 * wide.voxelSize;
+    try {
+        planTerrainExport(wide, optionsFor(TerrainEngine::Raw, dir));
+        ADD_FAILURE() << "a region of 4e9 tiles along x was planned";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("more than 16777216 tiles"), std::string::npos) << e.what();
+    }
     EXPECT_THROW(parseTerrainEngine("cryengine"), Error);
     try {
         parseTerrainEngine("cryengine");

@@ -487,10 +487,13 @@ TEST_F(FileServerTest, StopBeforeRunReturnsAtOnce)
     strata::serve::FileServerOptions options;
     options.port = 0;
     strata::serve::FileServer early(root, options);
+    ASSERT_GT(early.port(), 0);
     early.stop();
     std::thread runner([&] { early.run(); });
     runner.join(); // hangs (and the test times out) if the early stop were lost
-    SUCCEED();
+    // run() returned having closed the socket it was given: nobody answers.
+    EXPECT_FALSE(httplib::Client("127.0.0.1", early.port()).Get("/tileset.json"))
+        << "the server stopped before run() still answers on port " << early.port();
 }
 
 TEST_F(FileServerTest, PortInUseAndBadFolderAreClearErrors)

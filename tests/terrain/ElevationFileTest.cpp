@@ -87,6 +87,7 @@ struct Member
     std::string data;
     int method = 0; ///< 0 stored, 8 deflated (with zlib), anything else written as is (raw bytes)
     bool brokenDeflate = false; ///< method 8 labelled on raw bytes
+    std::uint64_t claimedSize = 0; ///< the unpacked size written in the zip64 fields (0: the real one)
 };
 
 /// Raw deflate (no zlib header), as zip members hold it.
@@ -118,7 +119,7 @@ std::string zip(const std::vector<Member>& members, bool zip64 = false)
         if (zip64) {
             putLittle(extra, 1, 2);
             putLittle(extra, 16, 2);
-            putLittle(extra, m.data.size(), 8);
+            putLittle(extra, m.claimedSize ? m.claimedSize : m.data.size(), 8);
             putLittle(extra, packed.size(), 8);
         }
         const std::uint64_t size32 = zip64 ? 0xFFFFFFFFu : m.data.size();
@@ -139,7 +140,7 @@ std::string zip(const std::vector<Member>& members, bool zip64 = false)
         if (zip64) {
             putLittle(centralExtra, 1, 2);
             putLittle(centralExtra, 24, 2);
-            putLittle(centralExtra, m.data.size(), 8);
+            putLittle(centralExtra, m.claimedSize ? m.claimedSize : m.data.size(), 8);
             putLittle(centralExtra, packed.size(), 8);
             putLittle(centralExtra, offset, 8);
         }
@@ -341,7 +342,8 @@ TEST(ElevationFile, BrokenNpyNamesTheProblem)
     EXPECT_ERROR(good.substr(0, good.size() - 1), "needs 6 x 2 bytes");
     EXPECT_ERROR(good + "x", "needs 6 x 2 bytes");
     // A huge shape over a few bytes: refused before anything is allocated.
-    EXPECT_ERROR(npy("<f8", "(2147483647, 2147483647)", float64s({1.0})), "needs 4611686014132420609 x 8 bytes");
+    EXPECT_ERROR(npy("<f8", "(2147483647, 2147483647)", float64s({1.0})), "4611686014132420609 cells, more than the");
+    EXPECT_ERROR(npy("<f8", "(4, 4)", float64s({1.0})), "needs 16 x 8 bytes");
     EXPECT_ERROR(npy("<f8", "(2147483648, 1)", ""), "larger than 2147483647");
     EXPECT_ERROR(npy("<f8", "(99999999999999999999999, 1)", ""), "larger than 2147483647");
     EXPECT_ERROR(npy("<f8", "[2, 3]", ""), "'shape' must be a tuple");
@@ -395,6 +397,50 @@ TEST(ElevationFile, BrokenNpzNamesTheProblem)
     EXPECT_ERROR(encrypted, "encrypted");
 }
 
+TEST(ElevationFile, NpzMembersThatClaimMoreThanTheyHoldAreRefusedBeforeInflating)
+{
+    // Seen in a review: a member of exactly 2^32 bytes passed the size check
+    // and its CRC was taken over 0 bytes (zlib counts in 32 bits).
+    const std::string elevation = npy("<i2", "(2, 3)", int16s({1, 2, 3, 4, 5, 6}));
+    Member four{"elevation.npy", elevation, 8};
+    four.claimedSize = std::uint64_t(1) << 32;
+    EXPECT_ERROR(zip({four}, true), "claims 4294967296 bytes");
+    four.claimedSize = (std::uint64_t(1) << 32) - 1; // more than 1032 times its packed bytes
+    EXPECT_ERROR(zip({four}, true), "claims 4294967295 bytes, more than it can hold");
+    four.claimedSize = 20000; // possible, but its stream ends long before
+    EXPECT_ERROR(zip({four}, true), "not valid deflate data of 20000 bytes");
+
+    // A header claiming a grid over the cap, or a size its member does not
+    // have, is refused from the header alone (the member is not inflated).
+    // These name the member after the file.
+    const auto refusal = [](const std::string& bytes) {
+        try {
+            parseElevationFile(bytes, "dem.npz");
+        } catch (const strata::Error& e) {
+            EXPECT_EQ(e.kind(), strata::ErrorKind::BadInput) << e.what();
+            return std::string(e.what());
+        }
+        return std::string("(read)");
+    };
+    const std::string big = npy("<f8", "(16384, 16385)", float64s({1.0}));
+    for (const char* member : {"elevation.npy", "heights.npy"}) {
+        const std::string message = refusal(zip({{member, big, 8}}));
+        EXPECT_EQ(message.rfind("dem.npz member '" + std::string(member) + "'", 0), 0u) << message;
+        EXPECT_NE(message.find("268451840 cells, more than the 268435456"), std::string::npos) << message;
+    }
+    Member lying{"elevation.npy", npy("<f8", "(1000, 1000)", float64s({1.0, 2.0})), 8};
+    EXPECT_NE(refusal(zip({lying})).find("needs 1000000 x 8 bytes, the file holds 16 after the header"),
+              std::string::npos)
+        << refusal(zip({lying}));
+    // Several deflated members: each is looked into by its header only, and
+    // the chosen one is read whole (its CRC checked).
+    const ElevationGrid grid =
+        parseElevationFile(zip({{"x.npy", npy("<f8", "(3,)", float64s({1.0, 2.0, 3.0})), 8}, {"h.npy", elevation, 8}}),
+                           "two.npz");
+    EXPECT_EQ(grid.member, "h.npy");
+    EXPECT_EQ(grid.heights.size(), 6u);
+}
+
 TEST(ElevationFile, BrokenAsciiGridNamesFileAndLine)
 {
     const std::string head = "ncols 3\nnrows 2\nxllcorner 0\nyllcorner 0\ncellsize 10\n";
@@ -419,7 +465,9 @@ TEST(ElevationFile, BrokenAsciiGridNamesFileAndLine)
     EXPECT_ERROR(head + "1 2 3\n4 5\n", "the grid ends after 5 values");
     EXPECT_ERROR(head + "1 2 3\n4 5 6\n\n7\n", "dem.bin:9: more values than");
     // A huge grid in a small file: refused before anything is allocated.
-    EXPECT_ERROR("ncols 2147483647\nnrows 2147483647\nxllcorner 0\nyllcorner 0\ncellsize 1\n1 2 3\n", "cannot fit");
+    EXPECT_ERROR("ncols 2147483647\nnrows 2147483647\nxllcorner 0\nyllcorner 0\ncellsize 1\n1 2 3\n",
+                 "4611686014132420609 cells, more than the 268435456");
+    EXPECT_ERROR("ncols 16384\nnrows 16384\nxllcorner 0\nyllcorner 0\ncellsize 1\n1 2 3\n", "cannot fit");
     EXPECT_ERROR(std::string("ncols 1\0", 8), "not a DEM file");
     EXPECT_ERROR("just text", "'just' is not an ESRI ASCII grid header key");
 }

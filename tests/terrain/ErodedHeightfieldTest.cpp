@@ -78,12 +78,16 @@ TEST(ErodedHeightfield, AnyTilingAndThreadCountGivesTheSameBits)
     const auto field = std::make_shared<ErodedHeightfield>(hills(), nullptr, smallDomain());
     const auto whole = sampleLevelSet(*field, box({-60, -80, -60}, {60, 80, 60}));
     ASSERT_GT(whole->activeVoxelCount(), 10000u);
-    // 2 × 2 and 3 × 3 tilings, on 1, 2 and 3 threads: every voxel of each
-    // tile equals the whole region's.
-    for (const int tiles : {2, 3}) {
-        for (const int threads : {1, 2, 3}) {
-            tbb::global_control limit(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
-            const auto rebuilt = std::make_shared<ErodedHeightfield>(hills(), nullptr, smallDomain());
+    // Evolved anew on 1, 2 and 3 threads (not taken from the cache), then
+    // sampled in 2 × 2 and 3 × 3 tiles: every voxel of each tile equals the
+    // whole region's.
+    for (const int threads : {1, 2, 3}) {
+        tbb::global_control limit(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
+        ErodedHeightfield::clearCache();
+        const auto rebuilt = std::make_shared<ErodedHeightfield>(hills(), nullptr, smallDomain());
+        ASSERT_FALSE(rebuilt->cached());
+        EXPECT_EQ(rebuilt->grid().heights, field->grid().heights) << threads << " threads";
+        for (const int tiles : {2, 3}) {
             const double step = 120.0 / tiles;
             for (int tz = 0; tz < tiles; ++tz) {
                 for (int tx = 0; tx < tiles; ++tx) {
@@ -98,6 +102,8 @@ TEST(ErodedHeightfield, AnyTilingAndThreadCountGivesTheSameBits)
             }
         }
     }
+    // A node of the same key built after them takes the cached evolution.
+    EXPECT_TRUE(std::make_shared<ErodedHeightfield>(hills(), nullptr, smallDomain())->cached());
 }
 
 TEST(ErodedHeightfield, EverySimdTargetGivesTheSameEvolution)

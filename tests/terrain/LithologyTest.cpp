@@ -4,13 +4,10 @@
 #include <strata/Error.h>
 #include <strata/terrain/Lithology.h>
 
-#include "DeterministicMath.h"
-
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <functional>
 #include <string>
 
@@ -209,27 +206,4 @@ TEST(Lithology, BadOptionsThrowNamingTheOption)
     expectErrorNaming(build([](LithologyOptions& o) { o.faultWidth = -1.0; }), "fault_width");
     expectErrorNaming(build([](LithologyOptions& o) { o.faultDip = -1.0; }), "fault_dip");
     expectErrorNaming(build([](LithologyOptions& o) { o.datum = NAN; }), "datum");
-}
-
-TEST(DeterministicMath, SinAndCosOfDegreesWithinTwoUlpsOfLongDouble)
-{
-    // Every 1/64 degree over two turns each way, against long double libm.
-    double worst = 0.0;
-    for (int i = -720 * 64; i <= 720 * 64; ++i) {
-        const double degrees = i / 64.0;
-        double s = 0.0, c = 0.0;
-        strata::terrain::detail::sinCosDegrees(degrees, s, c);
-        const long double r = (long double)degrees * 3.141592653589793238462643383279502884L / 180.0L;
-        const long double rs = sinl(r), rc = cosl(r);
-        const double es = double(std::abs((long double)s - rs)), ec = double(std::abs((long double)c - rc));
-        worst = std::max({worst, es, ec});
-        ASSERT_LE(es, 2.3e-16) << degrees;
-        ASSERT_LE(ec, 2.3e-16) << degrees;
-    }
-    double s = 1.0, c = 0.0;
-    for (const double exact : {0.0, 90.0, 180.0, 270.0, 360.0, -90.0}) {
-        strata::terrain::detail::sinCosDegrees(exact, s, c);
-        EXPECT_EQ(std::abs(s) + std::abs(c), 1.0) << exact;
-    }
-    std::printf("sinCosDegrees: worst absolute error %.3g\n", worst);
 }

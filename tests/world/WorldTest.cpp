@@ -393,8 +393,11 @@ void expectNoHolesWhileChunksSplitAndMerge(bool lookAhead)
     pollAndCheck(SIZE_MAX);
     EXPECT_GT(splits, 0);
     EXPECT_GT(merges, 0);
-    if (!lookAhead) EXPECT_GT(midTransition, 0); // some polls did see a replacement waiting
-    if (lookAhead) EXPECT_GT(w.stats().prefetched, 0u);
+    if (!lookAhead) {
+        EXPECT_GT(midTransition, 0); // some polls did see a replacement waiting
+    } else {
+        EXPECT_GT(w.stats().prefetched, 0u);
+    }
     EXPECT_EQ(w.stats().retained, 0u);
 
     // At rest the caller holds exactly the resident chunks with surface, and

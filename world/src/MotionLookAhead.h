@@ -25,8 +25,10 @@ public:
     /// The level-0 chunks the points enter next: for each moving point, the
     /// chunk across the face (or edge, or corner, where the ray leaves
     /// through one exactly) of its chunk that its ray of motion leaves
-    /// through; a point at rest stays in its chunk. Sorted, without repeats.
-    /// Equal to interestChunks() when no point moves.
+    /// through. A point that stops keeps its last direction (one that pauses
+    /// keeps the chunks ahead of it); only a point that has not moved since
+    /// the directions were forgotten stays in its own chunk. Sorted, without
+    /// repeats. Equal to interestChunks() when no point has moved yet.
     std::vector<ChunkKey> nextInterest(const LodParams& params) const;
 
 private:

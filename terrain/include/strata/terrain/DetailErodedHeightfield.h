@@ -31,8 +31,8 @@ struct DetailErodeOptions
     DetailErosionOptions erosion; ///< cellSize: the patches' spacing (1 m: voxel-scale detail)
     int blockCells = 64;          ///< cells per block side, 8..1024
     /// Cells the patch reaches beyond its block, 1..blockCells/2; default
-    /// (0): erosion.dropletSteps, so no droplet that can reach the block is
-    /// left out.
+    /// (0): erosion.dropletSteps up to blockCells/2, so no droplet that can
+    /// reach the block is left out unless it travels over half a block.
     int halo = 0;
 };
 

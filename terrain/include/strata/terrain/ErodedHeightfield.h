@@ -73,6 +73,9 @@ public:
     const ErodeOptions& options() const { return mOptions; }
     /// Whether this node's evolution came from the cache.
     bool cached() const { return mCached; }
+    /// Empties the process-wide cache of evolutions (nodes built before
+    /// keep theirs): the next node of any key evolves anew.
+    static void clearCache();
 
     /// Cells (corners) the domain of `options` holds, and the memory its
     /// evolution needs at its peak (bytes): for plans and --max-memory.
