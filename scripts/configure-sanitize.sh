@@ -10,7 +10,9 @@
 # Line tables only (-gline-tables-only): the reports' stacks keep their
 # files and lines, and the build skips full debug information. No web
 # viewer (-DSTRATA_BUILD_WEB_VIEWER=OFF): its npm ci and bundle are node's
-# work, and its browser test does not run under the sanitizers.
+# work, and its browser test does not run under the sanitizers. No programs
+# (-DSTRATA_BUILD_APPS=OFF): they parse flags and print around the library
+# calls the sanitized tests run; the tests that start the strata program skip.
 set -eu
 build=$1
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -20,5 +22,5 @@ if [ ! -f "$build/CMakeCache.txt" ]; then
   cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSTRATA_FUZZ=ON \
     -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 -gline-tables-only -DNDEBUG" \
     -DCMAKE_C_FLAGS_RELWITHDEBINFO="-O2 -gline-tables-only -DNDEBUG" \
-    -DSTRATA_BUILD_WEB_VIEWER=OFF -DCMAKE_CXX_COMPILER="$cxx" -DCMAKE_C_COMPILER="$cc" >/dev/null
+    -DSTRATA_BUILD_WEB_VIEWER=OFF -DSTRATA_BUILD_APPS=OFF -DCMAKE_CXX_COMPILER="$cxx" -DCMAKE_C_COMPILER="$cc" >/dev/null
 fi

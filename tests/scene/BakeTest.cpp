@@ -598,6 +598,7 @@ TEST(Bake, TheWorldRendersFromItsTilesCoarserWhenFar)
 
 TEST(Bake, TheCliBakesResumesAndRendersTheWorld)
 {
+    STRATA_REQUIRE_PROGRAM();
     const fs::path dir = test::freshTestDir();
     {
         std::ofstream(dir / "caves.toml") << CAVE_SCENE;

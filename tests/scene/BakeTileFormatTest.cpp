@@ -224,6 +224,7 @@ TEST(BakeTileFormat, DecodedCompactTilesOfALevelWeldWithBoundaryOnlyOnTheRegionB
 
 TEST(BakeTileFormat, TheWorldRendersFromCompactTilesAsFromPlainOnes)
 {
+    STRATA_REQUIRE_PROGRAM();
     const TwoBakes& b = twoBakes();
     // Beside the bakes (freshTestDir() would empty the folder they may be in).
     const fs::path dir = b.dir / "renders";
@@ -244,6 +245,7 @@ TEST(BakeTileFormat, TheWorldRendersFromCompactTilesAsFromPlainOnes)
 
 TEST(BakeTileFormat, TheDefaultIsCompactAndTheFormatIsPartOfTheBakesIdentity)
 {
+    STRATA_REQUIRE_PROGRAM();
     const fs::path dir = test::freshTestDir();
     {
         std::ofstream(dir / "caves.toml") << CAVE_SCENE;

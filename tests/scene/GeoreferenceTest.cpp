@@ -174,6 +174,7 @@ TEST(Georeference, TheBakesTilesetCarriesTheRootTransformOutsideTheBakesIdentity
 
 TEST(Georeference, TheCliTakesTheFlagAndRefusesBadValuesWithExit2)
 {
+    STRATA_REQUIRE_PROGRAM();
     const fs::path dir = test::freshTestDir();
     {
         std::ofstream(dir / "small.toml") << SMALL_SCENE;

@@ -253,6 +253,7 @@ TEST(Quality, FlagErrorsNameKeyAndValue)
 
 TEST(Quality, GenerateBadPresetOrValueExitsTwoAndWritesNothing)
 {
+    STRATA_REQUIRE_PROGRAM();
     const auto dir = strata::test::freshTestDir();
     const std::string scene = smallScene(dir).string();
     for (const std::string& flags : {std::string("--preset ultra"), std::string("--quality mesher=marching"),
@@ -274,6 +275,7 @@ TEST(Quality, GenerateBadPresetOrValueExitsTwoAndWritesNothing)
 
 TEST(Quality, GenerateAppliesPresetsAndOverrides)
 {
+    STRATA_REQUIRE_PROGRAM();
     const auto dir = strata::test::freshTestDir();
     const std::string scene = smallScene(dir).string();
     std::map<std::string, nlohmann::json> reports;
@@ -312,6 +314,7 @@ TEST(Quality, GenerateAppliesPresetsAndOverrides)
 
 TEST(Quality, ReportMeasuresWhatTheSceneRequires)
 {
+    STRATA_REQUIRE_PROGRAM();
     const auto dir = strata::test::freshTestDir();
     const std::string scene = smallScene(dir).string();
     CommandResult run = runStrata("generate " + scene + " -o " + (dir / "cpu").string() + " --backend cpu", dir);
@@ -342,6 +345,7 @@ TEST(Quality, ReportMeasuresWhatTheSceneRequires)
 
 TEST(Quality, BilinearFilteringMatchesOnBothRenderersAndDiffersFromTrilinear)
 {
+    STRATA_REQUIRE_PROGRAM();
     const auto dir = strata::test::freshTestDir();
     const std::string scene = smallScene(dir).string();
     auto render = [&](const std::string& name, const std::string& flags) {
@@ -369,6 +373,7 @@ TEST(Quality, BilinearFilteringMatchesOnBothRenderersAndDiffersFromTrilinear)
 
 TEST(Quality, RenderAppliesTheScenesQualityTable)
 {
+    STRATA_REQUIRE_PROGRAM();
     const auto dir = strata::test::freshTestDir();
     const std::string plain = smallScene(dir).string();
     std::filesystem::create_directories(dir / "q");

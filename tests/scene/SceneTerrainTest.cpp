@@ -6,6 +6,7 @@
 #include <strata/scene/Scene.h>
 #include "SceneTerrain.h"
 #include "TestDir.h"
+#include "RunStrata.h"
 
 #include <strata/Error.h>
 
@@ -20,7 +21,6 @@
 #include <fstream>
 #include <iterator>
 #include <set>
-#include <sys/wait.h>
 #include <vector>
 
 using strata::scene::parseScene;
@@ -34,16 +34,6 @@ using strata::test::parseError;
 std::string oneNode(const std::string& type, const std::string& keys)
 {
     return "[terrain]\nroot = \"a\"\n[terrain.nodes.a]\ntype = \"" + type + "\"\n" + keys;
-}
-
-int runStrata(const std::string& arguments, const std::filesystem::path& dir, std::string& output)
-{
-    const std::filesystem::path log = dir / "command.log";
-    const int status =
-        std::system((std::string(STRATA_EXECUTABLE) + " " + arguments + " > " + log.string() + " 2>&1").c_str());
-    std::ifstream in(log);
-    output.assign((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
 /// Writes a width×height grey ramp (value x / (width − 1)) as 8- or 16-bit PNG.
@@ -446,24 +436,28 @@ TEST(SceneTerrain, BadNodesNameFileLineKeyAndValue)
 
 TEST(SceneTerrain, CliRefusesBadNodesAndOverBudgetScenesWithExitTwoWritingNothing)
 {
+    STRATA_REQUIRE_PROGRAM();
     const auto dir = strata::test::freshTestDir();
     {
         std::ofstream(dir / "bad.toml") << oneNode("blob", "");
     }
-    std::string output;
-    EXPECT_EQ(runStrata("generate " + (dir / "bad.toml").string() + " -o " + (dir / "out").string(), dir, output), 2);
-    EXPECT_NE(output.find("bad.toml:4: terrain.nodes.a.type = 'blob'"), std::string::npos) << output;
+    strata::test::CommandResult run;
+    run = strata::test::runStrata("generate " + (dir / "bad.toml").string() + " -o " + (dir / "out").string(), dir);
+    EXPECT_EQ(run.exitCode, 2);
+    EXPECT_NE(run.output.find("bad.toml:4: terrain.nodes.a.type = 'blob'"), std::string::npos) << run.output;
     EXPECT_FALSE(std::filesystem::exists(dir / "out"));
 
-    EXPECT_EQ(runStrata("generate -o " + (dir / "big").string() + " --no-snapshot --max-memory 2MiB", dir, output), 2);
-    EXPECT_NE(output.find("memory budget of 2 MiB"), std::string::npos) << output;
-    EXPECT_NE(output.find("coarser voxel_size"), std::string::npos) << output;
+    run = strata::test::runStrata("generate -o " + (dir / "big").string() + " --no-snapshot --max-memory 2MiB", dir);
+    EXPECT_EQ(run.exitCode, 2);
+    EXPECT_NE(run.output.find("memory budget of 2 MiB"), std::string::npos) << run.output;
+    EXPECT_NE(run.output.find("coarser voxel_size"), std::string::npos) << run.output;
     EXPECT_FALSE(std::filesystem::exists(dir / "big" / "terrain.vdb"));
     EXPECT_FALSE(std::filesystem::exists(dir / "big" / "report.json"));
     EXPECT_FALSE(std::filesystem::exists(dir / "big")) << "an over-budget scene leaves no folder";
 
-    EXPECT_EQ(runStrata("generate -o " + (dir / "x").string() + " --max-memory lots", dir, output), 2);
-    EXPECT_NE(output.find("--max-memory 'lots'"), std::string::npos) << output;
+    run = strata::test::runStrata("generate -o " + (dir / "x").string() + " --max-memory lots", dir);
+    EXPECT_EQ(run.exitCode, 2);
+    EXPECT_NE(run.output.find("--max-memory 'lots'"), std::string::npos) << run.output;
 }
 
 TEST(SceneTerrain, TheCanyonShowcaseLoadsAndItsWallsOverhang)
