@@ -88,6 +88,7 @@ class Scene:
     material: MaterialSettings
     field: Field
     has_landform: bool
+    has_rock: bool
     landform_passes: list[dict[str, Any]]
     def field_for_seed(self, seed: int) -> Field: ...
     def resolve_quality(self, preset: Optional[str] = None, quality: Quality = None) -> dict[str, Any]: ...
@@ -122,6 +123,7 @@ class Mesh:
     triangles: npt.NDArray[np.uint32]
     surface: Optional[npt.NDArray[np.float32]]
     landform: Optional[npt.NDArray[np.float32]]
+    rock: Optional[npt.NDArray[np.float32]]
     origin: tuple[float, float, float]
     vertex_count: int
     triangle_count: int

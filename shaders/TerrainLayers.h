@@ -35,7 +35,7 @@
 /// One layer's placement rule and texture mapping. A band (vec4) is
 /// (min, max, softness, enabled): weight 1 inside [min, max], smooth ramps
 /// `softness` wide outside each bound, 0 beyond; enabled = 0 switches it
-/// off (weight 1). std140: 224 bytes (offsets checked in
+/// off (weight 1). std140: 256 bytes (offsets checked in
 /// render/src/LayerSetup.h).
 struct LayerParams
 {
@@ -47,6 +47,8 @@ struct LayerParams
     vec4 wear;          ///< band on the vertex wear: metres eroded (landform y)
     vec4 deposition;    ///< band on the vertex deposition: metres of sediment (landform z)
     vec4 water;         ///< band on the vertex water: 0 dry .. 1 river or lake (landform w)
+    vec4 hardness;      ///< band on the vertex rock hardness: 0 soft .. 1 hard (rock x)
+    vec4 bed;           ///< band on the vertex bed: its index in the beds' sequence (rock y)
     vec4 noise;         ///< x: frequency (1/m), y: threshold 0..1, z: softness, w: enabled
     vec4 noiseOffset;   ///< xyz: origin · frequency modulo the noise period (in double on the host)
     vec4 textureOffset; ///< xyz: fract(origin · mapScale), as FrameBlock's
@@ -130,8 +132,9 @@ STRATA_INLINE float layerNoise(vec3 p, uint seed)
 /// A layer's coverage at a fragment: opacity × every enabled band.
 /// `n` is the unit interpolated (not normal-mapped) normal, `position`
 /// metres relative to the mesh origin, `surface` the interpolated cavity
-/// and cover, `landform` the interpolated flow, wear, deposition and water.
-STRATA_INLINE float layerCoverage(LayerParams l, vec3 n, vec3 position, vec2 surface, vec4 landform)
+/// and cover, `landform` the interpolated flow, wear, deposition and water,
+/// `rock` the interpolated hardness and bed.
+STRATA_INLINE float layerCoverage(LayerParams l, vec3 n, vec3 position, vec2 surface, vec4 landform, vec2 rock)
 {
     float c = l.opacity;
     c *= bandWeight(position.y, l.altitude);
@@ -142,6 +145,8 @@ STRATA_INLINE float layerCoverage(LayerParams l, vec3 n, vec3 position, vec2 sur
     c *= bandWeight(landform.y, l.wear);
     c *= bandWeight(landform.z, l.deposition);
     c *= bandWeight(landform.w, l.water);
+    c *= bandWeight(rock.x, l.hardness);
+    c *= bandWeight(rock.y, l.bed);
     if (l.noise.w > 0.5f && c > 0.0f) {
         vec3 q = position * l.noise.x + vec3(l.noiseOffset.x, l.noiseOffset.y, l.noiseOffset.z);
         c *= bandWeight(layerNoise(q, l.seed), vec4(l.noise.y, 1e30f, l.noise.z, 1.0f));
@@ -177,8 +182,8 @@ STRATA_INLINE SurfaceOutput accumulateSurface(SurfaceOutput sum, SurfaceOutput o
 }
 
 // ---------------------------------------------------------------------------
-// Landform debug views: the mesh's landform masks as colour ramps, on any
-// program (layered or not).
+// Landform and rock debug views: the mesh's landform and rock masks as
+// colours, on any program (layered or not).
 
 /// A three-stop ramp at t in [0, 1] (clamped) through `a`, `b` and `c`,
 /// given as display (sRGB-encoded) values and returned linear, like
@@ -215,12 +220,34 @@ STRATA_INLINE vec3 landformDebugColor(vec4 landform, int view)
     return vec3(0.0f);
 }
 
+/// The colour of a rock debug view (DEBUG_VIEW_HARDNESS, BED) for the
+/// interpolated rock masks (hardness, bed): hardness 0..1 on a ramp; the
+/// bed rounded to its index, each index a colour (golden-ratio steps along
+/// a ramp, so neighbouring beds differ). Other views give black.
+STRATA_INLINE vec3 rockDebugColor(vec2 rock, int view)
+{
+    if (view == DEBUG_VIEW_HARDNESS) {
+        return rampColor(rock.x, vec3(0.30f, 0.08f, 0.24f), vec3(0.86f, 0.42f, 0.40f), vec3(0.98f, 0.94f, 0.82f));
+    }
+    if (view == DEBUG_VIEW_BED) {
+        float index = floor(rock.y + 0.5f);
+        float t = index * 0.618034f;
+        return rampColor(t - floor(t), vec3(0.08f, 0.32f, 0.22f), vec3(0.90f, 0.76f, 0.22f),
+                         vec3(0.52f, 0.22f, 0.72f));
+    }
+    return vec3(0.0f);
+}
+
 /// The colour of any debug view at a fragment: the landform views from
-/// `landform`, the others from the material's output `o` (debugViewColor()).
-STRATA_INLINE vec3 fragmentDebugColor(SurfaceOutput o, vec4 landform, int view)
+/// `landform`, the rock views from `rock`, the others from the material's
+/// output `o` (debugViewColor()).
+STRATA_INLINE vec3 fragmentDebugColor(SurfaceOutput o, vec4 landform, vec2 rock, int view)
 {
     if (view >= DEBUG_VIEW_FLOW && view <= DEBUG_VIEW_WATER) {
         return landformDebugColor(landform, view);
+    }
+    if (view == DEBUG_VIEW_HARDNESS || view == DEBUG_VIEW_BED) {
+        return rockDebugColor(rock, view);
     }
     return debugViewColor(o, view);
 }
@@ -231,12 +258,13 @@ STRATA_INLINE vec3 fragmentDebugColor(SurfaceOutput o, vec4 landform, int view)
 /// metres: p relative to the mesh origin, dpdx/dpdy its screen
 /// derivatives; each layer maps it with its own mapScale and offsets.
 /// `surface` is the interpolated cavity and cover, `landform` the
-/// interpolated landform masks (flow, wear, deposition, water). Always
+/// interpolated landform masks (flow, wear, deposition, water), `rock` the
+/// interpolated rock masks (hardness, bed). Always
 /// finite: the a_i sum to 1, so the highest key's layer has a positive
 /// weight (layer 0 alone when no rule covers the fragment; the winner alone
 /// should every weight underflow).
 STRATA_FEATURE_FUNCTION SurfaceOutput evaluateLayers(STRATA_MAPS_PARAM STRATA_LAYERS_PARAM SurfaceInput world,
-                                                     vec2 surface, vec4 landform)
+                                                     vec2 surface, vec4 landform, vec2 rock)
 {
     // GLSL programs are built for their layer count (STRATA_LAYER_COUNT), so
     // the loops unroll to exactly that many copies of the material; C++
@@ -251,7 +279,7 @@ STRATA_FEATURE_FUNCTION SurfaceOutput evaluateLayers(STRATA_MAPS_PARAM STRATA_LA
     SurfaceOutput outputs[STRATA_MAX_LAYERS];
     float remaining = 1.0f;
     for (int i = count - 1; i >= 0; --i) {
-        float c = i == 0 ? 1.0f : layerCoverage(LAYER_SET.layers[i], world.n, world.p, surface, landform);
+        float c = i == 0 ? 1.0f : layerCoverage(LAYER_SET.layers[i], world.n, world.p, surface, landform, rock);
         share[i] = c * remaining;
         remaining *= 1.0f - c;
     }

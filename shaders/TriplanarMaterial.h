@@ -403,7 +403,10 @@ const int DEBUG_VIEW_FLOW = 9;        ///< flow (log10 drainage area) 0..7, dark
 const int DEBUG_VIEW_WEAR = 10;       ///< wear 0..20 m, dark brown to orange to pale
 const int DEBUG_VIEW_DEPOSITION = 11; ///< deposition 0..20 m, dark olive to sand
 const int DEBUG_VIEW_WATER = 12;      ///< water 0..1, dark grey to cyan
-const int DEBUG_VIEW_COUNT = 13;
+// The rock views show the mesh's rock masks (rockDebugColor()).
+const int DEBUG_VIEW_HARDNESS = 13; ///< rock hardness 0..1, plum to rose to cream
+const int DEBUG_VIEW_BED = 14;      ///< the bed, one colour per index (golden-ratio steps along a ramp)
+const int DEBUG_VIEW_COUNT = 15;
 
 /// The sRGB decoding function, for one encoded value 0..1 (inverse of
 /// linearToSrgb()).
@@ -419,7 +422,7 @@ STRATA_INLINE float srgbToLinear(float c)
 /// display value 0..1 like shadeFragment()'s, so the sRGB encoding stores
 /// the data views' values unchanged (value v becomes byte round(255·v)),
 /// while albedo is shown as the colour it is. DEBUG_VIEW_SHADED, the
-/// landform views and unknown views give black.
+/// landform and rock views and unknown views give black.
 STRATA_INLINE vec3 debugViewColor(SurfaceOutput o, int view)
 {
     vec3 v = vec3(0.0f);

@@ -12,6 +12,7 @@ in vec3 vNormal;
 in vec3 vPosition;        // metres, relative to the mesh origin
 in vec2 vSurface;         // cavity, cover (layer rules)
 in vec4 vLandform;        // flow, wear, deposition, water (layer rules, landform debug views)
+in vec2 vRock;            // hardness, bed (layer rules, rock debug views)
 
 // std140 blocks, mirrored by render/src/UniformBlocks.h (FrameBlock, binding
 // 0, is in TerrainFrame.glsl).
@@ -99,12 +100,12 @@ void main()
     world.p = vPosition;
     world.dpdx = dFdx(vPosition);
     world.dpdy = dFdy(vPosition);
-    SurfaceOutput o = evaluateLayers(world, vSurface, vLandform);
+    SurfaceOutput o = evaluateLayers(world, vSurface, vLandform, vRock);
 #else
     SurfaceOutput o = evaluateSurface(s, uMaterial);
 #endif
     if (uFrame.debugView != DEBUG_VIEW_SHADED) {
-        fragColor = vec4(fragmentDebugColor(o, vLandform, uFrame.debugView), 1.0f);
+        fragColor = vec4(fragmentDebugColor(o, vLandform, vRock, uFrame.debugView), 1.0f);
         return;
     }
     // The interpolated normal (not the mapped one) biases the shadow lookup.

@@ -76,11 +76,11 @@ _rewrite(_src_terrain_frag "layout\\(binding = [0-9]+\\) uniform (sampler2D(Arra
          "the samplers' bindings")
 # Vertex attributes: three.js's names, placed by its modelMatrix.
 _rewrite(_src_terrain_vert
-  "layout\\(location = 0\\) in vec3 aPosition;[^\n]*\nlayout\\(location = 1\\) in vec3 aNormal;[^\n]*\nlayout\\(location = 2\\) in vec2 aSurface;[^\n]*\nlayout\\(location = 3\\) in vec4 aLandform;[^\n]*\n"
+  "layout\\(location = 0\\) in vec3 aPosition;[^\n]*\nlayout\\(location = 1\\) in vec3 aNormal;[^\n]*\nlayout\\(location = 2\\) in vec2 aSurface;[^\n]*\nlayout\\(location = 3\\) in vec4 aLandform;[^\n]*\nlayout\\(location = 4\\) in vec2 aRock;[^\n]*\n"
   "in vec3 position; // the tile's (three.js's name)\nin vec3 normal;\nuniform mat4 modelMatrix;  // the tile's placement (three.js)\nuniform vec3 uWorldOrigin; // metres: the origin positions are relative to\n"
   "terrain.vert's attributes")
 _rewrite(_src_terrain_vert "void main\\(\\)\n{\n"
-  "void main()\n{\n    vec3 aPosition = (modelMatrix * vec4(position, 1.0f)).xyz - uWorldOrigin;\n    vec3 aNormal = transpose(inverse(mat3(modelMatrix))) * normal;\n    vec2 aSurface = vec2(0.0f);\n    vec4 aLandform = vec4(0.0f);\n"
+  "void main()\n{\n    vec3 aPosition = (modelMatrix * vec4(position, 1.0f)).xyz - uWorldOrigin;\n    vec3 aNormal = transpose(inverse(mat3(modelMatrix))) * normal;\n    vec2 aSurface = vec2(0.0f);\n    vec4 aLandform = vec4(0.0f);\n    vec2 aRock = vec2(0.0f);\n"
   "terrain.vert's main()")
 # sRGB encoding at the end of the fragment programs.
 set(_encode "\nvoid main()\n{\n    strataMain();\n    fragColor = vec4(linearToSrgb(fragColor.x), linearToSrgb(fragColor.y), linearToSrgb(fragColor.z), fragColor.w);\n}\n")

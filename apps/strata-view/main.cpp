@@ -101,7 +101,8 @@ Loaded load(const Args& args, int width, int height)
     const scene::Scene effective = scene::applyQuality(scene, quality);
     const scene::SampledTerrain terrain = scene::sampleTerrain(effective, args.seed);
     // The landform masks whenever the terrain has them: the debug views may show them.
-    loaded.mesh = scene::meshTerrain(effective, quality, terrain, nullptr, terrain.landformMasks != nullptr);
+    loaded.mesh = scene::meshTerrain(effective, quality, terrain, nullptr,
+                                     {terrain.landformMasks != nullptr, terrain.rockMasks != nullptr});
     loaded.snapshot = scene::makeSnapshotOptions(scene, loaded.mesh, width, height);
     loaded.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
     return loaded;

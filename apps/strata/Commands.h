@@ -36,16 +36,21 @@ struct Command
 
 /// Exit code for bad input: a scene, flag or file the user can fix.
 inline constexpr int EXIT_BAD_INPUT = 2;
-/// Exit code after Ctrl-C (128 + SIGINT, as shells report it).
+/// Exit code after Ctrl-C (128 + SIGINT, as shells report it); after
+/// SIGTERM it is 143 (128 + SIGTERM).
 inline constexpr int EXIT_INTERRUPTED = 130;
 
-/// The exit code of an error kind: bad input 2, interrupted 130, anything
-/// else (I/O, GL, internal) 1.
+/// The signal that interrupted the run (Progress.h), 0 for none.
+int interruptSignal();
+
+/// The exit code of an error kind: bad input 2, interrupted 128 + the
+/// signal (130 for Ctrl-C, 143 for SIGTERM), anything else (I/O, GL,
+/// internal) 1.
 inline int exitCode(ErrorKind kind)
 {
     switch (kind) {
     case ErrorKind::BadInput: return EXIT_BAD_INPUT;
-    case ErrorKind::Interrupted: return EXIT_INTERRUPTED;
+    case ErrorKind::Interrupted: return interruptSignal() > 0 ? 128 + interruptSignal() : EXIT_INTERRUPTED;
     default: return 1;
     }
 }

@@ -34,6 +34,7 @@ struct ExportTerrainArguments
     int threads = 0;
     std::string maxMemory = "8GiB";
     bool quiet = false;
+    bool force = false;
 };
 
 } // namespace
@@ -69,7 +70,9 @@ Command registerExportTerrainCommand(CLI::App& app)
         ->check(CLI::Range(0, 1024));
     command->add_option("--max-memory", args->maxMemory, "Memory budget per tile, e.g. 8GiB (default), 512MiB")
         ->capture_default_str();
-    command->add_flag("-q,--quiet", args->quiet, "Print nothing but errors");
+    command->add_flag("--force", args->force,
+                      "Export over a folder that holds another export (another engine, scene, seed or setting)");
+        command->add_flag("-q,--quiet", args->quiet, "Print nothing but errors");
 
     return {command, [args]() {
                 if (args->outputDir.empty())
@@ -85,6 +88,7 @@ Command registerExportTerrainCommand(CLI::App& app)
                 options.seed = args->seed;
                 options.meshes = !args->noMeshes;
                 options.threads = args->threads;
+                options.force = args->force;
                 options.maxMemoryBytes = parseMemory(args->maxMemory);
                 TerminalProgress progress(std::cout, stdoutIsTerminal(), args->quiet);
                 std::optional<std::filesystem::path> bake;

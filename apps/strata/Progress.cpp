@@ -15,16 +15,30 @@ namespace strata::app {
 namespace {
 
 std::atomic<bool> gInterrupted{false};
-/// The handler before ours: the temporary-file cleanup (installTemporaryCleanup).
-void (*gPrevious)(int) = SIG_DFL;
+/// The first stop signal (SIGINT or SIGTERM), 0 before one arrived.
+std::atomic<int> gSignal{0};
+/// The handlers before ours (SIGINT, SIGTERM): the temporary-file cleanup
+/// (installTemporaryCleanup).
+void (*gPrevious[2])(int) = {SIG_DFL, SIG_DFL};
+
+int slot(int signal) { return signal == SIGINT ? 0 : 1; }
+
+void restore(int signal)
+{
+    void (*previous)(int) = gPrevious[slot(signal)];
+    std::signal(signal, previous == SIG_ERR ? SIG_DFL : previous);
+}
 
 extern "C" void onInterrupt(int signal)
 {
-    // The first Ctrl-C asks the pipeline to stop at its next check; a second
-    // one goes to the previous handler, which removes temporaries and ends
-    // the process at once.
+    // The first Ctrl-C or SIGTERM (what Slurm sends on scancel and at its
+    // time limit) asks the pipeline to stop at its next check; a second one
+    // goes to the previous handler, which removes temporaries and ends the
+    // process at once.
+    int none = 0;
+    gSignal.compare_exchange_strong(none, signal);
     if (gInterrupted.exchange(true)) {
-        std::signal(SIGINT, gPrevious == SIG_ERR ? SIG_DFL : gPrevious);
+        restore(signal);
         std::raise(signal);
     }
 }
@@ -35,10 +49,16 @@ TerminalProgress::TerminalProgress(std::ostream& out, bool interactive, bool qui
     : mOut(out), mInteractive(interactive && !quiet), mQuiet(quiet)
 {
     gInterrupted = false;
-    gPrevious = std::signal(SIGINT, onInterrupt);
+    gSignal = 0;
+    gPrevious[0] = std::signal(SIGINT, onInterrupt);
+    gPrevious[1] = std::signal(SIGTERM, onInterrupt);
 }
 
-TerminalProgress::~TerminalProgress() { std::signal(SIGINT, gPrevious == SIG_ERR ? SIG_DFL : gPrevious); }
+TerminalProgress::~TerminalProgress()
+{
+    restore(SIGINT);
+    restore(SIGTERM);
+}
 
 void TerminalProgress::beginStage(const std::string& stage)
 {
@@ -94,5 +114,7 @@ void TerminalProgress::notice(const std::string& line) { std::cerr << line << st
 bool stdoutIsTerminal() { return ::isatty(STDOUT_FILENO) == 1; }
 
 bool interruptRequested() { return gInterrupted; }
+
+int interruptSignal() { return gSignal; }
 
 } // namespace strata::app

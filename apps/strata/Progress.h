@@ -5,8 +5,9 @@
 /// \file
 /// Terminal output of the CLI: one line per finished stage with its time, a
 /// live percentage while a long stage runs (only when stdout is a TTY), and
-/// Ctrl-C: the first SIGINT asks the running stage to stop (the pipeline
-/// throws an Interrupted error and writes nothing more).
+/// Ctrl-C: the first SIGINT (or SIGTERM, as Slurm sends) asks the running
+/// stage to stop (the pipeline throws an Interrupted error and writes
+/// nothing more).
 
 #include <strata/scene/Pipeline.h>
 
@@ -25,7 +26,7 @@ public:
 
     void beginStage(const std::string& stage) override;
     /// Shows "stage  NN%" in place (redraws at most once per percent);
-    /// false once SIGINT arrived.
+    /// false once SIGINT or SIGTERM arrived.
     bool progress(double fraction) override;
     /// Shows "stage  DONE/TOTAL UNIT  RATE UNIT/min  T left" in place.
     bool progressCount(std::uint64_t done, std::uint64_t total, const std::string& unit) override;
@@ -45,7 +46,10 @@ private:
 /// True when file descriptor 1 is a terminal.
 bool stdoutIsTerminal();
 
-/// True once SIGINT arrived while a TerminalProgress was alive.
+/// True once SIGINT or SIGTERM arrived while a TerminalProgress was alive.
 bool interruptRequested();
+
+/// The signal that asked to stop (SIGINT or SIGTERM), or 0.
+int interruptSignal();
 
 } // namespace strata::app

@@ -178,12 +178,12 @@ Command registerRenderCommand(CLI::App& app)
                 meshing::TriangleMesh mesh;
                 if (args->meshPath.empty()) {
                     // The terrain in memory, through the same stages as `strata generate`.
-                    const bool landform = needsLandform(shading, request.debugView); // before the long stages
+                    const MeshMasks masks = neededMasks(shading, request.debugView); // before the long stages
                     const SampledTerrain terrain = sampleTerrain(shading, args->seed);
                     if (request.view == "cave") {
                         cave = findCaveView(*terrain.grid, shading.region.min, shading.region.max).camera;
                     }
-                    mesh = meshTerrain(shading, quality, terrain, nullptr, landform);
+                    mesh = meshTerrain(shading, quality, terrain, nullptr, masks);
                 } else {
                     mesh = readRenderMesh(args->meshPath);
                     mesh.origin += offset; // the mesh file moves with the scene

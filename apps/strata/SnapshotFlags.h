@@ -66,7 +66,8 @@ struct SnapshotFlags
         command->add_option("--snapshot-format", format, "png (8-bit sRGB) or exr (linear float through OpenImageIO)");
         command->add_option("--debug-view", debugView,
                             "Show what the material computed instead of the lit image: weights, normals, metallic, "
-                            "occlusion, height, smoothness, albedo or layers (each terrain layer a colour)");
+                            "occlusion, height, smoothness, albedo, layers (each terrain layer a colour), an erode "
+                            "node's flow, wear, deposition or water, or a beds node's hardness or bed");
     }
 
     /// The request; throws strata::Error naming the flag and value.

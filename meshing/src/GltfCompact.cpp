@@ -14,6 +14,7 @@
 #include <cstdint>
 #include <cstring>
 #include <limits>
+#include <type_traits>
 #include <map>
 
 namespace strata::meshing {
@@ -97,6 +98,7 @@ TriangleMesh reorder(const TriangleMesh& mesh)
     apply(out.normals, mesh.normals);
     apply(out.surface, mesh.surface);
     apply(out.landform, mesh.landform);
+    apply(out.rock, mesh.rock);
     return out;
 }
 
@@ -287,21 +289,20 @@ std::string encodeCompactGlb(const std::vector<GlbPart>& parts, const glm::dvec3
             accessors.push_back(accessor);
             attributes["NORMAL"] = accessors.size() - 1;
         }
-        // Application-specific float attributes: lossless (no filter).
-        if (mesh.surface.size() == n) {
-            accessors.push_back({{"bufferView", buffers.add(mesh.surface.data(), n, sizeof(glm::vec2), false, "NONE")},
+        // Application-specific float attributes (one per vertex, or none):
+        // lossless (no filter).
+        auto floats = [&](const auto& values, const char* type, const char* name) {
+            if (values.size() != n) return;
+            using Value = typename std::decay_t<decltype(values)>::value_type;
+            accessors.push_back({{"bufferView", buffers.add(values.data(), n, sizeof(Value), false, "NONE")},
                                  {"componentType", GL_FLOAT},
                                  {"count", n},
-                                 {"type", "VEC2"}});
-            attributes[SURFACE_ATTRIBUTE] = accessors.size() - 1;
-        }
-        if (mesh.landform.size() == n) {
-            accessors.push_back({{"bufferView", buffers.add(mesh.landform.data(), n, sizeof(glm::vec4), false, "NONE")},
-                                 {"componentType", GL_FLOAT},
-                                 {"count", n},
-                                 {"type", "VEC4"}});
-            attributes[LANDFORM_ATTRIBUTE] = accessors.size() - 1;
-        }
+                                 {"type", type}});
+            attributes[name] = accessors.size() - 1;
+        };
+        floats(mesh.surface, "VEC2", SURFACE_ATTRIBUTE);
+        floats(mesh.landform, "VEC4", LANDFORM_ATTRIBUTE);
+        floats(mesh.rock, "VEC2", ROCK_ATTRIBUTE);
 
         const bool small = n <= 0xffff;
         accessors.push_back({{"bufferView", buffers.add(mesh.indices.data(), mesh.indices.size(), small ? 2 : 4, true, "NONE")},

@@ -262,6 +262,7 @@ TriangleMesh primitiveMesh(const tinygltf::Model& model, const tinygltf::Primiti
     mesh.normals = readVertexAttribute<glm::vec3>(model, primitive, "NORMAL", TINYGLTF_TYPE_VEC3, n, name);
     mesh.surface = readVertexAttribute<glm::vec2>(model, primitive, SURFACE_ATTRIBUTE, TINYGLTF_TYPE_VEC2, n, name);
     mesh.landform = readVertexAttribute<glm::vec4>(model, primitive, LANDFORM_ATTRIBUTE, TINYGLTF_TYPE_VEC4, n, name);
+    mesh.rock = readVertexAttribute<glm::vec2>(model, primitive, ROCK_ATTRIBUTE, TINYGLTF_TYPE_VEC2, n, name);
     if (primitive.indices >= 0) {
         if (std::size_t(primitive.indices) >= model.accessors.size()) detail::failRead(name, 0, "index accessor is missing");
         const int componentType = model.accessors[std::size_t(primitive.indices)].componentType;
@@ -295,7 +296,7 @@ TriangleMesh primitiveMesh(const tinygltf::Model& model, const tinygltf::Primiti
 }
 
 /// Every triangle primitive of the first mesh, appended in order (a
-/// primitive without normals, surface or landform attributes drops them
+/// primitive without normals, surface, landform or rock attributes drops them
 /// from the whole mesh).
 TriangleMesh meshFromModel(const tinygltf::Model& model, const std::string& name)
 {
@@ -303,7 +304,7 @@ TriangleMesh meshFromModel(const tinygltf::Model& model, const std::string& name
         throw Error(ErrorKind::BadInput, "'" + name + "' holds no mesh", {.file = name});
     }
     TriangleMesh mesh;
-    bool normals = true, surface = true, landform = true;
+    bool normals = true, surface = true, landform = true, rock = true;
     for (const tinygltf::Primitive& primitive : model.meshes[0].primitives) {
         TriangleMesh part = primitiveMesh(model, primitive, name);
         if (mesh.positions.size() + part.positions.size() > std::numeric_limits<std::uint32_t>::max()) {
@@ -315,6 +316,7 @@ TriangleMesh meshFromModel(const tinygltf::Model& model, const std::string& name
         appendWhileAll(normals, mesh.normals, part.normals, part.positions.size());
         appendWhileAll(surface, mesh.surface, part.surface, part.positions.size());
         appendWhileAll(landform, mesh.landform, part.landform, part.positions.size());
+        appendWhileAll(rock, mesh.rock, part.rock, part.positions.size());
     }
     for (const tinygltf::Node& node : model.nodes) {
         if (node.mesh != 0) continue;
@@ -394,6 +396,9 @@ std::string encodeGlb(const std::vector<GlbPart>& parts, const glm::dvec3& origi
         }
         if (mesh.landform.size() == n) {
             primitive.attributes[LANDFORM_ATTRIBUTE] = appendAccessor(model, mesh.landform, TINYGLTF_TYPE_VEC4, false);
+        }
+        if (mesh.rock.size() == n) {
+            primitive.attributes[ROCK_ATTRIBUTE] = appendAccessor(model, mesh.rock, TINYGLTF_TYPE_VEC2, false);
         }
         tinygltf::Accessor indices;
         if (compactIndices && mesh.positions.size() <= 0xffff) {

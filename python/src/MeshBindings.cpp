@@ -167,6 +167,11 @@ void bindMesh(py::module_& m)
             return optionalView(reinterpret_cast<const float*>(m.mesh->landform.data()), m.mesh->landform.size(),
                                 m.mesh->landform.size(), 4, self);
         }, "(N, 4) float32 flow, wear, deposition, water per vertex (when a layer rule reads them), or None")
+        .def_property_readonly("rock", [](const py::object& self) {
+            const Mesh& m = self.cast<const Mesh&>();
+            return optionalView(reinterpret_cast<const float*>(m.mesh->rock.data()), m.mesh->rock.size(),
+                                m.mesh->rock.size(), 2, self);
+        }, "(N, 2) float32 rock hardness and bed index per vertex (when a layer rule reads them), or None")
         .def_property_readonly("origin", [](const Mesh& m) { return fromVec3(m.mesh->origin); },
                                "(x, y, z) in metres, double: world position = origin + vertex")
         .def_property_readonly("vertex_count", [](const Mesh& m) { return m.mesh->vertexCount(); })
@@ -188,7 +193,7 @@ void bindMesh(py::module_& m)
           "Meshes a grid as `strata generate` would: its scene's quality settings, then these overrides.\n"
           "mesher: 'volume' | 'surface-nets' | 'dual-contouring'; adaptivity: 0..1 (volume);\n"
           "normals: 'grid' | 'field' | 'face'; projection: Newton steps onto the surface; simplify: triangle fraction.\n"
-          "The layer attributes (surface, landform) come with it when the scene's layers read them. GIL released.");
+          "The layer attributes (surface, landform, rock) come with it when the scene's layers read them. GIL released.");
     m.def("read_mesh", [](const std::filesystem::path& path) {
         auto mesh = std::make_shared<TriangleMesh>();
         {

@@ -49,7 +49,7 @@ py::array_t<std::uint8_t> render(const std::shared_ptr<const scene::Scene>& inpu
     const scene::Scene scene = scene::applyQuality(*input, q);
     request.backend = q.backend;
     scene::checkSnapshotRequest(request);
-    scene::needsLandform(scene, request.debugView);
+    scene::neededMasks(scene, request.debugView);
 
     std::optional<render::Camera> cave;
     if (request.view == "cave") {

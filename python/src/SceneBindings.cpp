@@ -39,7 +39,7 @@ py::dict ruleDict(const render::LayerRule& rule)
     const std::pair<const char*, const render::LayerBand*> bands[] = {
         {"altitude", &rule.altitude}, {"slope", &rule.slope}, {"cavity", &rule.cavity},
         {"cover", &rule.cover},       {"flow", &rule.flow},   {"wear", &rule.wear},
-        {"deposition", &rule.deposition}, {"water", &rule.water}};
+        {"deposition", &rule.deposition}, {"water", &rule.water}, {"hardness", &rule.hardness}, {"bed", &rule.bed}};
     for (const auto& [name, band] : bands) {
         if (band->enabled) d[name] = bandDict(*band);
     }
@@ -209,6 +209,8 @@ void bindScene(py::module_& m)
         }, py::arg("seed"), "The root density field for another seed (the node tree rebuilt).")
         .def_property_readonly("has_landform", [](const Scene& s) { return s.landformMasks != nullptr; },
                                "whether the terrain has an erode node whose masks layers and debug views can read")
+        .def_property_readonly("has_rock", [](const Scene& s) { return s.rockMasks != nullptr; },
+                               "whether the terrain has a beds node whose rock masks (hardness, bed) layers and debug views can read")
         .def_property_readonly("landform_passes", [](const Scene& s) {
             py::list passes;
             for (const scene::LandformPass& p : s.landformPasses) {

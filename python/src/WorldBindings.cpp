@@ -64,6 +64,7 @@ std::unique_ptr<World> makeWorld(const std::shared_ptr<const scene::Scene>& scen
     options.threads = threads;
     options.lookAhead = lookAhead;
     options.landform = scene::landformMasksForSeed(*scene, seed);
+    options.rock = scene::rockMasksForSeed(*scene, seed);
     auto field = scene::fieldForSeed(*scene, seed);
     py::gil_scoped_release release;
     return std::make_unique<World>(std::move(field), options);

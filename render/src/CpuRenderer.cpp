@@ -81,14 +81,16 @@ struct CpuMaps
     TextureFilter filter = TextureFilter::Trilinear;
     LodLog2 lodLog2 = LodLog2::Exact;
     mutable std::uint64_t fetches = 0; ///< SAMPLE_MAP calls
-    mutable std::uint32_t groups = 0;  ///< bit per map group sampled at the current fragment
+    /// Per layer, a bit per map slot sampled at the current fragment.
+    mutable std::array<std::uint16_t, STRATA_MAX_LAYERS> sampled{};
+    /// A bit per layer sampled with anti-tiling (three taps a lookup).
+    mutable std::uint32_t antiTiled = 0;
 
     glm::vec4 sample(int map, glm::vec2 uv, glm::vec2 dUVdx, glm::vec2 dUVdy) const
     {
-        // Map groups: albedo (side or top), mask, normal, detail, detail normal, emission.
-        static constexpr std::uint32_t GROUP[9] = {0, 1, 2, 0, 1, 2, 3, 4, 5};
         ++fetches;
-        groups |= 1u << GROUP[std::size_t(map)];
+        sampled[std::size_t(layer)] |= std::uint16_t(1u << map);
+        if ((features & feature::ANTI_TILING) != 0u) antiTiled |= 1u << layer;
         return sampleFiltered(*layers[std::size_t(layer)][std::size_t(map)], filter, uv, dUVdx, dUVdy, lodLog2);
     }
 
@@ -106,6 +108,7 @@ struct ClipVertex
     glm::vec3 normal;
     glm::vec2 surface;  // cavity, cover
     glm::vec4 landform; // flow, wear, deposition, water
+    glm::vec2 rock;     // hardness, bed
 };
 
 /// A screen-space triangle ready for rasterization (image space, y down).
@@ -119,6 +122,7 @@ struct Triangle
     glm::vec3 normal[3];
     glm::vec2 surface[3];
     glm::vec4 landform[3];
+    glm::vec2 rock[3];
     float area2;                // twice the signed area in float pixels, > 0
     int minX, minY, maxX, maxY; // pixel bounds (inclusive), clamped to the image
 };
@@ -127,7 +131,7 @@ ClipVertex lerpVertex(const ClipVertex& a, const ClipVertex& b, float t)
 {
     return {a.clip + (b.clip - a.clip) * t, a.position + (b.position - a.position) * t,
             a.normal + (b.normal - a.normal) * t, a.surface + (b.surface - a.surface) * t,
-            a.landform + (b.landform - a.landform) * t};
+            a.landform + (b.landform - a.landform) * t, a.rock + (b.rock - a.rock) * t};
 }
 
 /// Sutherland–Hodgman against one homogeneous plane dot(plane, clip) >= 0.
@@ -168,6 +172,7 @@ struct Interpolated
     glm::vec3 normal;
     glm::vec2 surface;
     glm::vec4 landform;
+    glm::vec2 rock;
     bool valid;
 };
 
@@ -183,13 +188,14 @@ Interpolated interpolate(const Triangle& t, float px, float py)
     const float q2 = l2 * t.invW[2];
     const float sum = q0 + q1 + q2;
     if (!(sum > 1e-20f)) {
-        return {{}, {}, {}, {}, false};
+        return {{}, {}, {}, {}, {}, false};
     }
     const float inv = 1.0f / sum;
     return {(t.position[0] * q0 + t.position[1] * q1 + t.position[2] * q2) * inv,
             (t.normal[0] * q0 + t.normal[1] * q1 + t.normal[2] * q2) * inv,
             (t.surface[0] * q0 + t.surface[1] * q1 + t.surface[2] * q2) * inv,
-            (t.landform[0] * q0 + t.landform[1] * q1 + t.landform[2] * q2) * inv, true};
+            (t.landform[0] * q0 + t.landform[1] * q1 + t.landform[2] * q2) * inv,
+            (t.rock[0] * q0 + t.rock[1] * q1 + t.rock[2] * q2) * inv, true};
 }
 
 struct Frame
@@ -215,6 +221,7 @@ struct Fragment
     shading::SurfaceInput world;
     glm::vec2 surface;
     glm::vec4 landform;
+    glm::vec2 rock;
 };
 
 using ShadeFunction = glm::vec3 (*)(const Frame&, const CpuMaps&, const Fragment&, const shading::LightingParams&);
@@ -225,7 +232,8 @@ shading::SurfaceOutput evaluateWith(const Frame& frame, const CpuMaps& maps, con
 {
     if constexpr ((FEATURES & feature::LAYERS) != 0u) {
         if ((maps.features & feature::LAYERS) != 0u) {
-            return shading::evaluateLayers<FEATURES, CpuMaps>(maps, frame.layerSet, f.world, f.surface, f.landform);
+            return shading::evaluateLayers<FEATURES, CpuMaps>(maps, frame.layerSet, f.world, f.surface, f.landform,
+                                                                     f.rock);
         }
     }
     return shading::evaluateSurface<FEATURES, CpuMaps>(maps, f.s, frame.material);
@@ -311,7 +319,8 @@ std::vector<Triangle> setupTriangles(const MeshView& mesh, const std::vector<glm
                 const std::uint32_t index = mesh.indices[t * 3 + std::size_t(k)];
                 polygon[0][k] = {clip[index], mesh.positions[index], mesh.normals[index],
                                  mesh.surface ? mesh.surface[index] : glm::vec2(0.0f),
-                                 mesh.landform ? mesh.landform[index] : glm::vec4(0.0f)};
+                                 mesh.landform ? mesh.landform[index] : glm::vec4(0.0f),
+                                 mesh.rock ? mesh.rock[index] : glm::vec2(0.0f)};
                 for (const glm::vec4& plane : planes) {
                     inside = inside && glm::dot(plane, clip[index]) >= 0.0f;
                 }
@@ -362,6 +371,7 @@ std::vector<Triangle> setupTriangles(const MeshView& mesh, const std::vector<glm
                     tri.normal[m] = polygon[current][o].normal;
                     tri.surface[m] = polygon[current][o].surface;
                     tri.landform[m] = polygon[current][o].landform;
+                    tri.rock[m] = polygon[current][o].rock;
                 }
                 tri.area2 = float(area < 0 ? -area : area) / (SUBPIXEL * SUBPIXEL);
                 const std::int64_t half = 1 << (SUBPIXEL_BITS - 1);
@@ -646,19 +656,27 @@ Image renderSnapshotCpu(const MeshView& mesh, const SnapshotOptions& options, Cp
             s.dpdy = f.world.dpdy * frame.mapScale;
             f.surface = self.surface;
             f.landform = self.landform;
+            f.rock = self.rock;
             if (debugView != shading::DEBUG_VIEW_SHADED) {
                 const std::uint32_t selected = maps.features;
-                c = shading::fragmentDebugColor(evaluateWith<feature::ALL>(frame, maps, f), f.landform, debugView);
+                c = shading::fragmentDebugColor(evaluateWith<feature::ALL>(frame, maps, f), f.landform, f.rock,
+                                               debugView);
                 maps.features = selected;
             } else {
                 // The interpolated (not the normal-mapped) normal biases the lookup.
                 const float visibility = shading::sunVisibility(shadowMap, shadow, self.position, self.normal);
                 c = shade(frame, maps, f, shading::shadowedLighting(frame.lighting, visibility));
             }
-            // A naive triplanar shader fetches all three projections of every map group it reads.
+            // A naive triplanar shader fetches all three projections of every
+            // map it reads (three taps each with anti-tiling), of every layer
+            // it evaluates: an upper bound of what the header fetched.
             ++counted.shadedPixels;
-            counted.naiveFetches += 3u * std::uint64_t(std::popcount(maps.groups));
-            maps.groups = 0;
+            for (std::size_t l = 0; l < maps.sampled.size(); ++l) {
+                const std::uint64_t taps = (maps.antiTiled >> l) & 1u ? 3u : 1u;
+                counted.naiveFetches += 3u * taps * std::uint64_t(std::popcount(maps.sampled[l]));
+                maps.sampled[l] = 0;
+            }
+            maps.antiTiled = 0;
             return true;
         };
 

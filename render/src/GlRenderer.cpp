@@ -49,6 +49,7 @@ static_assert(int(DebugView::Flow) == shading::DEBUG_VIEW_FLOW);
 static_assert(int(DebugView::Wear) == shading::DEBUG_VIEW_WEAR);
 static_assert(int(DebugView::Deposition) == shading::DEBUG_VIEW_DEPOSITION);
 static_assert(int(DebugView::Water) == shading::DEBUG_VIEW_WATER);
+static_assert(int(DebugView::Bed) == shading::DEBUG_VIEW_BED);
 static_assert(DEBUG_VIEW_COUNT == shading::DEBUG_VIEW_COUNT);
 static_assert(detail::MATERIAL_MAP_UNITS == STRATA_MAP_COUNT);
 
@@ -490,12 +491,14 @@ void GlRenderer::setMesh(const MeshView& mesh)
     r.vertexBuffer = detail::createBuffer();
     r.indexBuffer = detail::createBuffer();
     // Positions, normals, then the optional surface attributes (cavity,
-    // cover) and landform masks (flow, wear, deposition, water).
+    // cover), landform masks (flow, wear, deposition, water) and rock masks
+    // (hardness, bed).
     const std::size_t arrayBytes = mesh.vertexCount * sizeof(glm::vec3);
     const std::size_t surfaceBytes = mesh.surface ? mesh.vertexCount * sizeof(glm::vec2) : 0;
     const std::size_t landformBytes = mesh.landform ? mesh.vertexCount * sizeof(glm::vec4) : 0;
-    glNamedBufferStorage(r.vertexBuffer.id(), GLsizeiptr(2 * arrayBytes + surfaceBytes + landformBytes), nullptr,
-                         GL_DYNAMIC_STORAGE_BIT);
+    const std::size_t rockBytes = mesh.rock ? mesh.vertexCount * sizeof(glm::vec2) : 0;
+    glNamedBufferStorage(r.vertexBuffer.id(), GLsizeiptr(2 * arrayBytes + surfaceBytes + landformBytes + rockBytes),
+                         nullptr, GL_DYNAMIC_STORAGE_BIT);
     glNamedBufferSubData(r.vertexBuffer.id(), 0, GLsizeiptr(arrayBytes), mesh.positions);
     glNamedBufferSubData(r.vertexBuffer.id(), GLintptr(arrayBytes), GLsizeiptr(arrayBytes), mesh.normals);
     glNamedBufferStorage(r.indexBuffer.id(), GLsizeiptr(mesh.indexCount * sizeof(std::uint32_t)), mesh.indices, 0);
@@ -519,6 +522,11 @@ void GlRenderer::setMesh(const MeshView& mesh)
         const std::size_t offset = 2 * arrayBytes + surfaceBytes;
         glNamedBufferSubData(r.vertexBuffer.id(), GLintptr(offset), GLsizeiptr(landformBytes), mesh.landform);
         attribute(3, 4, offset);
+    }
+    if (mesh.rock) {
+        const std::size_t offset = 2 * arrayBytes + surfaceBytes + landformBytes;
+        glNamedBufferSubData(r.vertexBuffer.id(), GLintptr(offset), GLsizeiptr(rockBytes), mesh.rock);
+        attribute(4, 2, offset);
     }
     detail::checkGl("uploading the mesh");
     r.indexCount = GLsizei(mesh.indexCount);
@@ -689,6 +697,7 @@ void GlRenderer::draw(const Camera& camera, const Lighting& lighting, unsigned f
         // would give the landform water 1.
         glVertexAttrib4f(2, 0.0f, 0.0f, 0.0f, 0.0f);
         glVertexAttrib4f(3, 0.0f, 0.0f, 0.0f, 0.0f);
+        glVertexAttrib4f(4, 0.0f, 0.0f, 0.0f, 0.0f);
         glBindTextures(0, GLsizei(r.units.size()), r.units.data());
         glDrawElements(GL_TRIANGLES, r.indexCount, GL_UNSIGNED_INT, nullptr);
         if (options.wireframe) {

@@ -29,14 +29,14 @@ LayerCoverage& LayerCoverage::operator=(LayerCoverage&&) noexcept = default;
 int LayerCoverage::layerCount() const { return int(mParams->layers.size()); }
 
 void LayerCoverage::shares(const glm::vec3& position, const glm::vec3& normal, const glm::vec2& surface,
-                           const glm::vec4& landform, float* out) const
+                           const glm::vec4& landform, const glm::vec2& rock, float* out) const
 {
     // Painter's order from the top layer down: what lies above hides.
     float above = 1.0f;
     for (int i = layerCount() - 1; i >= 0; --i) {
         const float c = i == 0 ? 1.0f
                                : shading::layerCoverage(mParams->layers[std::size_t(i)], normal, position, surface,
-                                                        landform);
+                                                        landform, rock);
         out[i] = c * above;
         above *= 1.0f - c;
     }

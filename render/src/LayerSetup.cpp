@@ -50,6 +50,8 @@ shading::LayerParams ruleParams(const LayerRule* rule, const glm::dvec3& origin)
     l.wear = l.altitude;
     l.deposition = l.altitude;
     l.water = l.altitude;
+    l.hardness = l.altitude;
+    l.bed = l.altitude;
     if (rule) {
         l.altitude = band(rule->altitude, origin.y);
         l.slope = band(rule->slope);
@@ -59,6 +61,8 @@ shading::LayerParams ruleParams(const LayerRule* rule, const glm::dvec3& origin)
         l.wear = band(rule->wear);
         l.deposition = band(rule->deposition);
         l.water = band(rule->water);
+        l.hardness = band(rule->hardness);
+        l.bed = band(rule->bed);
         l.opacity = rule->opacity;
         l.seed = rule->noiseSeed;
         if (rule->noiseFrequency > 0.0f) {

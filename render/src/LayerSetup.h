@@ -16,17 +16,19 @@
 
 namespace strata::render::detail {
 
-static_assert(sizeof(shading::LayerParams) == 224, "LayerParams must match its std140 layout");
+static_assert(sizeof(shading::LayerParams) == 256, "LayerParams must match its std140 layout");
 static_assert(offsetof(shading::LayerParams, altitude) == 0);
 static_assert(offsetof(shading::LayerParams, cover) == 48);
 static_assert(offsetof(shading::LayerParams, flow) == 64);
 static_assert(offsetof(shading::LayerParams, water) == 112);
-static_assert(offsetof(shading::LayerParams, noise) == 128);
-static_assert(offsetof(shading::LayerParams, detailOffset) == 176);
-static_assert(offsetof(shading::LayerParams, tileOffset) == 192);
-static_assert(offsetof(shading::LayerParams, mapScale) == 208);
-static_assert(offsetof(shading::LayerParams, features) == 216);
-static_assert(offsetof(shading::LayerParams, seed) == 220);
+static_assert(offsetof(shading::LayerParams, hardness) == 128);
+static_assert(offsetof(shading::LayerParams, bed) == 144);
+static_assert(offsetof(shading::LayerParams, noise) == 160);
+static_assert(offsetof(shading::LayerParams, detailOffset) == 208);
+static_assert(offsetof(shading::LayerParams, tileOffset) == 224);
+static_assert(offsetof(shading::LayerParams, mapScale) == 240);
+static_assert(offsetof(shading::LayerParams, features) == 248);
+static_assert(offsetof(shading::LayerParams, seed) == 252);
 
 /// Texture space for a mesh at `origin` (TerrainFrame.glsl's FrameBlock
 /// and each layer): the origin's whole texture repeats are dropped in
@@ -48,17 +50,17 @@ inline constexpr unsigned LAYER_BLOCK_BINDING = 5;
 /// MaterialParams is 76 bytes, its std140 form (MaterialBlock) 80.
 struct LayerSetBlock
 {
-    shading::LayerParams layers[STRATA_MAX_LAYERS]; // 0, stride 224
-    MaterialBlock materials[STRATA_MAX_LAYERS];     // 1792, stride 80
-    std::int32_t count;                             // 2432
-    float blendDepth;                               // 2436
+    shading::LayerParams layers[STRATA_MAX_LAYERS]; // 0, stride 256
+    MaterialBlock materials[STRATA_MAX_LAYERS];     // 2048, stride 80
+    std::int32_t count;                             // 2688
+    float blendDepth;                               // 2692
     float padding0;
     float padding1;
 };
-static_assert(offsetof(LayerSetBlock, materials) == 1792);
-static_assert(offsetof(LayerSetBlock, count) == 2432);
-static_assert(offsetof(LayerSetBlock, blendDepth) == 2436);
-static_assert(sizeof(LayerSetBlock) == 2448);
+static_assert(offsetof(LayerSetBlock, materials) == 2048);
+static_assert(offsetof(LayerSetBlock, count) == 2688);
+static_assert(offsetof(LayerSetBlock, blendDepth) == 2692);
+static_assert(sizeof(LayerSetBlock) == 2704);
 
 /// The placement part of a layer's parameters (bands, opacity, noise mask)
 /// for a mesh at `origin`; layer 0 (`rule` null) covers everything.

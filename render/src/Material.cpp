@@ -105,6 +105,11 @@ bool usesLandform(const LayerRule& rule)
     return rule.flow.enabled || rule.wear.enabled || rule.deposition.enabled || rule.water.enabled;
 }
 
+bool usesRock(const LayerRule& rule)
+{
+    return rule.hardness.enabled || rule.bed.enabled;
+}
+
 namespace {
 
 void checkBand(const std::string& what, const char* key, const LayerBand& band)
@@ -177,6 +182,8 @@ void checkMaterial(const Material& m)
         checkBand(what, "wear", r.wear);
         checkBand(what, "deposition", r.deposition);
         checkBand(what, "water", r.water);
+        checkBand(what, "hardness", r.hardness);
+        checkBand(what, "bed", r.bed);
         detail::checkRange(what.c_str(), "opacity", r.opacity, 0.0, 1.0);
         detail::checkRange(what.c_str(), "noiseFrequency", r.noiseFrequency, 0.0, 1e3);
         detail::checkRange(what.c_str(), "noiseThreshold", r.noiseThreshold, 0.0, 1.0);

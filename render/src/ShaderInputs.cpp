@@ -55,6 +55,8 @@ struct UniformList
         v4(p + ".wear", l.wear);
         v4(p + ".deposition", l.deposition);
         v4(p + ".water", l.water);
+        v4(p + ".hardness", l.hardness);
+        v4(p + ".bed", l.bed);
         v4(p + ".noise", l.noise);
         v4(p + ".noiseOffset", l.noiseOffset);
         v4(p + ".textureOffset", l.textureOffset);

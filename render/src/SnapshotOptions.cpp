@@ -15,7 +15,7 @@ const char* debugViewName(DebugView view)
 {
     static const char* const NAMES[DEBUG_VIEW_COUNT] = {"shaded", "weights", "normals",    "metallic", "occlusion",
                                                         "height", "smoothness", "albedo", "layers",  "flow",
-                                                        "wear",   "deposition", "water"};
+                                                        "wear",   "deposition", "water",  "hardness", "bed"};
     const int i = int(view);
     return i >= 0 && i < DEBUG_VIEW_COUNT ? NAMES[i] : "unknown";
 }

@@ -109,14 +109,28 @@ BakeFile writeBakeFile(const fs::path& dir, const std::string& relative, std::st
     return BakeFile{relative, bytes.size(), sha256Hex(bytes)};
 }
 
+/// The mask sources the tiles carry: those the layer rules read (landform:
+/// flow, wear, deposition or water; rock: hardness or bed), else null.
+struct TileMasks
+{
+    std::shared_ptr<const terrain::LandformMasks> landform;
+    std::shared_ptr<const terrain::RockMasks> rock;
+};
+
+TileMasks tileMasks(const Scene& scene, std::optional<std::uint64_t> seed)
+{
+    return {needsLandform(scene) ? landformMasksForSeed(scene, seed) : nullptr,
+            needsRock(scene) ? rockMasksForSeed(scene, seed) : nullptr};
+}
+
 /// Bakes one tile: every level's mesh and (optionally) the level-0 grid;
 /// with `dir`, writes its files and then its record (so a record on disk
 /// means every file of the tile is complete).
-/// `landform` (may be null) fills each level's landform masks, which the
-/// tiles then carry (glTF _LANDFORM) for layer rules that read them.
+/// `masks` fills each level's landform and rock masks (either may be
+/// null), which the tiles then carry (glTF _LANDFORM, _ROCK) for layer
+/// rules that read them.
 TileRecord bakeTile(const terrain::DensityField& field, const Scene& scene, const BakePlan& plan, bool grids,
-                    std::uint64_t maxMemoryBytes, const BakeTile& tile, const fs::path* dir,
-                    const terrain::LandformMasks* landform)
+                    std::uint64_t maxMemoryBytes, const BakeTile& tile, const fs::path* dir, const TileMasks& masks)
 {
     TileRecord record;
     record.index = tile.index;
@@ -133,9 +147,13 @@ TileRecord bakeTile(const terrain::DensityField& field, const Scene& scene, cons
         options.level = level;
         options.skirtDepth = plan.skirtDepth;
         world::TileMeshData mesh = world::meshTile(field, tile.box, options);
-        if (landform) {
-            mesh.surface.landform = world::computeLandformAttributes(*landform, mesh.surface);
-            mesh.skirt.landform = world::computeLandformAttributes(*landform, mesh.skirt);
+        if (masks.landform) {
+            mesh.surface.landform = world::computeLandformAttributes(*masks.landform, mesh.surface);
+            mesh.skirt.landform = world::computeLandformAttributes(*masks.landform, mesh.skirt);
+        }
+        if (masks.rock) {
+            mesh.surface.rock = world::computeRockAttributes(*masks.rock, mesh.surface);
+            mesh.skirt.rock = world::computeRockAttributes(*masks.rock, mesh.skirt);
         }
         TileLevelRecord out;
         out.level = level;
@@ -319,9 +337,7 @@ BakeSummary bake(const Scene& scene, const BakeOptions& options, const BakePlan&
     const Stopwatch clock;
     const fs::path& dir = options.outputDir;
     const std::shared_ptr<const terrain::DensityField> field = fieldForSeed(scene, options.seed);
-    // Layer rules on flow, wear, deposition or water: the tiles carry the masks.
-    const std::shared_ptr<const terrain::LandformMasks> landform =
-        needsLandform(scene) ? landformMasksForSeed(scene, options.seed) : nullptr;
+    const TileMasks masks = tileMasks(scene, options.seed);
 
     BakeManifest manifest = detail::manifestFor(plan, scene, options.grids);
     // Check the folder before creating anything in it.
@@ -385,7 +401,7 @@ BakeSummary bake(const Scene& scene, const BakeOptions& options, const BakePlan&
         const BakeTile tile = plan.tile(index);
         try {
             TileRecord record =
-                bakeTile(*field, scene, plan, options.grids, options.maxMemoryBytes, tile, &dir, landform.get());
+                bakeTile(*field, scene, plan, options.grids, options.maxMemoryBytes, tile, &dir, masks);
             std::lock_guard<std::mutex> hold(mutex);
             made.emplace(index, std::move(record));
         } catch (const std::exception& e) {
@@ -477,9 +493,7 @@ BakeSummary finalizeBake(const fs::path& dir, PipelineObserver* observer)
 BakeSample sampleBakeTile(const Scene& scene, const BakeOptions& options, const BakePlan& plan)
 {
     const std::shared_ptr<const terrain::DensityField> field = fieldForSeed(scene, options.seed);
-    // Layer rules on flow, wear, deposition or water: the tiles carry the masks.
-    const std::shared_ptr<const terrain::LandformMasks> landform =
-        needsLandform(scene) ? landformMasksForSeed(scene, options.seed) : nullptr;
+    const TileMasks masks = tileMasks(scene, options.seed);
     // The middle column's slab that holds the surface: the lowest slab with
     // triangles at level 0, else slab 0.
     BakeSample sample;
@@ -489,7 +503,7 @@ BakeSample sampleBakeTile(const Scene& scene, const BakeOptions& options, const 
         sample.index = (y * plan.counts[2] + z) * plan.counts[0] + x;
         const TileRecord record =
             bakeTile(*field, scene, plan, options.grids, options.maxMemoryBytes, plan.tile(sample.index), nullptr,
-                     landform.get());
+                     masks);
         sample.triangles = 0;
         for (const TileLevelRecord& level : record.levels) sample.triangles += level.triangles;
         for (const TileLevelRecord& level : record.levels)

@@ -131,6 +131,7 @@ render::MeshView meshView(const meshing::TriangleMesh& mesh)
     view.origin = mesh.origin;
     if (!mesh.surface.empty() && mesh.surface.size() == mesh.positions.size()) view.surface = mesh.surface.data();
     if (!mesh.landform.empty() && mesh.landform.size() == mesh.positions.size()) view.landform = mesh.landform.data();
+    if (!mesh.rock.empty() && mesh.rock.size() == mesh.positions.size()) view.rock = mesh.rock.data();
     return view;
 }
 
@@ -189,6 +190,7 @@ SampledTerrain sampleTerrain(const Scene& scene, std::optional<std::uint64_t> se
     out.seed = seed.value_or(scene.terrain.seed);
     out.field = fieldForSeed(scene, seed);
     out.landformMasks = landformMasksForSeed(scene, seed);
+    out.rockMasks = rockMasksForSeed(scene, seed);
     terrain::SampleOptions sampling;
     sampling.voxelSize = scene.voxelSize;
     sampling.halfWidth = scene.halfWidth;
@@ -214,24 +216,48 @@ meshing::GradientFunction fieldGradient(std::shared_ptr<const terrain::DensityFi
     };
 }
 
-bool needsLandform(const Scene& scene, const std::string& debugView)
+namespace {
+
+/// Whether a layer rule (`uses`) or the debug view (`isView`) reads a mask
+/// source; throws naming the view or `band` and what the source `needs`
+/// when the scene has none (`hasSource` false).
+bool needsMasks(const Scene& scene, const std::string& debugView, bool (*uses)(const render::LayerRule&),
+                bool (*isView)(render::DebugView), bool hasSource, const std::string& band, const std::string& needs)
 {
     const bool rules = std::any_of(scene.material.layers.begin(), scene.material.layers.end(),
-                                   [](const LayerSettings& l) { return render::usesLandform(l.rule); });
+                                   [uses](const LayerSettings& l) { return uses(l.rule); });
     const std::optional<render::DebugView> view = debugViewFromName(debugView);
-    const bool shown = view && render::isLandformView(*view);
-    if ((rules || shown) && !scene.landformMasks) {
+    const bool shown = view && isView(*view);
+    if ((rules || shown) && !hasSource) {
         throw Error(ErrorKind::BadInput,
-                    scene.source + ": " +
-                        (shown ? "the debug view '" + debugView + "'" : std::string("a layer's landform band")) +
-                        " needs the landform masks of erosion: add an `erode` node to the terrain tree",
+                    scene.source + ": " + (shown ? "the debug view '" + debugView + "'" : band) + " needs " + needs,
                     {scene.source});
     }
     return rules || shown;
 }
 
+} // namespace
+
+bool needsLandform(const Scene& scene, const std::string& debugView)
+{
+    return needsMasks(scene, debugView, render::usesLandform, render::isLandformView, scene.landformMasks != nullptr,
+                      "a layer's landform band", "the landform masks of erosion: add an `erode` node to the terrain tree");
+}
+
+bool needsRock(const Scene& scene, const std::string& debugView)
+{
+    return needsMasks(scene, debugView, render::usesRock, render::isRockView, scene.rockMasks != nullptr,
+                      "a layer's hardness or bed band",
+                      "the rock masks of rock beds: add a `beds` node to the terrain tree");
+}
+
+MeshMasks neededMasks(const Scene& scene, const std::string& debugView)
+{
+    return {needsLandform(scene, debugView), needsRock(scene, debugView)};
+}
+
 meshing::TriangleMesh meshTerrain(const Scene& scene, const QualitySettings& quality, const SampledTerrain& terrain,
-                                  std::string* what, bool withLandform)
+                                  std::string* what, MeshMasks extra)
 {
     // Positions relative to the region's centre (the .glb node translation),
     // so float precision holds for regions far from the world origin.
@@ -251,14 +277,22 @@ meshing::TriangleMesh meshTerrain(const Scene& scene, const QualitySettings& qua
     if (needsSurface && mesh.normals.size() == mesh.positions.size()) {
         mesh.surface = meshing::computeSurfaceAttributes(*terrain.grid, mesh);
     }
-    // The landform masks when a rule (or the caller's debug view) reads them.
-    if (needsLandform(scene) || withLandform) {
+    // The landform and rock masks when a rule (or the caller's debug view) reads them.
+    if (needsLandform(scene) || extra.landform) {
         if (!terrain.landformMasks) {
             throw Error(ErrorKind::BadInput,
                         scene.source + ": the landform masks are needed but the terrain has no `erode` node",
                         {scene.source});
         }
         mesh.landform = world::computeLandformAttributes(*terrain.landformMasks, mesh);
+    }
+    if (needsRock(scene) || extra.rock) {
+        if (!terrain.rockMasks) {
+            throw Error(ErrorKind::BadInput,
+                        scene.source + ": the rock masks are needed but the terrain has no `beds` node",
+                        {scene.source});
+        }
+        mesh.rock = world::computeRockAttributes(*terrain.rockMasks, mesh);
     }
     return mesh;
 }
@@ -367,7 +401,7 @@ GenerateResult generate(const Scene& input, const GenerateOptions& options, Pipe
         checkSnapshotRequest(request); // bad flags: nothing written
     }
     // A layer or debug view that needs erosion's masks the terrain lacks: nothing written.
-    const bool landform = needsLandform(scene, options.snapshot ? request.debugView : std::string());
+    const MeshMasks masks = neededMasks(scene, options.snapshot ? request.debugView : std::string());
 
     // The GL context first: on a machine without one, fail before the long stages.
     std::unique_ptr<render::EglContext> context;
@@ -441,7 +475,7 @@ GenerateResult generate(const Scene& input, const GenerateOptions& options, Pipe
     }
 
     log.begin("mesh");
-    const meshing::TriangleMesh mesh = meshTerrain(scene, result.quality, terrain, &result.mesher, landform);
+    const meshing::TriangleMesh mesh = meshTerrain(scene, result.quality, terrain, &result.mesher, masks);
     result.vertices = mesh.vertexCount();
     result.triangles = mesh.triangleCount();
     log.end(withThousands(result.vertices) + " vertices, " + withThousands(result.triangles) + " triangles, " +

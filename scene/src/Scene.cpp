@@ -28,7 +28,7 @@ namespace {
 
 constexpr double HUGE_LENGTH = 1e9; // metres: the largest coordinate a scene may use
 
-/// Sets the scene's field, landform source and their rebuilders from the
+/// Sets the scene's field, landform and rock sources and their rebuilders from the
 /// node tree's builder (SceneTerrain.h).
 void useTerrainTree(Scene& scene, const TerrainBuilder& build)
 {
@@ -40,6 +40,8 @@ void useTerrainTree(Scene& scene, const TerrainBuilder& build)
     if (tree.landformMasks) {
         scene.buildLandformMasks = [build](std::uint64_t seed) { return build(seed).landformMasks; };
     }
+    scene.rockMasks = tree.rockMasks;
+    if (tree.rockMasks) scene.buildRockMasks = [build](std::uint64_t seed) { return build(seed).rockMasks; };
 }
 
 void readTerrain(TableReader& root, Scene& scene, const SceneLoadOptions& load)
@@ -152,7 +154,8 @@ Scene parseScene(std::string_view text, const std::string& source, const SceneLo
     scene.adaptivity = mesh.number("adaptivity", scene.adaptivity, 0.0, 1.0);
     mesh.finish();
 
-    readMaterial(root, scene.material, std::filesystem::path(source).parent_path(), scene.landformMasks != nullptr);
+    readMaterial(root, scene.material, std::filesystem::path(source).parent_path(), scene.landformMasks != nullptr,
+                 scene.rockMasks != nullptr);
 
     TableReader camera = root.table("camera");
     CameraSettings& c = scene.camera;
@@ -263,6 +266,11 @@ std::shared_ptr<const terrain::LandformMasks> landformMasksForSeed(const Scene& 
 {
     return seed && *seed != scene.terrain.seed && scene.buildLandformMasks ? scene.buildLandformMasks(*seed)
                                                                            : scene.landformMasks;
+}
+
+std::shared_ptr<const terrain::RockMasks> rockMasksForSeed(const Scene& scene, std::optional<std::uint64_t> seed)
+{
+    return seed && *seed != scene.terrain.seed && scene.buildRockMasks ? scene.buildRockMasks(*seed) : scene.rockMasks;
 }
 
 } // namespace strata::scene

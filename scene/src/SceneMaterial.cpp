@@ -9,6 +9,7 @@
 #include <strata/render/PbrFolder.h>
 #include <strata/render/ProceduralTextures.h>
 
+#include <initializer_list>
 #include <map>
 
 namespace strata::scene {
@@ -279,9 +280,28 @@ render::LayerBand readBand(TableReader& t, const std::string& key, double limit,
     return band;
 }
 
-/// The rule of a [[layer]] table. Bands on the landform masks need
-/// `landformSource` (an `erode` node in the terrain tree).
-render::LayerRule readLayerRule(TableReader& t, bool landformSource)
+/// Which mask sources the terrain tree has, for the layer bands on them.
+struct MaskSources
+{
+    bool landform = false; ///< an `erode` node: flow, wear, deposition, water
+    bool rock = false;     ///< a `beds` node: hardness, bed
+};
+
+/// Fails at the first bound of `bands` that `t` gives: their source is
+/// missing (`needs` says what and how to add it).
+void refuseBands(TableReader& t, std::initializer_list<const char*> bands, const std::string& needs)
+{
+    for (const char* band : bands) {
+        for (const char* bound : {"_min", "_max"}) {
+            const std::string key = std::string(band) + bound;
+            if (t.has(key)) t.fail(nullptr, key, t.shown(key) + needs + ", or remove the " + band + " band");
+        }
+    }
+}
+
+/// The rule of a [[layer]] table. Bands on the landform masks need an
+/// `erode` node in the terrain tree, bands on the rock masks a `beds` node.
+render::LayerRule readLayerRule(TableReader& t, const MaskSources& sources)
 {
     render::LayerRule r;
     r.altitude = readBand(t, "altitude", 1e7, 10.0);
@@ -292,17 +312,15 @@ render::LayerRule readLayerRule(TableReader& t, bool landformSource)
     r.wear = readBand(t, "wear", 1e4, 1.0);             // metres
     r.deposition = readBand(t, "deposition", 1e4, 0.5); // metres
     r.water = readBand(t, "water", 1.0, 0.1);
-    if (!landformSource) {
-        for (const char* band : {"flow", "wear", "deposition", "water"}) {
-            for (const char* bound : {"_min", "_max"}) {
-                const std::string key = std::string(band) + bound;
-                if (t.has(key)) {
-                    t.fail(nullptr, key,
-                           t.shown(key) + "needs the landform masks of erosion: add an `erode` node to the terrain " +
-                               "tree ([terrain.nodes]), or remove the " + band + " band");
-                }
-            }
-        }
+    r.hardness = readBand(t, "hardness", 1.0, 0.1);
+    r.bed = readBand(t, "bed", 1e6, 0.5); // the bed's index in the beds node's sequence
+    if (!sources.landform) {
+        refuseBands(t, {"flow", "wear", "deposition", "water"},
+                    "needs the landform masks of erosion: add an `erode` node to the terrain tree ([terrain.nodes])");
+    }
+    if (!sources.rock) {
+        refuseBands(t, {"hardness", "bed"},
+                    "needs the rock masks of rock beds: add a `beds` node to the terrain tree ([terrain.nodes])");
     }
     if (t.has("noise_scale")) r.noiseFrequency = float(1.0 / t.number("noise_scale", 1.0, 0.01, 1e5));
     r.noiseThreshold = float(t.number("noise_threshold", r.noiseThreshold, 0.0, 1.0));
@@ -314,7 +332,7 @@ render::LayerRule readLayerRule(TableReader& t, bool landformSource)
 
 /// The [[layer]] array of tables, bottom to top.
 void readLayers(TableReader& root, MaterialSettings& base, const std::map<std::string, MaterialSettings>& named,
-                const std::filesystem::path& baseDir, const std::string& source, bool landformSource)
+                const std::filesystem::path& baseDir, const std::string& source, const MaskSources& sources)
 {
     const toml::node* node = root.node("layer");
     if (!node) return;
@@ -342,7 +360,7 @@ void readLayers(TableReader& root, MaterialSettings& base, const std::map<std::s
             layer.material.top = "none";
         }
         layer.material.name = t.string("name", use.empty() ? prefix : use);
-        layer.rule = readLayerRule(t, landformSource);
+        layer.rule = readLayerRule(t, sources);
         readMaterialTable(t, layer.material, baseDir);
         t.finish();
         base.layers.push_back(std::move(layer));
@@ -352,7 +370,7 @@ void readLayers(TableReader& root, MaterialSettings& base, const std::map<std::s
 } // namespace
 
 void readMaterial(TableReader& root, MaterialSettings& settings, const std::filesystem::path& baseDir,
-                  bool landformSource)
+                  bool landformSource, bool rockSource)
 {
     // Named materials first: every one is checked, the one `use`d applies.
     TableReader materials = root.table("materials");
@@ -383,7 +401,7 @@ void readMaterial(TableReader& root, MaterialSettings& settings, const std::file
     readMaterialTable(m, settings, baseDir);
     m.finish();
     settings.layers.clear();
-    readLayers(root, settings, named, baseDir, m.source(), landformSource);
+    readLayers(root, settings, named, baseDir, m.source(), {landformSource, rockSource});
 }
 
 render::Material buildMaterial(const MaterialSettings& settings)

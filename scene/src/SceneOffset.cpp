@@ -7,6 +7,7 @@
 #include <strata/terrain/Transforms.h>
 
 #include <algorithm>
+#include <functional>
 #include <cmath>
 #include <memory>
 #include <sstream>
@@ -40,6 +41,50 @@ private:
     std::shared_ptr<const terrain::LandformMasks> mSource;
     glm::dvec3 mOffset;
 };
+
+/// Rock masks moved by `offset`: masks(p) = source(p − offset).
+class OffsetRockMasks final : public terrain::RockMasks
+{
+public:
+    OffsetRockMasks(std::shared_ptr<const terrain::RockMasks> source, const glm::dvec3& offset)
+        : mSource(std::move(source)), mOffset(offset)
+    {
+    }
+
+    void rockMasks(const double* x, const double* y, const double* z, std::size_t n, glm::vec2* out) const override
+    {
+        std::vector<double> sx(n), sy(n), sz(n);
+        for (std::size_t i = 0; i < n; ++i) {
+            sx[i] = x[i] - mOffset.x;
+            sy[i] = y[i] - mOffset.y;
+            sz[i] = z[i] - mOffset.z;
+        }
+        mSource->rockMasks(sx.data(), sy.data(), sz.data(), n, out);
+    }
+
+private:
+    std::shared_ptr<const terrain::RockMasks> mSource;
+    glm::dvec3 mOffset;
+};
+
+/// `source` (a mask source, or its rebuilder for another seed) moved by
+/// `offset` through the wrapper `Offset`.
+template<typename Offset, typename Masks>
+std::shared_ptr<const Masks> offsetMasks(std::shared_ptr<const Masks> source, const glm::dvec3& offset)
+{
+    if (!source) return source;
+    return std::make_shared<Offset>(std::move(source), offset);
+}
+
+template<typename Offset, typename Masks>
+std::function<std::shared_ptr<const Masks>(std::uint64_t)>
+offsetMasks(std::function<std::shared_ptr<const Masks>(std::uint64_t)> build, const glm::dvec3& offset)
+{
+    if (!build) return build;
+    return [build = std::move(build), offset](std::uint64_t seed) {
+        return offsetMasks<Offset, Masks>(build(seed), offset);
+    };
+}
 
 } // namespace
 
@@ -75,15 +120,10 @@ Scene offsetScene(Scene scene, const glm::dvec3& offset)
             return std::make_shared<terrain::TranslateField>(build(seed), offset);
         };
     }
-    if (scene.landformMasks) scene.landformMasks = std::make_shared<OffsetLandformMasks>(scene.landformMasks, offset);
-    if (scene.buildLandformMasks) {
-        scene.buildLandformMasks = [build = scene.buildLandformMasks,
-                                    offset](std::uint64_t seed) -> std::shared_ptr<const terrain::LandformMasks> {
-            std::shared_ptr<const terrain::LandformMasks> masks = build(seed);
-            if (!masks) return masks;
-            return std::make_shared<OffsetLandformMasks>(std::move(masks), offset);
-        };
-    }
+    scene.landformMasks = offsetMasks<OffsetLandformMasks>(scene.landformMasks, offset);
+    scene.buildLandformMasks = offsetMasks<OffsetLandformMasks>(scene.buildLandformMasks, offset);
+    scene.rockMasks = offsetMasks<OffsetRockMasks>(scene.rockMasks, offset);
+    scene.buildRockMasks = offsetMasks<OffsetRockMasks>(scene.buildRockMasks, offset);
     scene.region.min += offset;
     scene.region.max += offset;
     if (scene.camera.position) *scene.camera.position += offset;

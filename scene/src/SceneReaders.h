@@ -24,10 +24,11 @@ QualityTable readQuality(TableReader& root);
 /// `baseDir` resolves relative file names. Throws strata::Error
 /// "SOURCE:LINE: material.KEY ..." for unknown keys, wrong types,
 /// out-of-range values and unknown built-in sets; also for a map file that
-/// is missing ("... no such file"), and for a layer band on the landform
+/// is missing ("... no such file"), for a layer band on the landform
 /// masks (flow, wear, deposition, water) when `landformSource` is false
-/// (the terrain has no `erode` node).
+/// (the terrain has no `erode` node), and for one on the rock masks
+/// (hardness, bed) when `rockSource` is false (no `beds` node).
 void readMaterial(TableReader& root, MaterialSettings& settings, const std::filesystem::path& baseDir,
-                  bool landformSource);
+                  bool landformSource, bool rockSource);
 
 } // namespace strata::scene

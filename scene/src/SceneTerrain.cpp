@@ -106,6 +106,7 @@ public:
         mVisiting.erase(name);
         mBuilt.emplace(name, field);
         if (auto masks = std::dynamic_pointer_cast<const LandformMasks>(field)) mLandform.emplace(name, masks);
+        if (auto rock = std::dynamic_pointer_cast<const terrain::RockMasks>(field)) mRock.emplace(name, rock);
         if (auto eroded = std::dynamic_pointer_cast<const ErodedHeightfield>(field); eroded && !mPassOf.count(eroded.get())) {
             mPassOf.insert(eroded.get());
             const ErodedGrid& grid = eroded->grid();
@@ -120,6 +121,8 @@ public:
 
     /// The built nodes with landform masks (erode nodes), by name.
     const std::map<std::string, LandformMasksPtr>& landformNodes() const { return mLandform; }
+    /// The built nodes with rock masks (beds nodes), by name.
+    const std::map<std::string, RockMasksPtr>& rockNodes() const { return mRock; }
     /// The erode nodes' passes, in build order.
     const std::vector<LandformPass>& passes() const { return mPasses; }
 
@@ -275,6 +278,7 @@ private:
     ImageCache& mImages;
     std::map<std::string, DensityFieldPtr> mBuilt;
     std::map<std::string, LandformMasksPtr> mLandform;
+    std::map<std::string, RockMasksPtr> mRock;
     NodeBuildContext mContext;
     std::vector<LandformPass> mPasses;
     std::set<const void*> mPassOf;
@@ -282,36 +286,40 @@ private:
 };
 
 /// "'a', 'b'" for messages.
-std::string quotedNames(const std::map<std::string, LandformMasksPtr>& nodes)
+template<typename Masks>
+std::string quotedNames(const std::map<std::string, Masks>& nodes)
 {
     std::string out;
     for (const auto& [name, masks] : nodes) out += (out.empty() ? "'" : ", '") + name + "'";
     return out;
 }
 
-/// The landform source of a built tree: `terrain.masks` when given (it
-/// must name one of `nodes`), else the only one of `nodes`, else null.
-LandformMasksPtr chooseLandformMasks(TableReader& terrain, const std::map<std::string, LandformMasksPtr>& nodes)
+/// The mask source of a built tree: `terrain.KEY` when given (it must name
+/// one of `nodes`), else the only one of `nodes`, else null. `what` names
+/// the masks ("landform masks"), `nodeType` the node that has them.
+template<typename Masks>
+Masks chooseMaskSource(TableReader& terrain, const std::map<std::string, Masks>& nodes, const std::string& key,
+                       const std::string& what, const std::string& nodeType)
 {
-    if (terrain.has("masks")) {
-        const std::string name = terrain.string("masks", "");
+    if (terrain.has(key)) {
+        const std::string name = terrain.string(key, "");
         auto found = nodes.find(name);
         if (found == nodes.end()) {
-            terrain.fail(nullptr, "masks",
-                         "= '" + name + "' is not a node with landform masks" +
-                             (nodes.empty() ? std::string(": the tree has none (add an `erode` node)")
+            terrain.fail(nullptr, key,
+                         "= '" + name + "' is not a node with " + what +
+                             (nodes.empty() ? ": the tree has none (add " + nodeType + " node)"
                                             : " (one of " + quotedNames(nodes) + ")"));
         }
         return found->second;
     }
     // Names that lead to the same node (a `heightfield` whose `height` is an
     // erode node is that node) are one source.
-    std::set<const terrain::LandformMasks*> distinct;
+    std::set<const void*> distinct;
     for (const auto& [name, masks] : nodes) distinct.insert(masks.get());
     if (distinct.size() > 1) {
-        terrain.fail(nullptr, "masks",
-                     "is required: the tree has " + std::to_string(nodes.size()) + " nodes with landform masks (" +
-                         quotedNames(nodes) + "); name the one layer rules read, e.g. masks = '" +
+        terrain.fail(nullptr, key,
+                     "is required: the tree has " + std::to_string(nodes.size()) + " nodes with " + what + " (" +
+                         quotedNames(nodes) + "); name the one layer rules read, e.g. " + key + " = '" +
                          nodes.begin()->first + "'");
     }
     return nodes.empty() ? nullptr : nodes.begin()->second;
@@ -345,7 +353,8 @@ TerrainTree buildTree(const toml::table* table, const std::string& source, const
     NodeBuilder nodes(nodesNode ? nodesNode->as_table() : nullptr, source, baseDirectory, seed, images, context);
     TerrainTree tree;
     tree.root = nodes.build(rootName, terrain, "root");
-    tree.landformMasks = chooseLandformMasks(terrain, nodes.landformNodes());
+    tree.landformMasks = chooseMaskSource(terrain, nodes.landformNodes(), "masks", "landform masks", "an `erode`");
+    tree.rockMasks = chooseMaskSource(terrain, nodes.rockNodes(), "rock", "rock masks", "a `beds`");
     tree.passes = nodes.passes();
     terrain.finish();
     // A node that nothing uses is most likely a mistake (a misspelt name).

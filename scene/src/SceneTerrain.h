@@ -39,6 +39,7 @@ namespace strata::scene {
 
 using DensityFieldPtr = std::shared_ptr<const terrain::DensityField>;
 using LandformMasksPtr = std::shared_ptr<const terrain::LandformMasks>;
+using RockMasksPtr = std::shared_ptr<const terrain::RockMasks>;
 
 /// The node tree built for one seed.
 struct TerrainTree
@@ -49,6 +50,10 @@ struct TerrainTree
     /// `[terrain] masks = "NAME"` names when it has several; null when it
     /// has none.
     LandformMasksPtr landformMasks;
+    /// The node whose rock masks (hardness, bed) layer rules read: the
+    /// tree's one node that implements terrain::RockMasks (a `beds` node),
+    /// or the one `[terrain] rock = "NAME"` names; null when it has none.
+    RockMasksPtr rockMasks;
     /// The erode nodes' global passes, in the order they were built.
     std::vector<LandformPass> passes;
 };

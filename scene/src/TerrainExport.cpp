@@ -7,6 +7,7 @@
 
 #include <strata/scene/TerrainExport.h>
 
+#include "BakeManifest.h"
 #include "TileWorkers.h"
 
 #include <strata/AtomicFile.h>
@@ -25,6 +26,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <fstream>
+#include <iterator>
 #include <map>
 #include <mutex>
 
@@ -92,7 +95,7 @@ struct TileMaps
 };
 
 TileMaps computeTile(const Scene& scene, const terrain::DensityField& field, const terrain::LandformMasks* landform,
-                     const TerrainExportPlan& plan, int tx, int tz)
+                     const terrain::RockMasks* rock, const TerrainExportPlan& plan, int tx, int tz)
 {
     const double v = plan.voxelSize;
     world::TileBox box;
@@ -153,7 +156,9 @@ TileMaps computeTile(const Scene& scene, const terrain::DensityField& field, con
                 const double x = p.x, z = p.z;
                 landform->landformMasks(&x, &z, 1, &masks);
             }
-            coverage.shares(glm::vec3(p - origin), glm::vec3(normal), surface, masks, shares.data());
+            glm::vec2 rockMasks(0.0f);
+            if (rock) rock->rockMasks(&p.x, &p.y, &p.z, 1, &rockMasks);
+            coverage.shares(glm::vec3(p - origin), glm::vec3(normal), surface, masks, rockMasks, shares.data());
             quantiseWeights(shares.data(), layers, &maps.weights[s * layers]);
         }
     return maps;
@@ -373,6 +378,76 @@ json importSettings(const TerrainExportPlan& plan)
             {"weight_layers", plan.layers}};
 }
 
+/// What makes two exports one: the format, the scene (its hash) and every
+/// setting the tiles' files depend on. terrain.json holds them.
+json exportIdentity(const Scene& scene, const TerrainExportPlan& plan)
+{
+    return {{"format", "strata-terrain-export"},
+            {"version", 1},
+            {"engine", terrainEngineName(plan.engine)},
+            {"scene_hash", detail::sceneHash(scene)},
+            {"seed", plan.seed},
+            {"voxel_size", plan.voxelSize},
+            {"tile_size", plan.tileSize},
+            {"tiles_x", plan.tilesX},
+            {"tiles_z", plan.tilesZ},
+            {"resolution", plan.resolution},
+            {"spacing", plan.spacing},
+            {"height_base", plan.base},
+            {"height_step", plan.heightStep},
+            {"layers", plan.layers}};
+}
+
+/// The tile records of the export already in `dir` when it is this one
+/// (the same identity), so that exports of some tiles at a time add up in
+/// one terrain.json; none when the folder holds no terrain.json. Another
+/// export's folder (another engine, scene, seed or setting; a terrain.json
+/// that does not parse) is refused naming what differs, unless `force`
+/// (its tiles are then left out of the new terrain.json).
+std::map<int, json> previousTiles(const fs::path& dir, const json& identity, bool force)
+{
+    const fs::path path = dir / "terrain.json";
+    std::error_code ec;
+    if (!fs::exists(path, ec)) return {};
+    std::string differs;
+    json old;
+    {
+        std::ifstream in(path, std::ios::binary);
+        const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+        old = json::parse(text, nullptr, false);
+    }
+    if (!old.is_object()) {
+        differs = "a terrain.json that does not parse";
+    } else {
+        for (const auto& [key, value] : identity.items()) {
+            const auto found = old.find(key);
+            if (found == old.end() || *found != value) {
+                differs = key + " " + (found == old.end() ? std::string("(none)") : found->dump()) + " (this export: " +
+                          value.dump() + ")";
+                break;
+            }
+        }
+    }
+    if (!differs.empty()) {
+        if (force) return {};
+        throw Error(ErrorKind::BadInput,
+                    "output folder '" + dir.string() + "' holds another terrain export: " + differs +
+                        "; use another folder, or --force to export over it",
+                    {dir.string()});
+    }
+    std::map<int, json> tiles;
+    const auto list = old.find("tiles");
+    if (list != old.end() && list->is_array()) {
+        const int tilesX = identity["tiles_x"].get<int>();
+        for (const json& tile : *list) {
+            const auto x = tile.find("x"), z = tile.find("z");
+            if (x != tile.end() && z != tile.end() && x->is_number_integer() && z->is_number_integer())
+                tiles.emplace(z->get<int>() * tilesX + x->get<int>(), tile);
+        }
+    }
+    return tiles;
+}
+
 } // namespace
 
 TerrainExportSummary exportTerrain(const Scene& scene, const TerrainExportOptions& options,
@@ -387,12 +462,13 @@ TerrainExportSummary exportTerrain(const Scene& scene, const TerrainExportOption
                                        (ec ? ec.message() : "a file is in the way"),
                     {dir.string()});
     const OutputLock lock(dir);
+    const json identity = exportIdentity(scene, plan);
+    std::map<int, json> previous = previousTiles(dir, identity, options.force);
 
     const std::shared_ptr<const terrain::DensityField> field = fieldForSeed(scene, plan.seed);
-    bool landformUsed = false;
-    for (const LayerSettings& layer : scene.material.layers) landformUsed = landformUsed || render::usesLandform(layer.rule);
     const std::shared_ptr<const terrain::LandformMasks> landform =
-        landformUsed ? landformMasksForSeed(scene, plan.seed) : nullptr;
+        needsLandform(scene) ? landformMasksForSeed(scene, plan.seed) : nullptr;
+    const std::shared_ptr<const terrain::RockMasks> rock = needsRock(scene) ? rockMasksForSeed(scene, plan.seed) : nullptr;
 
     if (observer) observer->beginStage("export");
     std::mutex mutex;
@@ -401,7 +477,7 @@ TerrainExportSummary exportTerrain(const Scene& scene, const TerrainExportOption
     const detail::TileWorkResult run =
         detail::runTileWorkers(plan.selected, options.threads, observer, [&](int index) {
             const int tx = index % plan.tilesX, tz = index / plan.tilesX;
-            TileMaps maps = computeTile(scene, *field, landform.get(), plan, tx, tz);
+            TileMaps maps = computeTile(scene, *field, landform.get(), rock.get(), plan, tx, tz);
             if (!options.meshes) maps.remainder = {};
             json record = writeTile(dir, plan, maps, tx, tz);
             std::lock_guard<std::mutex> hold(mutex);
@@ -424,24 +500,14 @@ TerrainExportSummary exportTerrain(const Scene& scene, const TerrainExportOption
         throw Error(ErrorKind::Io, message, {dir.string()});
     }
 
+    // This run's tiles, and those an earlier run of the same export wrote.
+    for (auto& [index, record] : records) previous[index] = std::move(record);
     json tiles = json::array();
-    for (auto& [index, record] : records) tiles.push_back(std::move(record));
-    const json manifest = {{"format", "strata-terrain-export"},
-                           {"version", 1},
-                           {"engine", terrainEngineName(plan.engine)},
-                           {"scene", scene.source},
-                           {"seed", plan.seed},
-                           {"voxel_size", plan.voxelSize},
-                           {"tile_size", plan.tileSize},
-                           {"tiles_x", plan.tilesX},
-                           {"tiles_z", plan.tilesZ},
-                           {"resolution", plan.resolution},
-                           {"spacing", plan.spacing},
-                           {"height_base", plan.base},
-                           {"height_step", plan.heightStep},
-                           {"layers", plan.layers},
-                           {"import", importSettings(plan)},
-                           {"tiles", tiles}};
+    for (auto& [index, record] : previous) tiles.push_back(std::move(record));
+    json manifest = identity;
+    manifest["scene"] = scene.source;
+    manifest["import"] = importSettings(plan);
+    manifest["tiles"] = std::move(tiles);
     writeFileAtomically(dir / "terrain.json", manifest.dump(1) + "\n");
     return summary;
 }

@@ -58,6 +58,10 @@ struct TileWorkResult
 /// waiting inside a tile's parallel_for never picks up another tile.
 /// `Observer` (a PipelineObserver, or a test's) has
 /// bool progressCount(std::uint64_t done, std::uint64_t total, const std::string& unit).
+/// An exception from it stops handing out tiles as an interrupt does; once
+/// the tiles in progress have finished and every thread is joined, it is
+/// rethrown (a throwing observer used to end the process: std::terminate
+/// on the joinable helper thread).
 template <class Observer>
 TileWorkResult runTileWorkers(const std::vector<int>& todo, int threads, Observer* observer,
                               const std::function<void(int index)>& work)
@@ -115,7 +119,8 @@ TileWorkResult runTileWorkers(const std::vector<int>& todo, int threads, Observe
             s.changed.notify_all();
         }
     };
-    std::exception_ptr lost; // from TBB itself (e.g. out of memory), not from a tile
+    std::exception_ptr lost;     // from TBB itself (e.g. out of memory), not from a tile
+    std::exception_ptr observed; // from the observer
     std::thread entry([&] {
         try {
             arena.execute([&] {
@@ -141,7 +146,15 @@ TileWorkResult runTileWorkers(const std::vector<int>& todo, int threads, Observe
             if (result.finished != reported) {
                 reported = result.finished;
                 hold.unlock();
-                const bool go = !observer || observer->progressCount(reported, todo.size(), "tiles");
+                bool go = true;
+                if (observer && !observed) {
+                    try {
+                        go = observer->progressCount(reported, todo.size(), "tiles");
+                    } catch (...) {
+                        observed = std::current_exception();
+                        go = false;
+                    }
+                }
                 hold.lock();
                 if (!go) result.interrupted = true;
                 continue;
@@ -153,6 +166,7 @@ TileWorkResult runTileWorkers(const std::vector<int>& todo, int threads, Observe
     }
     entry.join();
     if (lost) std::rethrow_exception(lost);
+    if (observed) std::rethrow_exception(observed);
     std::sort(result.failures.begin(), result.failures.end());
     return result;
 }

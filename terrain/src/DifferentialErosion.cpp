@@ -122,6 +122,16 @@ double DifferentialErosionField::exposure(const glm::dvec3& p) const
     return e;
 }
 
+void DifferentialErosionField::rockMasks(const double* x, const double* y, const double* z, std::size_t n,
+                                         glm::vec2* out) const
+{
+    for (std::size_t i = 0; i < n; ++i) {
+        const glm::dvec3 p(x[i], y[i], z[i]);
+        const double s = mLithology->stratigraphicHeight(p);
+        out[i] = glm::vec2(float(mLithology->hardnessAt(s)), float(mLithology->bedAt(s)));
+    }
+}
+
 void DifferentialErosionField::densities(const PointBlock& points, double* out) const
 {
     const std::size_t n = points.count;

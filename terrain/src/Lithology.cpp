@@ -171,10 +171,10 @@ double Lithology::hardnessAt(double s) const
     return h;
 }
 
-int Lithology::bed(const glm::dvec3& p) const
+int Lithology::bedAt(double s) const
 {
     double u = 0.0;
-    return mBeds[bedIndexAt(stratigraphicHeight(p), u)].index;
+    return mBeds[bedIndexAt(s, u)].index;
 }
 
 Interval Lithology::stratigraphicBounds(const WorldBox& box) const

@@ -22,6 +22,7 @@
 #include <iterator>
 #include <map>
 #include <sstream>
+#include <utility>
 #include <vector>
 
 namespace {
@@ -200,27 +201,48 @@ TEST(Cli, CorruptPngHeightmapOrMaterialMapGivesOneErrorLine)
     }
 }
 
-TEST(Cli, CtrlCStopsTheRunWritesNothingAndExits130)
+/// `strata generate` of the default scene at the accurate preset, sent
+/// `signal` (a kill(1) name) once it has said it started and loaded its
+/// material (its handler is installed first thing), while the terrain is
+/// still being sampled. Waiting for the line, not a fixed delay, keeps a
+/// slow start on a loaded machine from racing it. Returns the exit status
+/// and the output.
+std::pair<int, std::string> generateAndSignal(const std::filesystem::path& dir, const std::string& signal)
 {
-    const auto dir = strata::test::freshTestDir();
     const auto out = dir / "out";
-    // SIGINT once the run has said it started and loaded its material (its
-    // handler is installed first thing), while the default scene at the
-    // accurate preset is still being sampled: the run stops at its next
-    // check, before any file or folder is made. Waiting for the line, not a
-    // fixed delay, keeps a slow start on a loaded machine from racing it.
     const std::string log = (dir / "log.txt").string();
     const std::string command = "bash -c '" + std::string(STRATA_EXECUTABLE) + " generate -o " + out.string() +
                                 " --backend cpu --preset accurate > " + log + " 2>&1 & pid=$!; " +
                                 "for i in $(seq 1 600); do grep -q material " + log +
-                                " && break; sleep 0.05; done; kill -INT $pid; wait $pid; exit $?'";
+                                " && break; sleep 0.05; done; kill -" + signal + " $pid; wait $pid; exit $?'";
     const int status = std::system(command.c_str());
     std::ifstream in(log);
-    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    return {status, std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>())};
+}
+
+TEST(Cli, CtrlCStopsTheRunWritesNothingAndExits130)
+{
+    // The run stops at its next check, before any file or folder is made.
+    const auto dir = strata::test::freshTestDir();
+    const auto [status, text] = generateAndSignal(dir, "INT");
     ASSERT_TRUE(WIFEXITED(status)) << text;
     EXPECT_EQ(WEXITSTATUS(status), 130) << text;
     EXPECT_NE(text.find("interrupted"), std::string::npos) << text;
-    EXPECT_FALSE(std::filesystem::exists(out)) << "an interrupted run left " << out;
+    EXPECT_FALSE(std::filesystem::exists(dir / "out")) << "an interrupted run left " << (dir / "out");
+}
+
+TEST(Cli, SigtermStopsTheRunAsCtrlCDoesAndExits143)
+{
+    // What Slurm sends on scancel and at a job's time limit: the same clean
+    // stop (no half-written output), exit 128 + SIGTERM. bash reports 143
+    // for a death by the signal too; the message tells them apart (before
+    // this the process died of the signal, saying nothing).
+    const auto dir = strata::test::freshTestDir();
+    const auto [status, text] = generateAndSignal(dir, "TERM");
+    ASSERT_TRUE(WIFEXITED(status)) << text;
+    EXPECT_EQ(WEXITSTATUS(status), 143) << text;
+    EXPECT_NE(text.find("interrupted"), std::string::npos) << text;
+    EXPECT_FALSE(std::filesystem::exists(dir / "out")) << "an interrupted run left " << (dir / "out");
 }
 
 // Exit code 1 is for failures of the system, not of the input: an output

@@ -30,7 +30,7 @@ namespace {
 constexpr double STEP = 1.0 / 256.0;
 
 /// A sphere of radius 3 m (about 2000 vertices) with normals and made-up
-/// surface and landform attributes, relative to `origin`.
+/// surface, landform and rock attributes, relative to `origin`.
 TriangleMesh sphereMesh(const glm::dvec3& origin)
 {
     openvdb::initialize();
@@ -42,6 +42,7 @@ TriangleMesh sphereMesh(const glm::dvec3& origin)
         const glm::vec3 p = mesh.positions[i];
         mesh.surface.emplace_back(0.5f + 0.1f * p.x, 0.25f * p.y);
         mesh.landform.emplace_back(3.0f + p.x, 0.01f * p.y, 1e-3f * p.z, float(i % 7) / 6.0f);
+        mesh.rock.emplace_back(0.25f + 0.01f * p.y, float(i % 5));
     }
     return mesh;
 }
@@ -98,6 +99,7 @@ TEST(GltfCompact, RoundTripKeepsTrianglesWithinTheBounds)
         ASSERT_EQ(back.normals.size(), back.vertexCount());
         ASSERT_EQ(back.surface.size(), back.vertexCount());
         ASSERT_EQ(back.landform.size(), back.vertexCount());
+        ASSERT_EQ(back.rock.size(), back.vertexCount());
         // The same triangles, corner for corner on the grid, wound alike.
         EXPECT_EQ(gridTriangles(back, STEP), gridTriangles(mesh, STEP));
 
@@ -130,6 +132,7 @@ TEST(GltfCompact, RoundTripKeepsTrianglesWithinTheBounds)
             // Float attributes are lossless.
             EXPECT_EQ(back.surface[i], mesh.surface[j]);
             EXPECT_EQ(back.landform[i], mesh.landform[j]);
+            EXPECT_EQ(back.rock[i], mesh.rock[j]);
         }
         EXPECT_LE(worstPosition, 0.5 * STEP + 1e-9);
         EXPECT_LT(worstAngle, glm::radians(1.0));

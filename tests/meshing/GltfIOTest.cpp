@@ -142,7 +142,7 @@ TEST(GltfIO, GlbCarriesANeutralRoughMaterialAndAName)
     EXPECT_EQ(empty.nodes.at(0).name, "empty");
 }
 
-TEST(GltfIO, SurfaceAndLandformTravelAsUnderscoreAttributes)
+TEST(GltfIO, SurfaceLandformAndRockTravelAsUnderscoreAttributes)
 {
     const auto dir = strata::test::freshTestDir();
     TriangleMesh mesh = sphereMesh();
@@ -150,12 +150,18 @@ TEST(GltfIO, SurfaceAndLandformTravelAsUnderscoreAttributes)
         const float t = float(i) / float(mesh.positions.size());
         mesh.surface.emplace_back(t, 1.0f - t);
         mesh.landform.emplace_back(7.0f * t, 20.0f * t, 0.5f - t, t > 0.5f ? 1.0f : 0.0f);
+        mesh.rock.emplace_back(t, float(i % 5));
     }
     writeGlb(mesh, dir / "attributes.glb");
     const tinygltf::Model model = loadGlb(dir / "attributes.glb");
     const tinygltf::Primitive& primitive = model.meshes.at(0).primitives.at(0);
     ASSERT_EQ(primitive.attributes.count(SURFACE_ATTRIBUTE), 1u);
     ASSERT_EQ(primitive.attributes.count(LANDFORM_ATTRIBUTE), 1u);
+    ASSERT_EQ(primitive.attributes.count(ROCK_ATTRIBUTE), 1u);
+    const tinygltf::Accessor& rock = model.accessors.at(std::size_t(primitive.attributes.at(ROCK_ATTRIBUTE)));
+    EXPECT_EQ(rock.type, TINYGLTF_TYPE_VEC2);
+    EXPECT_EQ(rock.componentType, TINYGLTF_COMPONENT_TYPE_FLOAT);
+    EXPECT_EQ(rock.count, mesh.positions.size());
     const tinygltf::Accessor& surface = model.accessors.at(std::size_t(primitive.attributes.at(SURFACE_ATTRIBUTE)));
     EXPECT_EQ(surface.type, TINYGLTF_TYPE_VEC2);
     EXPECT_EQ(surface.componentType, TINYGLTF_COMPONENT_TYPE_FLOAT);
@@ -167,14 +173,17 @@ TEST(GltfIO, SurfaceAndLandformTravelAsUnderscoreAttributes)
     const TriangleMesh back = readGltf(dir / "attributes.glb");
     EXPECT_EQ(back.surface, mesh.surface);
     EXPECT_EQ(back.landform, mesh.landform);
+    EXPECT_EQ(back.rock, mesh.rock);
 
     // Absent (or not one per vertex): not written, read back empty.
     mesh.surface.clear();
     mesh.landform.pop_back();
+    mesh.rock.pop_back();
     writeGlb(mesh, dir / "plain.glb");
     const tinygltf::Model plain = loadGlb(dir / "plain.glb");
     EXPECT_EQ(plain.meshes.at(0).primitives.at(0).attributes.size(), 2u); // POSITION, NORMAL
     const TriangleMesh none = readGltf(dir / "plain.glb");
     EXPECT_TRUE(none.surface.empty());
     EXPECT_TRUE(none.landform.empty());
+    EXPECT_TRUE(none.rock.empty());
 }

@@ -263,6 +263,8 @@ TEST(GlProgram, TheLayerBlockMatchesItsStd140MirrorInCpp)
                                            std::pair{"wear", offsetof(strata::shading::LayerParams, wear)},
                                            std::pair{"deposition", offsetof(strata::shading::LayerParams, deposition)},
                                            std::pair{"water", offsetof(strata::shading::LayerParams, water)},
+                                           std::pair{"hardness", offsetof(strata::shading::LayerParams, hardness)},
+                                           std::pair{"bed", offsetof(strata::shading::LayerParams, bed)},
                                            std::pair{"noise", offsetof(strata::shading::LayerParams, noise)}}) {
             EXPECT_EQ(uniformOffset(p, layer + name), GLint(base + offset)) << layer << name;
         }

@@ -128,7 +128,7 @@ TEST(LandformAttributes, MeshTerrainFillsThemWhenALayerReadsThem)
 
     // A landform debug view asks for them without any rule.
     scene.material.layers.clear();
-    EXPECT_EQ(meshTerrain(scene, quality, terrain, nullptr, true).landform, mesh.landform);
+    EXPECT_EQ(meshTerrain(scene, quality, terrain, nullptr, {.landform = true}).landform, mesh.landform);
 }
 
 TEST(LandformAttributes, WithoutALandformSourceTheyAreAnError)

@@ -273,6 +273,53 @@ TEST(TerrainExport, TheSameBytesOnAnyThreadCount)
     EXPECT_GT(mesh.indices.size(), 0u);
 }
 
+TEST(TerrainExport, AnotherExportsFolderIsRefusedAndRunsOfOneExportAddUp)
+{
+    const Scene scene = hillsScene();
+    const fs::path dir = test::freshTestDir() / "out";
+    TerrainExportOptions options = optionsFor(TerrainEngine::Raw, dir);
+    const TerrainExportPlan all = planTerrainExport(scene, options);
+    ASSERT_GE(all.selected.size(), 2u);
+    // Some tiles, then the others: terrain.json lists every tile of both runs.
+    options.tiles = "0";
+    exportTerrain(scene, options, planTerrainExport(scene, options));
+    EXPECT_EQ(readJson(dir / "terrain.json")["tiles"].size(), 1u);
+    options.tiles = "1-" + std::to_string(all.selected.size() - 1);
+    exportTerrain(scene, options, planTerrainExport(scene, options));
+    const nlohmann::json both = readJson(dir / "terrain.json");
+    EXPECT_EQ(both["tiles"].size(), all.selected.size());
+    EXPECT_EQ(both["scene_hash"].get<std::string>().size(), 64u);
+
+    // Another engine (or scene, or seed) into the same folder: refused,
+    // naming what differs, before a file is written.
+    const std::string before = readBytes(dir / "terrain.json");
+    TerrainExportOptions unity = optionsFor(TerrainEngine::Unity, dir);
+    try {
+        exportTerrain(scene, unity, planTerrainExport(scene, unity));
+        FAIL() << "a Unity export over a raw one was accepted";
+    } catch (const Error& e) {
+        EXPECT_EQ(e.kind(), ErrorKind::BadInput);
+        EXPECT_NE(std::string(e.what()).find("holds another terrain export: engine \"raw\" (this export: \"unity\")"),
+                  std::string::npos)
+            << e.what();
+    }
+    EXPECT_EQ(readBytes(dir / "terrain.json"), before);
+    TerrainExportOptions reseeded = optionsFor(TerrainEngine::Raw, dir);
+    reseeded.seed = 12345;
+    EXPECT_THROW(exportTerrain(scene, reseeded, planTerrainExport(scene, reseeded)), Error);
+    // A damaged terrain.json is another export too.
+    {
+        std::ofstream(dir / "terrain.json") << "{ not json";
+    }
+    EXPECT_THROW(exportTerrain(scene, options, planTerrainExport(scene, options)), Error);
+    // --force: the new export's tiles alone in terrain.json.
+    unity.force = true;
+    exportTerrain(scene, unity, planTerrainExport(scene, unity));
+    const nlohmann::json forced = readJson(dir / "terrain.json");
+    EXPECT_EQ(forced["engine"], "unity");
+    EXPECT_EQ(forced["tiles"].size(), planTerrainExport(scene, unity).selected.size());
+}
+
 TEST(TerrainExport, FlatWorldAndFarFromTheOrigin)
 {
     const std::string text = R"(

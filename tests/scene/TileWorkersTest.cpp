@@ -172,6 +172,45 @@ TEST(TileWorkers, TheInterruptStopsHandingOutTilesAndTilesInProgressFinish)
     }
 }
 
+TEST(TileWorkers, AnObserverThatThrowsStopsThePoolAndTheErrorReachesTheCaller)
+{
+    // PipelineObserver is public API: an observer that throws must not end
+    // the process (it did: std::terminate on the joinable helper thread).
+    // It stops the tiles as an interrupt does; the tiles in progress finish
+    // before the error reaches the caller.
+    class Throwing
+    {
+    public:
+        bool progressCount(std::uint64_t, std::uint64_t, const std::string&)
+        {
+            ++reports;
+            throw std::runtime_error("the observer failed");
+        }
+        int reports = 0;
+    };
+    for (const int threads : {1, 2, 3}) {
+        Throwing observer;
+        std::mutex mutex;
+        int started = 0, finished = 0;
+        try {
+            runTileWorkers(indices(500), threads, &observer, [&](int) {
+                {
+                    std::lock_guard<std::mutex> hold(mutex);
+                    ++started;
+                }
+                tbb::parallel_for(0, 20000, [](int) {});
+                std::lock_guard<std::mutex> hold(mutex);
+                ++finished;
+            });
+            ADD_FAILURE() << "no exception with " << threads << " threads";
+        } catch (const std::runtime_error& e) {
+            EXPECT_STREQ(e.what(), "the observer failed");
+        }
+        EXPECT_EQ(observer.reports, 1) << "asked once, then no more";
+        EXPECT_EQ(started, finished) << "every tile handed out finished before the error came back";
+    }
+}
+
 TEST(TileWorkers, NothingToDo)
 {
     CountingObserver observer(-1);

@@ -592,7 +592,7 @@ TEST(World, ChunkMeshBytesAreUnchanged)
         EXPECT_EQ(got[i], expected[i]) << i << ": " << std::hex << got[i];
 }
 
-TEST(World, ChunkMeshesCarryTheLandformMasksWhenGiven)
+TEST(World, ChunkMeshesCarryTheLandformAndRockMasksWhenGiven)
 {
     // A fake erode node: the masks are functions of the column, so every
     // vertex can be checked against its own world position.
@@ -603,8 +603,17 @@ TEST(World, ChunkMeshesCarryTheLandformMasksWhenGiven)
             for (std::size_t i = 0; i < n; ++i) out[i] = glm::vec4(float(x[i]), float(z[i]), 1.0f, 0.5f);
         }
     };
+    // A fake beds node: hardness and bed from the vertex's height and x.
+    struct PointRock final : terrain::RockMasks
+    {
+        void rockMasks(const double* x, const double* y, const double* z, std::size_t n, glm::vec2* out) const override
+        {
+            for (std::size_t i = 0; i < n; ++i) out[i] = glm::vec2(float(y[i]), float(x[i] + z[i]));
+        }
+    };
     WorldOptions o = smallOptions();
     o.landform = std::make_shared<ColumnMasks>();
+    o.rock = std::make_shared<PointRock>();
     World w(std::make_shared<terrain::PlaneField>(glm::dvec3(0.0, 1.0, 0.0), 0.2), o);
     w.setPointsOfInterest({glm::dvec3(4.0, 0.0, 4.0)});
     w.waitIdle();
@@ -613,9 +622,12 @@ TEST(World, ChunkMeshesCarryTheLandformMasksWhenGiven)
         ASSERT_TRUE(u.mesh);
         const meshing::TriangleMesh& mesh = u.mesh->mesh;
         ASSERT_EQ(mesh.landform.size(), mesh.positions.size());
+        ASSERT_EQ(mesh.rock.size(), mesh.positions.size());
         for (std::size_t i = 0; i < mesh.positions.size(); ++i, ++checked) {
-            EXPECT_EQ(mesh.landform[i].x, float(mesh.origin.x + double(mesh.positions[i].x)));
-            EXPECT_EQ(mesh.landform[i].y, float(mesh.origin.z + double(mesh.positions[i].z)));
+            const glm::dvec3 p = mesh.origin + glm::dvec3(mesh.positions[i]);
+            EXPECT_EQ(mesh.landform[i].x, float(p.x));
+            EXPECT_EQ(mesh.landform[i].y, float(p.z));
+            EXPECT_EQ(mesh.rock[i], glm::vec2(float(p.y), float(p.x + p.z)));
         }
     }
     EXPECT_GT(checked, 100u);
@@ -623,7 +635,10 @@ TEST(World, ChunkMeshesCarryTheLandformMasksWhenGiven)
     World plain(std::make_shared<terrain::PlaneField>(glm::dvec3(0.0, 1.0, 0.0), 0.2), smallOptions());
     plain.setPointsOfInterest({glm::dvec3(4.0, 0.0, 4.0)});
     plain.waitIdle();
-    for (const world::ChunkUpdate& u : plain.poll()) EXPECT_TRUE(u.mesh->mesh.landform.empty());
+    for (const world::ChunkUpdate& u : plain.poll()) {
+        EXPECT_TRUE(u.mesh->mesh.landform.empty());
+        EXPECT_TRUE(u.mesh->mesh.rock.empty());
+    }
 }
 
 } // namespace

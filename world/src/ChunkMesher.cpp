@@ -149,6 +149,7 @@ ChunkMeshData meshChunk(const terrain::DensityField& field, const MesherParams& 
 {
     ChunkMeshData out = Mesher(field, params, key, signature, edits, cache).run();
     if (params.landform && !out.mesh.positions.empty()) out.mesh.landform = computeLandformAttributes(*params.landform, out.mesh);
+    if (params.rock && !out.mesh.positions.empty()) out.mesh.rock = computeRockAttributes(*params.rock, out.mesh);
     return out;
 }
 

@@ -13,6 +13,7 @@
 #include "SampleArray.h"
 
 #include <strata/terrain/LandformMasks.h>
+#include <strata/terrain/RockMasks.h>
 
 #include <mutex>
 #include <vector>
@@ -24,6 +25,7 @@ struct MesherParams
     double voxelSize = 0.5;
     int chunkSize = 32;
     const terrain::LandformMasks* landform = nullptr; ///< fills the meshes' landform when set
+    const terrain::RockMasks* rock = nullptr;         ///< fills the meshes' rock when set
 };
 
 /// The voxel box of edits a chunk's mesh can depend on (its sample footprint

@@ -69,7 +69,7 @@ struct World::Impl
         , edits(o.voxelSize)
         , tracker(o.levels, o.sampleCacheLevels)
         , scheduler(field,
-                    detail::SchedulerParams{detail::MesherParams{o.voxelSize, o.chunkSize, o.landform.get()}, o.threads,
+                    detail::SchedulerParams{detail::MesherParams{o.voxelSize, o.chunkSize, o.landform.get(), o.rock.get()}, o.threads,
                                             std::size_t(o.maxInFlight), o.taskOrderSeed},
                     edits, tracker, mutex, finishedSignal)
     {

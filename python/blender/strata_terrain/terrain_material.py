@@ -342,7 +342,8 @@ def triplanar_normal(b, images, p, n, weights, top, strength, x, y):
 
 # Rule keys read from a vertex attribute (terrain_mesh.py adds them).
 ATTRIBUTE_BANDS = {"cavity": "strata_cavity", "cover": "strata_cover", "flow": "strata_flow",
-                   "wear": "strata_wear", "deposition": "strata_deposition", "water": "strata_water"}
+                   "wear": "strata_wear", "deposition": "strata_deposition", "water": "strata_water",
+                   "hardness": "strata_hardness", "bed": "strata_bed"}
 
 
 def band_weight(b, band, value, x, y):

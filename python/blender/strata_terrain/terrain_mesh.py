@@ -52,12 +52,15 @@ def build_mesh(strata_mesh, name):
 # point attributes the material's Attribute nodes read by these names.
 SURFACE_ATTRIBUTES = ("strata_cavity", "strata_cover")
 LANDFORM_ATTRIBUTES = ("strata_flow", "strata_wear", "strata_deposition", "strata_water")
+ROCK_ATTRIBUTES = ("strata_hardness", "strata_bed")
 
 
 def add_vertex_attributes(mesh, strata_mesh):
-    """Cavity and cover (mesh.surface) and the landform masks (mesh.landform),
-    when the library computed them (only for scenes whose layers read them)."""
-    for names, values in ((SURFACE_ATTRIBUTES, strata_mesh.surface), (LANDFORM_ATTRIBUTES, strata_mesh.landform)):
+    """Cavity and cover (mesh.surface), the landform masks (mesh.landform) and
+    the rock masks (mesh.rock), when the library computed them (only for
+    scenes whose layers read them)."""
+    for names, values in ((SURFACE_ATTRIBUTES, strata_mesh.surface), (LANDFORM_ATTRIBUTES, strata_mesh.landform),
+                          (ROCK_ATTRIBUTES, strata_mesh.rock)):
         if values is None:
             continue
         for column, name in enumerate(names):

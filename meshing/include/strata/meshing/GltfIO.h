@@ -23,13 +23,14 @@ struct GlbOptions
 };
 
 /// The glTF attribute names of TriangleMesh::surface (VEC2 float: cavity,
-/// cover) and TriangleMesh::landform (VEC4 float: flow, wear, deposition,
-/// water). Application-specific, so they start with an underscore, as glTF
+/// cover), TriangleMesh::landform (VEC4 float: flow, wear, deposition,
+/// water) and TriangleMesh::rock (VEC2 float: hardness, bed). Application-specific, so they start with an underscore, as glTF
 /// requires; viewers ignore them.
 inline constexpr const char* SURFACE_ATTRIBUTE = "_SURFACE";
 inline constexpr const char* LANDFORM_ATTRIBUTE = "_LANDFORM";
+inline constexpr const char* ROCK_ATTRIBUTE = "_ROCK";
 
-/// Writes one mesh with POSITION, NORMAL, _SURFACE and _LANDFORM (each when
+/// Writes one mesh with POSITION, NORMAL, _SURFACE, _LANDFORM and _ROCK (each when
 /// present, one per position) float attributes and
 /// uint32 indices — no UVs, no tangents — under one node whose translation is
 /// `mesh.origin`. The primitive carries a neutral material, light grey,

@@ -34,6 +34,10 @@ struct TriangleMesh
     /// as terrain::LandformMasks defines them; or empty. Like `surface`,
     /// mesh operations do not carry it.
     std::vector<glm::vec4> landform;
+    /// Optional rock masks per vertex for terrain layer rules: x hardness
+    /// (0 soft .. 1 hard), y the bed's index, as terrain::RockMasks defines
+    /// them; or empty. Like `surface`, mesh operations do not carry it.
+    std::vector<glm::vec2> rock;
 
     std::size_t vertexCount() const { return positions.size(); }
     std::size_t triangleCount() const { return indices.size() / 3; }

@@ -21,14 +21,15 @@ namespace strata::render {
 /// What one CPU render did: material map fetches (SAMPLE_MAP calls of the
 /// shared shading header; each is one bilinear or trilinear lookup) against
 /// those of a naive triplanar shader that samples all three projections of
-/// every map it reads at every shaded pixel. The header skips a projection
-/// whose blend weight is zero, so fetches <= naiveFetches; the difference
-/// is the saving. Shadow-map lookups are not counted.
+/// every map it reads (three taps each with anti-tiling), of every layer,
+/// at every shaded pixel. The header skips a projection whose blend weight
+/// is zero, so fetches <= naiveFetches; the difference is the saving.
+/// Shadow-map lookups are not counted.
 struct CpuRenderStats
 {
     std::uint64_t shadedPixels = 0;   ///< visible pixels shaded (sky pixels are not)
     std::uint64_t textureFetches = 0; ///< map fetches done
-    std::uint64_t naiveFetches = 0;   ///< 3 × map groups read, summed over shaded pixels
+    std::uint64_t naiveFetches = 0;   ///< 3 × maps read (× 3 taps with anti-tiling) per layer, summed over shaded pixels
 };
 
 /// Renders `mesh` on the CPU: RGBA8, sRGB-encoded, rows top to bottom, the

@@ -39,9 +39,10 @@ public:
 
     /// Writes layerCount() shares a_i to `out`. `position` is relative to
     /// the origin, `normal` the unit surface normal, `surface` the cavity
-    /// and cover (0..1), `landform` (flow, wear, deposition, water).
+    /// and cover (0..1), `landform` (flow, wear, deposition, water),
+    /// `rock` (hardness, bed).
     void shares(const glm::vec3& position, const glm::vec3& normal, const glm::vec2& surface,
-                const glm::vec4& landform, float* out) const;
+                const glm::vec4& landform, const glm::vec2& rock, float* out) const;
 
 private:
     struct Params;

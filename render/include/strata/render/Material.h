@@ -79,6 +79,8 @@ struct LayerRule
     LayerBand wear;     ///< the mesh's per-vertex wear (MeshView::landform y): metres eroded
     LayerBand deposition; ///< the mesh's per-vertex deposition (MeshView::landform z): metres of sediment
     LayerBand water;      ///< the mesh's per-vertex water (MeshView::landform w): 0 dry .. 1 river or lake
+    LayerBand hardness;   ///< the mesh's per-vertex rock hardness (MeshView::rock x): 0 soft .. 1 hard
+    LayerBand bed;        ///< the mesh's per-vertex bed (MeshView::rock y): the index in the beds' sequence
     /// Noise mask: three octaves of value noise in [0, 1] with features
     /// about 1/noiseFrequency metres wide; the layer shows where it exceeds
     /// noiseThreshold (ramp noiseSoftness wide). Off when noiseFrequency is 0.
@@ -92,6 +94,10 @@ struct LayerRule
 /// Whether `rule` reads the landform masks (an enabled flow, wear,
 /// deposition or water band): the mesh then needs MeshView::landform.
 bool usesLandform(const LayerRule& rule);
+
+/// Whether `rule` reads the rock masks (an enabled hardness or bed band):
+/// the mesh then needs MeshView::rock.
+bool usesRock(const LayerRule& rule);
 
 struct MaterialLayer;
 

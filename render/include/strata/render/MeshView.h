@@ -29,6 +29,10 @@ struct MeshView
     /// (metres of sediment), w water (0 dry .. 1 river or lake); see
     /// terrain::LandformMasks. Null reads (0, 0, 0, 0).
     const glm::vec4* landform = nullptr;
+    /// Optional, per vertex: the rock masks of rock beds as layer rules
+    /// read them (LayerRule::hardness, bed): x hardness (0 soft .. 1 hard),
+    /// y the bed's index; see terrain::RockMasks. Null reads (0, 0).
+    const glm::vec2* rock = nullptr;
     std::size_t vertexCount = 0;
     const std::uint32_t* indices = nullptr; ///< counter-clockwise seen from outside
     std::size_t indexCount = 0;             ///< multiple of 3

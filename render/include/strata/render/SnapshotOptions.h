@@ -44,14 +44,20 @@ enum class DebugView
     Wear = 10,       ///< metres eroded 0..20: dark brown, orange, pale
     Deposition = 11, ///< metres of sediment 0..20: dark olive, ochre, sand
     Water = 12,      ///< 0 dry .. 1 river or lake: dark grey, teal, cyan
+    // The mesh's rock masks (MeshView::rock; 0 without):
+    Hardness = 13, ///< 0 soft .. 1 hard: plum, rose, cream
+    Bed = 14,      ///< the bed's index, one colour each (neighbouring beds differ)
 };
-inline constexpr int DEBUG_VIEW_COUNT = 13;
+inline constexpr int DEBUG_VIEW_COUNT = 15;
 
 /// Whether `view` shows the mesh's landform masks (Flow .. Water).
 inline bool isLandformView(DebugView view) { return view >= DebugView::Flow && view <= DebugView::Water; }
+/// Whether `view` shows the mesh's rock masks (Hardness, Bed).
+inline bool isRockView(DebugView view) { return view == DebugView::Hardness || view == DebugView::Bed; }
 
 /// "shaded", "weights", "normals", "metallic", "occlusion", "height",
-/// "smoothness", "albedo", "layers", "flow", "wear", "deposition", "water".
+/// "smoothness", "albedo", "layers", "flow", "wear", "deposition", "water",
+/// "hardness", "bed".
 const char* debugViewName(DebugView view);
 
 struct SnapshotOptions

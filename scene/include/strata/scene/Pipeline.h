@@ -64,6 +64,8 @@ struct SampledTerrain
     std::shared_ptr<const terrain::DensityField> field; ///< the root field for `seed`
     /// The tree's landform source for `seed` (Scene::landformMasks), or null.
     std::shared_ptr<const terrain::LandformMasks> landformMasks;
+    /// The tree's rock source for `seed` (Scene::rockMasks), or null.
+    std::shared_ptr<const terrain::RockMasks> rockMasks;
     openvdb::FloatGrid::Ptr grid; ///< named "terrain"
     terrain::SampleStats stats;
 };
@@ -87,12 +89,18 @@ meshing::GradientFunction fieldGradient(std::shared_ptr<const terrain::DensityFi
 /// come with it: cavity and cover (mesh.surface) when a rule has a cavity
 /// or cover band; the landform masks (mesh.landform,
 /// computeLandformAttributes()) when a rule has a flow, wear, deposition or
-/// water band, or `withLandform` (a landform debug view; needsLandform()).
-/// Throws strata::Error (BadInput) when the terrain has no surface inside
-/// the region, or when the landform is needed and the terrain has no
-/// landform source.
+/// water band, or `extra.landform` (a landform debug view; needsLandform());
+/// the rock masks (mesh.rock, computeRockAttributes()) when a rule has a
+/// hardness or bed band, or `extra.rock`. Throws strata::Error (BadInput)
+/// when the terrain has no surface inside the region, or when masks are
+/// needed and the terrain has no source for them.
+struct MeshMasks
+{
+    bool landform = false;
+    bool rock = false;
+};
 meshing::TriangleMesh meshTerrain(const Scene& scene, const QualitySettings& quality, const SampledTerrain& terrain,
-                                  std::string* what = nullptr, bool withLandform = false);
+                                  std::string* what = nullptr, MeshMasks extra = {});
 
 /// Whether a render of `scene` with debug view `debugView` (a
 /// render::debugViewName(), or empty) needs the mesh's landform masks: a
@@ -100,6 +108,14 @@ meshing::TriangleMesh meshTerrain(const Scene& scene, const QualitySettings& qua
 /// deposition, water). Throws strata::Error (BadInput) when it does and the
 /// scene's terrain has no landform source (an `erode` node).
 bool needsLandform(const Scene& scene, const std::string& debugView = "");
+
+/// As needsLandform(), for the rock masks: a layer rule has a hardness or
+/// bed band, or the view is a rock view (hardness, bed). Throws when the
+/// scene's terrain has no rock source (a `beds` node).
+bool needsRock(const Scene& scene, const std::string& debugView = "");
+
+/// {needsLandform(), needsRock()} for a render with `debugView`.
+MeshMasks neededMasks(const Scene& scene, const std::string& debugView = "");
 
 /// Stage 3: writes DIR/terrain.vdb, DIR/terrain.glb (and DIR/terrain.ply),
 /// each atomically. Throws strata::Error (I/O) naming the file on failure.

@@ -11,6 +11,7 @@
 #include <strata/render/Material.h>
 #include <strata/render/SnapshotOptions.h>
 #include <strata/terrain/LandformMasks.h>
+#include <strata/terrain/RockMasks.h>
 #include <strata/terrain/SampleLevelSet.h>
 #include <strata/terrain/TerrainField.h>
 
@@ -94,6 +95,14 @@ struct Scene
     /// Rebuilds it for another seed, from the same tree as buildField (the
     /// tree is built once for both); empty when the tree has none.
     std::function<std::shared_ptr<const terrain::LandformMasks>(std::uint64_t)> buildLandformMasks;
+    /// The terrain tree's rock source, built with terrain.seed: the node
+    /// that knows its rock masks (a `beds` node; `[terrain] rock = "NAME"`
+    /// picks one of several), which layer rules' hardness and bed bands and
+    /// the rock debug views read. Null when the tree has none.
+    std::shared_ptr<const terrain::RockMasks> rockMasks;
+    /// Rebuilds it for another seed (the beds' folds are seeded), from the
+    /// same tree as buildField; empty when the tree has none.
+    std::function<std::shared_ptr<const terrain::RockMasks>(std::uint64_t)> buildRockMasks;
     terrain::Region region;
     double voxelSize = 0.5;
     int halfWidth = 3;
@@ -129,5 +138,9 @@ std::shared_ptr<const terrain::DensityField> fieldForSeed(const Scene& scene, st
 /// (another seed rebuilds it with the tree); null when the tree has none.
 std::shared_ptr<const terrain::LandformMasks> landformMasksForSeed(const Scene& scene,
                                                                    std::optional<std::uint64_t> seed);
+
+/// The scene's rock source for `seed`, as landformMasksForSeed(); null when
+/// the tree has none.
+std::shared_ptr<const terrain::RockMasks> rockMasksForSeed(const Scene& scene, std::optional<std::uint64_t> seed);
 
 } // namespace strata::scene

@@ -92,6 +92,7 @@ inline constexpr const char* LAYER_RULE_KEYS[] = {
     "cavity_min",     "cavity_max",      "cavity_softness",     "cover_min",  "cover_max", "cover_softness",
     "flow_min",       "flow_max",        "flow_softness",       "wear_min",   "wear_max",  "wear_softness",
     "deposition_min", "deposition_max",  "deposition_softness", "water_min",  "water_max", "water_softness",
+    "hardness_min",   "hardness_max",    "hardness_softness",   "bed_min",    "bed_max",   "bed_softness",
     "noise_scale",    "noise_threshold", "noise_softness",      "noise_seed", "opacity"};
 
 /// Builds the material: built-in sets, then the files (loaded through

@@ -102,6 +102,11 @@ struct TerrainExportOptions
     /// Memory budget per tile in bytes (0 = none): a tile whose lattice
     /// samples would exceed it is refused before anything runs.
     std::uint64_t maxMemoryBytes = 8ull << 30;
+    /// Export over a folder whose terrain.json is another export's (another
+    /// engine, scene, seed or setting): its tiles are left out of the new
+    /// terrain.json (files of the same names are replaced, others stay).
+    /// Without it such a folder is refused before anything is written.
+    bool force = false;
 };
 
 /// What an export will do; checked, nothing written.

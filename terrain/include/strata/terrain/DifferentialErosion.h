@@ -26,6 +26,7 @@
 
 #include <strata/terrain/Csg.h>
 #include <strata/terrain/Lithology.h>
+#include <strata/terrain/RockMasks.h>
 
 namespace strata::terrain {
 
@@ -40,7 +41,7 @@ struct DifferentialErosionOptions
     double smoothing = 1.0;
 };
 
-class DifferentialErosionField final : public DensityField
+class DifferentialErosionField final : public DensityField, public RockMasks
 {
 public:
     /// Throws strata::Error naming the option ("retreat", "smoothing") when
@@ -68,6 +69,9 @@ public:
     Interval bounds(const WorldBox& box) const override;
 
     const Lithology& lithology() const { return *mLithology; }
+    /// The lithology's hardness and bed (RockMasks), at world points as
+    /// this node sees them (a transform above it is not undone).
+    void rockMasks(const double* x, const double* y, const double* z, std::size_t n, glm::vec2* out) const override;
     /// The exposure (0..1) at p: what multiplies the retreat.
     double exposure(const glm::dvec3& p) const;
 

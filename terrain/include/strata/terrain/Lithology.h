@@ -81,8 +81,10 @@ public:
     /// hardnessAt(stratigraphicHeight(p)).
     double hardness(const glm::dvec3& p) const { return hardnessAt(stratigraphicHeight(p)); }
     /// The index in `beds` (of the beds as given, zero-thickness ones
-    /// counted) of the bed at `p`; the mask layer rules read.
-    int bed(const glm::dvec3& p) const;
+    /// counted) of the bed at stratigraphic height `s`.
+    int bedAt(double s) const;
+    /// bedAt(stratigraphicHeight(p)): the mask layer rules read (RockMasks).
+    int bed(const glm::dvec3& p) const { return bedAt(stratigraphicHeight(p)); }
 
     /// An interval holding stratigraphicHeight(p) for every p in `box`.
     Interval stratigraphicBounds(const WorldBox& box) const;

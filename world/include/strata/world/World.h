@@ -112,6 +112,7 @@
 
 #include <strata/terrain/DensityField.h>
 #include <strata/terrain/LandformMasks.h>
+#include <strata/terrain/RockMasks.h>
 #include <strata/world/WorldTypes.h>
 
 #include <filesystem>
@@ -165,6 +166,10 @@ struct WorldOptions
     /// direction not taken (WorldStats::prefetchDropped); false: mesh only
     /// for the resident set.
     bool lookAhead = true;
+    /// Rock masks (a `beds` node: hardness, bed) to fill each chunk mesh's
+    /// `rock` with, for terrain layer rules; null: none. After lookAhead,
+    /// so brace-initialised options written before it keep their meaning.
+    std::shared_ptr<const terrain::RockMasks> rock;
 };
 
 class World
