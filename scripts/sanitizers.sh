@@ -36,7 +36,7 @@
 #     fork or join: a write before the parallel_for against a read in its
 #     body, or a body's write against a read after it returns. libtbb is not
 #     built with TSan, so the happens-before edges its scheduler provides
-#     are invisible; the World declares them itself (world/src/TsanHandOver.h)
+#     are invisible; the World declares them itself (common/include/strata/detail/TsanHandOver.h)
 #     and is clean. Until the other libraries declare them too (the same
 #     annotations around their ~30 parallel_for calls, or an ITT-to-TSan
 #     bridge: TBB_USE_PROFILING_TOOLS=2 makes TBB's headers report spawn,
@@ -46,10 +46,10 @@
 #     before it, read in its body), OpenVDB's own parallel prune
 #     (TolerancePruneOp) reading the leaves sampleLevelSet added, the CPU
 #     renderer's procedural textures (makeBuiltinSet's join) and
-#     OpenImageIO's own threads (readHeightImageFile). Declaring them needs
-#     TsanHandOver.h where terrain and render can include it (they may not
-#     depend on world) and suppressions naming OpenVDB's and OpenImageIO's
-#     functions. By hand:
+#     OpenImageIO's own threads (readHeightImageFile). The helper is now in
+#     common/, where terrain and render can include it; what is left is
+#     annotating their parallel_for sites and suppressions naming OpenVDB's
+#     and OpenImageIO's functions. By hand:
 #       TSAN_SUITES='world_tests|terrain_tests|scene_tests' scripts/sanitizers.sh
 # A sanitizer report fails the step; the reports stay in the build folders
 # (build-*/Testing/Temporary/LastTest.log).

@@ -4,6 +4,7 @@
 #include "DualMesher.h"
 
 #include <strata/Error.h>
+#include <strata/IntegerMath.h>
 #include <strata/meshing/DualMesh.h>
 
 #include <tbb/blocked_range.h>
@@ -305,13 +306,14 @@ ChunkData GridChunkMesher::mesh(const Coord& min, const Coord& dim) const
 std::vector<Coord> chunksOf(const openvdb::FloatGrid& grid, int chunkSize)
 {
     std::vector<Coord> chunks;
-    auto floorDiv = [chunkSize](int v) { return v >= 0 ? v / chunkSize : -((-v + chunkSize - 1) / chunkSize); };
+    // The corner of the chunk that holds voxel coordinate v.
+    auto chunkCorner = [chunkSize](int v) { return int(floorDiv(v, chunkSize) * chunkSize); };
     for (auto leaf = grid.tree().cbeginLeaf(); leaf; ++leaf) {
         const Coord origin = leaf->origin();
         // Cells touching this leaf lie in [origin - 1, origin + 7].
         for (int k = 0; k < 8; ++k) {
             const Coord c(origin.x() - (k >> 2 & 1), origin.y() - (k >> 1 & 1), origin.z() - (k & 1));
-            chunks.emplace_back(floorDiv(c.x()) * chunkSize, floorDiv(c.y()) * chunkSize, floorDiv(c.z()) * chunkSize);
+            chunks.emplace_back(chunkCorner(c.x()), chunkCorner(c.y()), chunkCorner(c.z()));
         }
     }
     std::sort(chunks.begin(), chunks.end());

@@ -7,6 +7,7 @@
 #include "TileSelection.h"
 
 #include <strata/Error.h>
+#include <strata/IntegerMath.h>
 #include <strata/Format.h>
 #include <strata/Sha256.h>
 
@@ -27,7 +28,6 @@ constexpr int DEFAULT_TILE_VOXELS = 256;
     throw Error(ErrorKind::BadInput, flag + " " + value + ": " + why, {"", 0, flag, value});
 }
 
-std::int64_t floorDiv(std::int64_t a, std::int64_t b) { return a >= 0 ? a / b : -((-a + b - 1) / b); }
 
 
 } // namespace

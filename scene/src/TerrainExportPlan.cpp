@@ -10,6 +10,7 @@
 #include "TileSelection.h"
 
 #include <strata/Error.h>
+#include <strata/IntegerMath.h>
 #include <strata/Format.h>
 #include <strata/world/TerrainTile.h>
 
@@ -32,7 +33,6 @@ constexpr double MAX_UNITS = 65535.0;
     throw Error(ErrorKind::BadInput, flag + " " + value + ": " + why, {"", 0, flag, value});
 }
 
-std::int64_t floorDiv(std::int64_t a, std::int64_t b) { return a >= 0 ? a / b : -((-a + b - 1) / b); }
 
 std::string gib(std::uint64_t bytes) { return formatNumber(double(bytes) / double(1ull << 30)) + " GiB"; }
 

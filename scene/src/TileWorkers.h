@@ -9,7 +9,7 @@
 // (tests/scene/TileWorkersTest.cpp, scripts/sanitizers.sh).
 
 // TSan annotations only (no Strata library): the World's, header-only.
-#include "../../world/src/TsanHandOver.h"
+#include <strata/detail/TsanHandOver.h>
 
 #include <tbb/global_control.h>
 #include <tbb/info.h>
@@ -92,11 +92,11 @@ TileWorkResult runTileWorkers(const std::vector<int>& todo, int threads, Observe
     // interrupted; `count` runners, one per slot. It captures one pointer,
     // and tells ThreadSanitizer that what the entry thread did before
     // spawning it happens before (TBB's spawn orders it; libtbb is not
-    // instrumented, so TSan cannot see that; see world/src/TsanHandOver.h).
+    // instrumented, so TSan cannot see that; see strata/detail/TsanHandOver.h).
     Shared* const state = &shared;
     const auto runner = [state] {
-        Shared& s = *world::detail::tsanUncheckedRead(state); // the capture lives in TBB's task memory
-        world::detail::tsanTakeOver(&s);
+        Shared& s = *strata::detail::tsanUncheckedRead(state); // the capture lives in TBB's task memory
+        strata::detail::tsanTakeOver(&s);
         for (;;) {
             int index;
             {
@@ -125,7 +125,7 @@ TileWorkResult runTileWorkers(const std::vector<int>& todo, int threads, Observe
         try {
             arena.execute([&] {
                 tbb::task_group group;
-                world::detail::tsanHandOff(&shared);
+                strata::detail::tsanHandOff(&shared);
                 for (int r = 0; r < count; ++r) group.run(runner);
                 group.wait();
             });

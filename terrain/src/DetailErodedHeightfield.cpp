@@ -3,9 +3,11 @@
 
 #include <strata/terrain/DetailErodedHeightfield.h>
 
+#include "DeterministicMath.h"
 #include "ShowValue.h"
 
 #include <strata/Error.h>
+#include <strata/IntegerMath.h>
 
 #include <algorithm>
 #include <atomic>
@@ -68,18 +70,6 @@ private:
     std::size_t mBytes = 0;
     std::atomic<std::size_t> mComputed{0};
 };
-
-namespace {
-
-double smoothstep01(double t)
-{
-    t = std::clamp(t, 0.0, 1.0);
-    return t * t * (3.0 - 2.0 * t);
-}
-
-std::int64_t floorDiv(std::int64_t a, std::int64_t b) { return a >= 0 ? a / b : -((-a + b - 1) / b); }
-
-} // namespace
 
 DetailErodedHeightfield::DetailErodedHeightfield(HeightNodePtr child, std::uint64_t seed,
                                                  const DetailErodeOptions& options)
@@ -167,7 +157,7 @@ void DetailErodedHeightfield::heights(const double* x, const double* z, std::siz
     const double halo = mOptions.halo;
     // The weight of a block at distance e (cells) inside its patch's outer
     // edge: 0 over the outer quarter of the halo, 1 from three quarters on.
-    auto ramp = [&](double e) { return smoothstep01((e - 0.25 * halo) / (0.5 * halo)); };
+    auto ramp = [&](double e) { return detail::smoothstep01((e - 0.25 * halo) / (0.5 * halo)); };
     // Neighbouring columns, and a thread's next calls, mostly read the same
     // blocks: the last four this thread used for this node are kept.
     struct Recent

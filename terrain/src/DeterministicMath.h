@@ -10,6 +10,7 @@
 // ulps (tests/terrain/DeterministicMathTest.cpp asserts the bounds against
 // long double): the point is the same bits everywhere, not the last ulp.
 
+#include <algorithm>
 #include <cmath>
 
 namespace strata::terrain::detail {
@@ -134,6 +135,14 @@ inline double log10(double x) { return log(x) / 2.30258509299404568402; }
 /// √(x² + y²) for values far from overflow (|x|, |y| < 1e150): sqrt is
 /// correctly rounded by IEEE 754, glibc's hypot need not be elsewhere.
 inline double hypot(double x, double y) { return std::sqrt(x * x + y * y); }
+
+/// 0 at t <= 0, 1 at t >= 1, 3t² − 2t³ between (slope at most 1.5): the
+/// one smoothstep of the terrain nodes.
+inline double smoothstep01(double t)
+{
+    t = std::clamp(t, 0.0, 1.0);
+    return t * t * (3.0 - 2.0 * t);
+}
 
 /// tan of an angle in degrees, |degrees| < 90.
 inline double tanDegrees(double degrees)

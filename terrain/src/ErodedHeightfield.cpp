@@ -125,11 +125,7 @@ std::vector<double> sampleCorners(const HeightfieldBase& node, int width, int he
     return out;
 }
 
-double smoothstep(double e0, double e1, double v)
-{
-    const double t = std::clamp((v - e0) / (e1 - e0), 0.0, 1.0);
-    return t * t * (3.0 - 2.0 * t);
-}
+double smoothstep(double e0, double e1, double v) { return detail::smoothstep01((v - e0) / (e1 - e0)); }
 
 /// Uniform cubic B-spline weights of the four control points around t in [0, 1).
 void splineWeights(double t, double w[4])

@@ -43,11 +43,6 @@ std::vector<double> heightsOf(const HeightfieldBase& node, const double* x, cons
     return h;
 }
 
-double smoothstep01(double t)
-{
-    t = std::clamp(t, 0.0, 1.0);
-    return t * t * (3.0 - 2.0 * t);
-}
 
 } // namespace
 
@@ -395,8 +390,8 @@ HeightMask::HeightMask(HeightNodePtr child, const MaskOptions& options)
 
 double HeightMask::band(double v) const
 {
-    if (v < mOptions.min) return smoothstep01(1.0 - (mOptions.min - v) / mOptions.softness);
-    if (v > mOptions.max) return smoothstep01(1.0 - (v - mOptions.max) / mOptions.softness);
+    if (v < mOptions.min) return detail::smoothstep01(1.0 - (mOptions.min - v) / mOptions.softness);
+    if (v > mOptions.max) return detail::smoothstep01(1.0 - (v - mOptions.max) / mOptions.softness);
     return 1.0;
 }
 

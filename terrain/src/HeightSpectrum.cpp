@@ -13,7 +13,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <numbers>
 #include <string>
 
@@ -21,7 +20,6 @@ namespace strata::terrain {
 
 namespace {
 
-constexpr double NOT_A_NUMBER = std::numeric_limits<double>::quiet_NaN();
 constexpr std::size_t MAX_PADDED_CELLS = std::size_t(1) << 26;
 
 struct Complex

@@ -12,14 +12,11 @@
 #include <algorithm>
 #include <cmath>
 #include <iomanip>
-#include <limits>
 #include <sstream>
 
 namespace strata::terrain {
 
 namespace {
-
-constexpr double NOT_A_NUMBER = std::numeric_limits<double>::quiet_NaN();
 
 void checkOptions(const LandformStatisticsOptions& o)
 {

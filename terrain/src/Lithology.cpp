@@ -24,12 +24,6 @@ void require(bool ok, const std::string& key, double value, const std::string& w
     if (!ok) throw Error(ErrorKind::BadInput, key + " = " + show(value) + " " + what);
 }
 
-/// 0 at t <= 0, 1 at t >= 1, 3t² − 2t³ between: slope at most 1.5.
-double smoothRamp(double t)
-{
-    t = std::clamp(t, 0.0, 1.0);
-    return t * t * (3.0 - 2.0 * t);
-}
 
 /// The interval of a·x for x in [lo, hi].
 Interval scaled(double a, double lo, double hi)
@@ -109,7 +103,7 @@ Lithology::Lithology(std::uint64_t seed, const LithologyOptions& options)
 double Lithology::faultOffset(double across) const
 {
     if (mOptions.faultThrow == 0.0) return 0.0;
-    return mOptions.faultThrow * smoothRamp(across / mOptions.faultWidth + 0.5);
+    return mOptions.faultThrow * detail::smoothstep01(across / mOptions.faultWidth + 0.5);
 }
 
 double Lithology::stratigraphicHeight(const glm::dvec3& p) const
@@ -157,7 +151,7 @@ double Lithology::hardnessAt(double s) const
         const double below = u - mBeds[i].base;
         if (below < half) {
             const double other = mBeds[i > 0 ? i - 1 : n - 1].hardness;
-            return other + (h - other) * smoothRamp(0.5 + below / mOptions.transition);
+            return other + (h - other) * detail::smoothstep01(0.5 + below / mOptions.transition);
         }
     }
     if (i + 1 < n || repeat) {
@@ -165,7 +159,7 @@ double Lithology::hardnessAt(double s) const
         const double above = top - u;
         if (above < half) {
             const double other = mBeds[(i + 1) % n].hardness;
-            return h + (other - h) * smoothRamp(0.5 - above / mOptions.transition);
+            return h + (other - h) * detail::smoothstep01(0.5 - above / mOptions.transition);
         }
     }
     return h;

@@ -87,7 +87,7 @@ TEST(TileWorkers, RunsThatManyTilesAtOnceAndTheirParallelForsInTheirArena)
             arenaConcurrency = tbb::this_task_arena::max_concurrency();
             // Captures nothing: under ThreadSanitizer a capture on this
             // stack read by TBB's workers is a fork edge it cannot see
-            // (libtbb is not instrumented; see world/src/TsanHandOver.h).
+            // (libtbb is not instrumented; see strata/detail/TsanHandOver.h).
             tbb::parallel_for(0, 1000, [](int i) { gSum += i; });
             sum += 1000L * index;
             std::lock_guard<std::mutex> hold(mutex);

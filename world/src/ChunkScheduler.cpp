@@ -2,11 +2,15 @@
 // SPDX-License-Identifier: MIT
 
 #include "ChunkScheduler.h"
-#include "TsanHandOver.h"
+#include <strata/detail/TsanHandOver.h>
 
 #include <algorithm>
 
 namespace strata::world::detail {
+
+using strata::detail::tsanHandOff;
+using strata::detail::tsanTakeOver;
+using strata::detail::tsanUncheckedRead;
 
 namespace {
 

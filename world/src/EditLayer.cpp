@@ -2,7 +2,7 @@
 // SPDX-License-Identifier: MIT
 
 #include "EditLayer.h"
-#include "TsanHandOver.h"
+#include <strata/detail/TsanHandOver.h>
 
 #include <strata/Error.h>
 #include <strata/meshing/GridIO.h>
@@ -20,6 +20,9 @@
 #include <string>
 
 namespace strata::world::detail {
+
+using strata::detail::tsanHandOff;
+using strata::detail::tsanTakeOver;
 
 using openvdb::Coord;
 using openvdb::CoordBBox;

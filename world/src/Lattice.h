@@ -4,6 +4,7 @@
 #pragma once
 // Internal: the lattice every part of the world samples, and integer helpers.
 
+#include <strata/IntegerMath.h>
 #include <strata/terrain/DensityField.h>
 
 #include <openvdb/openvdb.h>
@@ -17,11 +18,6 @@ namespace strata::world::detail {
 /// 0 same or absent, +1 coarser), indexed by a mask whose bit a means "offset
 /// −1 along axis a"; entry 0 (the chunk itself) is always 0.
 using Signature = std::array<std::int8_t, 8>;
-
-inline std::int64_t floorDiv(std::int64_t a, std::int64_t b)
-{
-    return a >= 0 ? a / b : -((-a + b - 1) / b);
-}
 
 /// The procedural value of lattice point `c` (voxel coordinates). Every part
 /// of the world evaluates samples through this one expression, so the same

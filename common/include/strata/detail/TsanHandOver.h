@@ -2,7 +2,8 @@
 // SPDX-License-Identifier: MIT
 
 #pragma once
-// Internal: tells ThreadSanitizer about a happens-before edge that TBB
+// Internal (for Strata's libraries, not for users): tells ThreadSanitizer
+// about a happens-before edge that TBB
 // provides but TSan cannot see (TBB is not built with TSan here, so its
 // internal atomics are invisible to it). Everything a thread does before
 // tbb::task_arena::enqueue() or tbb::parallel_for() happens before the task
@@ -31,7 +32,7 @@ extern "C" void AnnotateIgnoreReadsBegin(const char* file, int line);
 extern "C" void AnnotateIgnoreReadsEnd(const char* file, int line);
 #endif
 
-namespace strata::world::detail {
+namespace strata::detail {
 
 /// Before handing work to TBB: what this thread did so far is published
 /// under `key` (any address both sides agree on).
@@ -71,4 +72,4 @@ T tsanUncheckedRead(const T& value)
 #endif
 }
 
-} // namespace strata::world::detail
+} // namespace strata::detail
