@@ -123,7 +123,7 @@ struct Input
     bool screenshot = false;
 };
 
-void onKey(GLFWwindow* window, int key, int /*scancode*/, int action, int /*mods*/)
+void onKey(GLFWwindow* window, int key, int /*scancode*/, int action, int mods)
 {
     if (action != GLFW_PRESS) {
         return;
@@ -133,6 +133,11 @@ void onKey(GLFWwindow* window, int key, int /*scancode*/, int action, int /*mods
         glfwSetWindowShouldClose(window, GLFW_TRUE);
     } else if (key >= GLFW_KEY_0 && key <= GLFW_KEY_9 && key < GLFW_KEY_0 + render::DEBUG_VIEW_COUNT) {
         input->draw.debugView = render::DebugView(key - GLFW_KEY_0);
+    } else if (key == GLFW_KEY_V) {
+        // Every view in turn (the digits reach the first ten): V forward, shift+V back.
+        const int step = (mods & GLFW_MOD_SHIFT) != 0 ? render::DEBUG_VIEW_COUNT - 1 : 1;
+        input->draw.debugView = render::DebugView((int(input->draw.debugView) + step) % render::DEBUG_VIEW_COUNT);
+        std::printf("debug view: %s\n", render::debugViewName(input->draw.debugView));
     } else if (key == GLFW_KEY_F) {
         input->draw.wireframe = !input->draw.wireframe;
     } else if (key >= GLFW_KEY_F1 && key <= GLFW_KEY_F10) {
