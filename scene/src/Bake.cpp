@@ -414,7 +414,7 @@ BakeSummary bake(const Scene& scene, const BakeOptions& options, const BakePlan&
         }
     });
     const bool stop = run.interrupted;
-    const std::vector<std::pair<int, std::string>>& failures = run.failures;
+    const std::vector<detail::TileFailure>& failures = run.failures;
     for (auto& [index, record] : made) manifest.tiles[index] = std::move(record);
     summary.baked = int(made.size());
 
@@ -436,10 +436,11 @@ BakeSummary bake(const Scene& scene, const BakeOptions& options, const BakePlan&
                                                      " tiles baked; run the same command again to resume");
     if (!failures.empty()) {
         std::vector<int> indices;
-        for (const auto& failure : failures) indices.push_back(failure.first);
-        throw Error(ErrorKind::Io,
+        for (const auto& failure : failures) indices.push_back(failure.index);
+        // The first failure's kind: a tile refused for its input is bad input (exit 2).
+        throw Error(failures.front().kind,
                     std::to_string(failures.size()) + " of " + std::to_string(todo.size()) + " tiles failed (" +
-                        indexRanges(indices, ", ") + "; none left a file); the first: " + failures.front().second,
+                        indexRanges(indices, ", ") + "; none left a file); the first: " + failures.front().message,
                     {dir.string()});
     }
     return summary;

@@ -496,8 +496,8 @@ TerrainExportSummary exportTerrain(const Scene& scene, const TerrainExportOption
     if (!run.failures.empty()) {
         std::string message = "export failed on " + std::to_string(run.failures.size()) + " tile(s): ";
         for (std::size_t i = 0; i < run.failures.size() && i < 3; ++i)
-            message += (i ? "; tile " : "tile ") + std::to_string(run.failures[i].first) + ": " + run.failures[i].second;
-        throw Error(ErrorKind::Io, message, {dir.string()});
+            message += (i ? "; tile " : "tile ") + std::to_string(run.failures[i].index) + ": " + run.failures[i].message;
+        throw Error(run.failures.front().kind, message, {dir.string()}); // the first's kind, as the bake
     }
 
     // This run's tiles, and those an earlier run of the same export wrote.

@@ -9,6 +9,7 @@
 // (tests/scene/TileWorkersTest.cpp, scripts/sanitizers.sh).
 
 // TSan annotations only (no Strata library): the World's, header-only.
+#include <strata/Error.h>
 #include <strata/detail/TsanHandOver.h>
 
 #include <tbb/global_control.h>
@@ -25,22 +26,34 @@
 #include <mutex>
 #include <string>
 #include <thread>
+#include <optional>
 #include <utility>
 #include <vector>
 
 namespace strata::scene::detail {
 
+/// One tile's failure: its message and the kind of its strata::Error
+/// (Internal for any other exception), so that a tile refused for its input
+/// is reported as bad input (exit 2), not as a failure of the system.
+struct TileFailure
+{
+    int index = 0;
+    std::string message;
+    ErrorKind kind = ErrorKind::Internal;
+    bool operator==(const TileFailure&) const = default;
+};
+
 struct TileWorkResult
 {
-    std::vector<std::pair<int, std::string>> failures; ///< (index, message), ascending
+    std::vector<TileFailure> failures; ///< ascending by index
     std::size_t finished = 0;
     bool interrupted = false;
 };
 
 /// Runs `work(index)` for every index of `todo`, `threads` tiles at once
 /// (0: as many as TBB's default concurrency, the cores this process may
-/// use); an exception from `work` is recorded as that tile's failure (the
-/// others go on). Stops handing out tiles once the observer's
+/// use); an exception from `work` is recorded as that tile's failure, with
+/// its strata::Error kind (the others go on). Stops handing out tiles once the observer's
 /// progressCount() returns false; tiles in progress finish.
 ///
 /// The tiles run as TBB tasks in one task_arena of `threads` slots, so a
@@ -104,17 +117,19 @@ TileWorkResult runTileWorkers(const std::vector<int>& todo, int threads, Observe
                 if (s.result.interrupted || s.next >= s.todo.size()) return;
                 index = s.todo[s.next++];
             }
-            std::string failure;
+            std::optional<TileFailure> failure;
             try {
                 tbb::this_task_arena::isolate([&] { s.work(index); });
+            } catch (const Error& e) {
+                failure = TileFailure{index, e.what(), e.kind()};
             } catch (const std::exception& e) {
-                failure = e.what();
-                if (failure.empty()) failure = "unknown error";
+                failure = TileFailure{index, e.what(), ErrorKind::Internal};
             } catch (...) {
-                failure = "unknown error";
+                failure = TileFailure{index, "", ErrorKind::Internal};
             }
+            if (failure && failure->message.empty()) failure->message = "unknown error";
             std::lock_guard<std::mutex> hold(s.mutex);
-            if (!failure.empty()) s.result.failures.emplace_back(index, failure);
+            if (failure) s.result.failures.push_back(std::move(*failure));
             ++s.result.finished;
             s.changed.notify_all();
         }
@@ -167,7 +182,8 @@ TileWorkResult runTileWorkers(const std::vector<int>& todo, int threads, Observe
     entry.join();
     if (lost) std::rethrow_exception(lost);
     if (observed) std::rethrow_exception(observed);
-    std::sort(result.failures.begin(), result.failures.end());
+    std::sort(result.failures.begin(), result.failures.end(),
+              [](const TileFailure& a, const TileFailure& b) { return a.index < b.index; });
     return result;
 }
 

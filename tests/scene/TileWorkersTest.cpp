@@ -27,6 +27,7 @@
 #include <vector>
 
 using strata::scene::detail::runTileWorkers;
+using strata::scene::detail::TileFailure;
 using strata::scene::detail::TileWorkResult;
 
 namespace {
@@ -111,14 +112,20 @@ TEST(TileWorkers, AFailureIsThatTilesTheOthersGoOn)
         if (index == 7) throw std::runtime_error("seven");
         if (index == 3) throw 3; // not a std::exception
         if (index == 9) throw std::runtime_error("");
+        if (index == 10) throw strata::Error(strata::ErrorKind::BadInput, "tile 10 is over its memory budget");
+        if (index == 11) throw strata::Error(strata::ErrorKind::Io, "disk full");
         ++done;
     });
-    EXPECT_EQ(done.load(), 9);
+    EXPECT_EQ(done.load(), 7);
     EXPECT_EQ(result.finished, 12u);
-    ASSERT_EQ(result.failures.size(), 3u);
-    EXPECT_EQ(result.failures[0], std::make_pair(3, std::string("unknown error")));
-    EXPECT_EQ(result.failures[1], std::make_pair(7, std::string("seven")));
-    EXPECT_EQ(result.failures[2], std::make_pair(9, std::string("unknown error")));
+    ASSERT_EQ(result.failures.size(), 5u);
+    using strata::ErrorKind;
+    // Each keeps its kind: a tile refused for its input is bad input, not I/O.
+    EXPECT_EQ(result.failures[0], (TileFailure{3, "unknown error", ErrorKind::Internal}));
+    EXPECT_EQ(result.failures[1], (TileFailure{7, "seven", ErrorKind::Internal}));
+    EXPECT_EQ(result.failures[2], (TileFailure{9, "unknown error", ErrorKind::Internal}));
+    EXPECT_EQ(result.failures[3], (TileFailure{10, "tile 10 is over its memory budget", ErrorKind::BadInput}));
+    EXPECT_EQ(result.failures[4], (TileFailure{11, "disk full", ErrorKind::Io}));
 }
 
 TEST(TileWorkers, TheInterruptStopsHandingOutTilesAndTilesInProgressFinish)
