@@ -7,6 +7,7 @@
 #include <strata/scene/Pipeline.h>
 
 #include "BakeManifest.h"
+#include "LayerMaskSources.h"
 #include "TileWorkers.h"
 
 #include <strata/AtomicFile.h>
@@ -109,20 +110,6 @@ BakeFile writeBakeFile(const fs::path& dir, const std::string& relative, std::st
     return BakeFile{relative, bytes.size(), sha256Hex(bytes)};
 }
 
-/// The mask sources the tiles carry: those the layer rules read (landform:
-/// flow, wear, deposition or water; rock: hardness or bed), else null.
-struct TileMasks
-{
-    std::shared_ptr<const terrain::LandformMasks> landform;
-    std::shared_ptr<const terrain::RockMasks> rock;
-};
-
-TileMasks tileMasks(const Scene& scene, std::optional<std::uint64_t> seed)
-{
-    return {needsLandform(scene) ? landformMasksForSeed(scene, seed) : nullptr,
-            needsRock(scene) ? rockMasksForSeed(scene, seed) : nullptr};
-}
-
 /// Bakes one tile: every level's mesh and (optionally) the level-0 grid;
 /// with `dir`, writes its files and then its record (so a record on disk
 /// means every file of the tile is complete).
@@ -130,7 +117,8 @@ TileMasks tileMasks(const Scene& scene, std::optional<std::uint64_t> seed)
 /// null), which the tiles then carry (glTF _LANDFORM, _ROCK) for layer
 /// rules that read them.
 TileRecord bakeTile(const terrain::DensityField& field, const Scene& scene, const BakePlan& plan, bool grids,
-                    std::uint64_t maxMemoryBytes, const BakeTile& tile, const fs::path* dir, const TileMasks& masks)
+                    std::uint64_t maxMemoryBytes, const BakeTile& tile, const fs::path* dir,
+                    const detail::LayerMaskSources& masks)
 {
     TileRecord record;
     record.index = tile.index;
@@ -337,7 +325,7 @@ BakeSummary bake(const Scene& scene, const BakeOptions& options, const BakePlan&
     const Stopwatch clock;
     const fs::path& dir = options.outputDir;
     const std::shared_ptr<const terrain::DensityField> field = fieldForSeed(scene, options.seed);
-    const TileMasks masks = tileMasks(scene, options.seed);
+    const detail::LayerMaskSources masks = detail::layerMaskSources(scene, options.seed);
 
     BakeManifest manifest = detail::manifestFor(plan, scene, options.grids);
     // Check the folder before creating anything in it.
@@ -494,7 +482,7 @@ BakeSummary finalizeBake(const fs::path& dir, PipelineObserver* observer)
 BakeSample sampleBakeTile(const Scene& scene, const BakeOptions& options, const BakePlan& plan)
 {
     const std::shared_ptr<const terrain::DensityField> field = fieldForSeed(scene, options.seed);
-    const TileMasks masks = tileMasks(scene, options.seed);
+    const detail::LayerMaskSources masks = detail::layerMaskSources(scene, options.seed);
     // The middle column's slab that holds the surface: the lowest slab with
     // triangles at level 0, else slab 0.
     BakeSample sample;

@@ -8,6 +8,7 @@
 #include <strata/scene/TerrainExport.h>
 
 #include "BakeManifest.h"
+#include "LayerMaskSources.h"
 #include "TileWorkers.h"
 
 #include <strata/AtomicFile.h>
@@ -466,9 +467,7 @@ TerrainExportSummary exportTerrain(const Scene& scene, const TerrainExportOption
     std::map<int, json> previous = previousTiles(dir, identity, options.force);
 
     const std::shared_ptr<const terrain::DensityField> field = fieldForSeed(scene, plan.seed);
-    const std::shared_ptr<const terrain::LandformMasks> landform =
-        needsLandform(scene) ? landformMasksForSeed(scene, plan.seed) : nullptr;
-    const std::shared_ptr<const terrain::RockMasks> rock = needsRock(scene) ? rockMasksForSeed(scene, plan.seed) : nullptr;
+    const detail::LayerMaskSources masks = detail::layerMaskSources(scene, plan.seed);
 
     if (observer) observer->beginStage("export");
     std::mutex mutex;
@@ -477,7 +476,7 @@ TerrainExportSummary exportTerrain(const Scene& scene, const TerrainExportOption
     const detail::TileWorkResult run =
         detail::runTileWorkers(plan.selected, options.threads, observer, [&](int index) {
             const int tx = index % plan.tilesX, tz = index / plan.tilesX;
-            TileMaps maps = computeTile(scene, *field, landform.get(), rock.get(), plan, tx, tz);
+            TileMaps maps = computeTile(scene, *field, masks.landform.get(), masks.rock.get(), plan, tx, tz);
             if (!options.meshes) maps.remainder = {};
             json record = writeTile(dir, plan, maps, tx, tz);
             std::lock_guard<std::mutex> hold(mutex);
