@@ -412,20 +412,20 @@ std::map<int, json> previousTiles(const fs::path& dir, const json& identity, boo
     if (!fs::exists(path, ec)) return {};
     std::string differs;
     json old;
-    {
+    // A terrain.json is a few kilobytes a tile; one past 64 MiB is not ours.
+    const std::uintmax_t size = fs::file_size(path, ec);
+    if (ec || size > (std::uintmax_t(64) << 20)) {
+        differs = "a terrain.json too large to be an export's";
+    } else {
         std::ifstream in(path, std::ios::binary);
         const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
         old = json::parse(text, nullptr, false);
-    }
-    if (!old.is_object()) {
-        differs = "a terrain.json that does not parse";
-    } else {
-        for (const auto& [key, value] : identity.items()) {
-            const auto found = old.find(key);
-            if (found == old.end() || *found != value) {
-                differs = key + " " + (found == old.end() ? std::string("(none)") : found->dump()) + " (this export: " +
-                          value.dump() + ")";
-                break;
+        if (!old.is_object()) differs = "a terrain.json that does not parse";
+        for (auto item = identity.begin(); differs.empty() && item != identity.end(); ++item) {
+            const auto found = old.find(item.key());
+            if (found == old.end() || *found != item.value()) {
+                differs = item.key() + " " + (found == old.end() ? std::string("(none)") : found->dump()) +
+                          " (this export: " + item.value().dump() + ")";
             }
         }
     }
@@ -439,11 +439,14 @@ std::map<int, json> previousTiles(const fs::path& dir, const json& identity, boo
     std::map<int, json> tiles;
     const auto list = old.find("tiles");
     if (list != old.end() && list->is_array()) {
-        const int tilesX = identity["tiles_x"].get<int>();
+        // Records of tiles inside this export's grid only (a hand-edited or
+        // crafted file can hold anything).
+        const std::int64_t tilesX = identity["tiles_x"].get<int>(), tilesZ = identity["tiles_z"].get<int>();
         for (const json& tile : *list) {
             const auto x = tile.find("x"), z = tile.find("z");
-            if (x != tile.end() && z != tile.end() && x->is_number_integer() && z->is_number_integer())
-                tiles.emplace(z->get<int>() * tilesX + x->get<int>(), tile);
+            if (x == tile.end() || z == tile.end() || !x->is_number_integer() || !z->is_number_integer()) continue;
+            const std::int64_t tx = x->get<std::int64_t>(), tz = z->get<std::int64_t>();
+            if (tx >= 0 && tx < tilesX && tz >= 0 && tz < tilesZ) tiles.emplace(int(tz * tilesX + tx), tile);
         }
     }
     return tiles;

@@ -289,6 +289,17 @@ TEST(TerrainExport, AnotherExportsFolderIsRefusedAndRunsOfOneExportAddUp)
     const nlohmann::json both = readJson(dir / "terrain.json");
     EXPECT_EQ(both["tiles"].size(), all.selected.size());
     EXPECT_EQ(both["scene_hash"].get<std::string>().size(), 64u);
+    // Records outside the grid (a hand-edited or crafted file) are dropped.
+    {
+        nlohmann::json crafted = both;
+        crafted["tiles"].push_back({{"x", -1}, {"z", 0}});
+        crafted["tiles"].push_back({{"x", 1000000000000LL}, {"z", 0}});
+        crafted["tiles"].push_back({{"x", "0"}, {"z", 0}});
+        std::ofstream(dir / "terrain.json") << crafted.dump();
+    }
+    options.tiles = "0";
+    exportTerrain(scene, options, planTerrainExport(scene, options));
+    EXPECT_EQ(readJson(dir / "terrain.json")["tiles"].size(), all.selected.size());
 
     // Another engine (or scene, or seed) into the same folder: refused,
     // naming what differs, before a file is written.
