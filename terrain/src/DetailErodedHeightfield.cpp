@@ -5,16 +5,13 @@
 
 #include "DeterministicMath.h"
 #include "ShowValue.h"
+#include "WorldBlockCache.h"
 
 #include <strata/Error.h>
 #include <strata/IntegerMath.h>
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
-#include <deque>
-#include <map>
-#include <mutex>
 
 namespace strata::terrain {
 
@@ -27,56 +24,22 @@ struct DetailErodedHeightfield::Block
     std::int64_t originX = 0, originZ = 0; ///< world cell of corner (0, 0)
     int size = 0;                          ///< corners per side
     std::vector<float> change;             ///< metres
+    std::size_t bytes() const { return sizeof(*this) + change.capacity() * sizeof(float); }
 };
 
-/// The blocks computed so far, by index; the oldest are dropped past a
-/// bound (a dropped block computed again gives the same bits).
-class DetailErodedHeightfield::Cache
+// Bounded in bytes, not blocks: a block of 64 cells with the default halo of
+// 24 is 113² floats (51 KiB: about 1,300 fit), one of 1024 cells up to 2049²
+// (16 MiB: the budget still keeps the 4 a query can blend).
+class DetailErodedHeightfield::Cache : public detail::WorldBlockCache<Block>
 {
 public:
-    std::shared_ptr<const Block> find(std::int64_t bx, std::int64_t bz)
-    {
-        std::lock_guard<std::mutex> lock(mMutex);
-        const auto found = mBlocks.find({bx, bz});
-        return found == mBlocks.end() ? nullptr : found->second;
-    }
-    void add(std::int64_t bx, std::int64_t bz, std::shared_ptr<const Block> block)
-    {
-        std::lock_guard<std::mutex> lock(mMutex);
-        const std::size_t bytes = bytesOf(*block);
-        if (!mBlocks.emplace(std::make_pair(bx, bz), std::move(block)).second) return;
-        mOrder.emplace_back(bx, bz);
-        mBytes += bytes;
-        ++mComputed;
-        while (mOrder.size() > MIN_BLOCKS && mBytes > BYTE_BUDGET) {
-            const auto oldest = mBlocks.find(mOrder.front());
-            mBytes -= bytesOf(*oldest->second);
-            mBlocks.erase(oldest);
-            mOrder.pop_front();
-        }
-    }
-    std::size_t computed() const { return mComputed.load(); }
-
-private:
-    // Bounded in bytes, not blocks: a block of 64 cells with the default halo
-    // of 24 is 113² floats (51 KiB: about 1,300 fit), one of 1024 cells up to
-    // 2049² (16 MiB: the budget still keeps the 4 a query can blend).
-    static constexpr std::size_t BYTE_BUDGET = std::size_t(64) << 20;
-    static constexpr std::size_t MIN_BLOCKS = 4;
-    static std::size_t bytesOf(const Block& b) { return sizeof(Block) + b.change.capacity() * sizeof(float); }
-    std::mutex mMutex;
-    std::map<std::pair<std::int64_t, std::int64_t>, std::shared_ptr<const Block>> mBlocks;
-    std::deque<std::pair<std::int64_t, std::int64_t>> mOrder;
-    std::size_t mBytes = 0;
-    std::atomic<std::size_t> mComputed{0};
+    Cache() : WorldBlockCache(std::size_t(64) << 20) {}
 };
 
 DetailErodedHeightfield::DetailErodedHeightfield(HeightNodePtr child, std::uint64_t seed,
                                                  const DetailErodeOptions& options)
     : mChild(std::move(child)), mSeed(seed), mOptions(options), mCache(std::make_unique<Cache>())
 {
-    static std::atomic<std::uint64_t> instances{0};
-    mId = ++instances; // never reused, unlike an address
     checkDetailErosionOptions(options.erosion);
     if (options.blockCells < 8 || options.blockCells > 1024) {
         throw Error(ErrorKind::BadInput, "block = " + std::to_string(options.blockCells) + " is out of range [8, 1024]",
@@ -106,7 +69,12 @@ std::size_t DetailErodedHeightfield::blocksComputed() const { return mCache->com
 std::shared_ptr<const DetailErodedHeightfield::Block> DetailErodedHeightfield::block(std::int64_t bx,
                                                                                    std::int64_t bz) const
 {
-    if (auto found = mCache->find(bx, bz)) return found;
+    return mCache->get(bx, bz, [&] { return computeBlock(bx, bz); });
+}
+
+std::shared_ptr<const DetailErodedHeightfield::Block> DetailErodedHeightfield::computeBlock(std::int64_t bx,
+                                                                                          std::int64_t bz) const
+{
     const int b = mOptions.blockCells, halo = mOptions.halo;
     auto out = std::make_shared<Block>();
     out->originX = bx * b - halo;
@@ -126,7 +94,6 @@ std::shared_ptr<const DetailErodedHeightfield::Block> DetailErodedHeightfield::b
     erodeDetail(eroded, out->size, out->size, out->originX, out->originZ, mSeed, mOptions.erosion);
     out->change.resize(n * n);
     for (std::size_t c = 0; c < n * n; ++c) out->change[c] = float(eroded[c] - h[c]);
-    mCache->add(bx, bz, out);
     return out;
 }
 
@@ -158,15 +125,6 @@ void DetailErodedHeightfield::heights(const double* x, const double* z, std::siz
     // The weight of a block at distance e (cells) inside its patch's outer
     // edge: 0 over the outer quarter of the halo, 1 from three quarters on.
     auto ramp = [&](double e) { return detail::smoothstep01((e - 0.25 * halo) / (0.5 * halo)); };
-    // Neighbouring columns, and a thread's next calls, mostly read the same
-    // blocks: the last four this thread used for this node are kept.
-    struct Recent
-    {
-        std::uint64_t node = 0;
-        std::shared_ptr<const Block> blocks[4];
-    };
-    thread_local Recent recent;
-    if (recent.node != mId) recent = Recent{mId, {}};
     for (std::size_t k = 0; k < n; ++k) {
         const double u = x[k] / cell, v = z[k] / cell;
         // Beyond ±2^62 cells (or at NaN) a block index does not fit an
@@ -186,17 +144,7 @@ void DetailErodedHeightfield::heights(const double* x, const double* z, std::siz
                 const double loZ = double(bz * size) - halo, hiZ = double((bz + 1) * size) + halo;
                 const double w = ramp(std::min(u - lo, hi - u)) * ramp(std::min(v - loZ, hiZ - v));
                 if (w <= 0.0) continue;
-                // Neighbouring columns mostly share blocks: reuse the last ones.
-                std::shared_ptr<const Block> b;
-                for (const auto& r : recent.blocks) {
-                    if (r && r->originX == bx * size - mOptions.halo && r->originZ == bz * size - mOptions.halo) b = r;
-                }
-                if (!b) {
-                    b = block(bx, bz);
-                    std::rotate(recent.blocks, recent.blocks + 3, recent.blocks + 4);
-                    recent.blocks[0] = b;
-                }
-                sum += w * displacement(*b, u, v);
+                sum += w * displacement(*block(bx, bz), u, v);
                 weights += w;
             }
         }

@@ -8,6 +8,7 @@
 #include <strata/terrain/ErodedHeightfield.h>
 #include <strata/terrain/HeightGraph.h>
 #include <strata/terrain/NodeRegistry.h>
+#include <strata/terrain/TalusHeightfield.h>
 
 #include "NodeRegistrations.h"
 
@@ -254,6 +255,31 @@ void registerHeightGraphNodes(NodeRegistry& registry)
         return std::make_shared<DetailErodedHeightfield>(heightChild(a, "height"), a.seed(), o);
     };
     registry.add(std::move(detail));
+
+    const TalusOptions t;
+    NodeType talus{"talus",
+                   "scree cones and aprons at the foot of steep faces, at the angle of repose: debris from a "
+                   "fraction of each face's height, never steeper than `angle`; the thickness is a landform mask "
+                   "(deposition)",
+                   {}, {}};
+    talus.keys = {
+        childKey("height", "the ground the talus is shed onto"),
+        numberKey("angle", t.angle, 5.0, 60.0, "deg", "angle of repose: the steepest the talus lies"),
+        numberKey("fill", t.fill, 0.0, 1.0, "", "fraction of a face's height above its foot the talus may bury"),
+        numberKey("max_height", t.maxHeight, 1e-3, 1e4, "m", "the tallest cone above the foot of its face"),
+        numberKey("cell_size", t.cellSize, 1e-3, 1e4, "m", "spacing of the lattice the cones are computed on"),
+        integerKey("block", t.blockCells, 16, 1024, "cells", "side of the fixed world blocks"),
+    };
+    talus.build = [](const NodeArgs& a) -> DensityFieldPtr {
+        TalusOptions o;
+        o.angle = a.number("angle");
+        o.fill = a.number("fill");
+        o.maxHeight = a.number("max_height");
+        o.cellSize = a.number("cell_size");
+        o.blockCells = int(a.integer("block"));
+        return std::make_shared<TalusHeightfield>(heightChild(a, "height"), o);
+    };
+    registry.add(std::move(talus));
 }
 
 } // namespace strata::terrain

@@ -93,6 +93,7 @@ TEST(SceneTerrain, EveryNodeTypeIsReachableFromTheSceneFile)
     const std::string text = R"(
 [terrain]
 root = "all"
+masks = "scree"
 [terrain.nodes.all]
 type = "union"
 children = ["cut", "shapes", "stepped", "moved", "image", "graph", "layered"]
@@ -106,7 +107,11 @@ fault_throw = 3
 retreat = 2
 [terrain.nodes.graph]
 type = "heightfield"
+height = "scree"
+[terrain.nodes.scree]
+type = "talus"
 height = "detail"
+block = 32
 [terrain.nodes.detail]
 type = "erode_detail"
 height = "eroded"
@@ -402,7 +407,7 @@ TEST(SceneTerrain, BadNodesNameFileLineKeyAndValue)
               "erode_detail, height_add, height_blend, height_clamp, height_constant, height_curve, height_max, "
               "height_min, height_multiply, height_scale, height_subtract, height_terrace, height_warp, heightfield, "
               "image_heightfield, intersect, mask_curvature, mask_height, mask_slope, plane, spaghetti, sphere, "
-              "subtract, terrace, translate, union, warp, worms)");
+              "subtract, talus, terrace, translate, union, warp, worms)");
     EXPECT_EQ(parseError(oneNode("union", "children = [\"b\", \"c\"]\n[terrain.nodes.b]\ntype = \"sphere\"\n")),
               "test.toml:5: terrain.nodes.a.children = 'c' names no node: add a [terrain.nodes.c] table");
     EXPECT_EQ(parseError(oneNode("warp", "child = \"a\"\n")),

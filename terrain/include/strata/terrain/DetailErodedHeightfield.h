@@ -55,13 +55,13 @@ private:
     struct Block;
     class Cache;
     std::shared_ptr<const Block> block(std::int64_t bx, std::int64_t bz) const;
+    std::shared_ptr<const Block> computeBlock(std::int64_t bx, std::int64_t bz) const;
     double displacement(const Block& block, double u, double v) const;
 
     HeightNodePtr mChild;
     std::uint64_t mSeed;
     DetailErodeOptions mOptions;
     std::unique_ptr<Cache> mCache;
-    std::uint64_t mId = 0; ///< this node among all built in the process (threads' recent-block caches)
 };
 
 } // namespace strata::terrain
