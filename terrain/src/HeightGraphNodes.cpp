@@ -8,6 +8,7 @@
 #include <strata/terrain/ErodedHeightfield.h>
 #include <strata/terrain/HeightGraph.h>
 #include <strata/terrain/NodeRegistry.h>
+#include <strata/terrain/ScreeField.h>
 #include <strata/terrain/TalusHeightfield.h>
 
 #include "NodeRegistrations.h"
@@ -280,6 +281,22 @@ void registerHeightGraphNodes(NodeRegistry& registry)
         return std::make_shared<TalusHeightfield>(heightChild(a, "height"), o);
     };
     registry.add(std::move(talus));
+
+    NodeType scree{"scree",
+                   "a `talus` node's cones laid over 3D rock (after beds or warps cut it): they fill the foot of "
+                   "the walls and the alcoves there, never steeper than the talus angle",
+                   {}, {}};
+    scree.keys = {
+        childKey("child", "the rock (a 3D node)"),
+        childKey("talus", "a `talus` node over the ground the rock was cut from"),
+        numberKey("depth", 2.0, 1e-3, 1e4, "m", "how far below the foot of the walls the talus reaches"),
+    };
+    scree.build = [](const NodeArgs& a) -> DensityFieldPtr {
+        auto talus = std::dynamic_pointer_cast<const TalusHeightfield>(a.child("talus"));
+        if (!talus) a.fail("talus", "must name a `talus` node");
+        return std::make_shared<ScreeField>(a.child("child"), talus, a.number("depth"));
+    };
+    registry.add(std::move(scree));
 }
 
 } // namespace strata::terrain

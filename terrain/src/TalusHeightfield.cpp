@@ -75,16 +75,20 @@ void conePass(const std::vector<double>& in, std::vector<double>& out, int w, in
 } // namespace
 
 /// One block's lattice nodes, (block + 1)² of them, the first at world node
-/// (bx·block, bz·block): the talus surface and its thickness.
+/// (bx·block, bz·block).
 struct TalusHeightfield::Block
 {
-    int size = 0;                   ///< nodes per side
-    std::vector<double> surface;    ///< max(H, C), metres
-    std::vector<double> thickness;  ///< max(0, C − H), metres
-    std::size_t bytes() const { return sizeof(*this) + (surface.capacity() + thickness.capacity()) * sizeof(double); }
+    int size = 0;             ///< nodes per side
+    std::vector<double> ground; ///< H, metres
+    std::vector<double> cone;   ///< C
+    std::vector<double> foot;   ///< L
+    std::size_t bytes() const
+    {
+        return sizeof(*this) + (ground.capacity() + cone.capacity() + foot.capacity()) * sizeof(double);
+    }
 };
 
-// A block of 256 cells is 257² nodes of two doubles (1 MiB): about 60 fit.
+// A block of 256 cells is 257² nodes of three doubles (1.5 MiB): about 40 fit.
 class TalusHeightfield::Cache : public detail::WorldBlockCache<Block>
 {
 public:
@@ -171,7 +175,6 @@ std::shared_ptr<const TalusHeightfield::Block> TalusHeightfield::computeBlock(st
         const double relief = ground[c] - foot[c];
         source[c] = foot[c] + std::min(mOptions.fill * relief, mOptions.maxHeight);
     }
-    std::vector<double>().swap(foot);
 
     // C: the cones, one pass per direction.
     std::vector<double> axis(std::size_t(r) + 1), diagonal(std::size_t(r) + 1);
@@ -198,13 +201,15 @@ std::shared_ptr<const TalusHeightfield::Block> TalusHeightfield::computeBlock(st
     auto out = std::make_shared<Block>();
     out->size = b + 1;
     const std::size_t n = std::size_t(out->size);
-    out->surface.resize(n * n);
-    out->thickness.resize(n * n);
+    out->ground.resize(n * n);
+    out->cone.resize(n * n);
+    out->foot.resize(n * n);
     for (std::size_t j = 0; j < n; ++j) {
         for (std::size_t i = 0; i < n; ++i) {
             const std::size_t c = (j + std::size_t(margin)) * std::size_t(w) + i + std::size_t(margin);
-            out->surface[j * n + i] = std::max(ground[c], cone[c]);
-            out->thickness[j * n + i] = std::max(0.0, cone[c] - ground[c]);
+            out->ground[j * n + i] = ground[c];
+            out->cone[j * n + i] = cone[c];
+            out->foot[j * n + i] = foot[c];
         }
     }
     return out;
@@ -230,33 +235,70 @@ void TalusHeightfield::thickness(const double* x, const double* z, std::size_t n
     for (std::size_t k = 0; k < n; ++k) out[k] = std::max(0.0, out[k] - ground[k]);
 }
 
+/// The lattice cell holding world column (x, z): its block and the bilinear
+/// weights of its four corners. False beyond ±2^62 cells or at NaN, where
+/// no node index fits an int64.
+struct TalusHeightfield::Corners
+{
+    std::shared_ptr<const Block> block;
+    std::size_t c = 0, s = 0; ///< corner (0, 0), nodes per row
+    double fx = 0.0, fz = 0.0;
+    template<typename F>
+    double bilinear(F&& at) const
+    {
+        return (at(c) * (1 - fx) + at(c + 1) * fx) * (1 - fz) + (at(c + s) * (1 - fx) + at(c + s + 1) * fx) * fz;
+    }
+};
+
+bool TalusHeightfield::corners(double x, double z, Corners& out) const
+{
+    const double u = x / mOptions.cellSize, v = z / mOptions.cellSize;
+    constexpr double MAX_CELLS = 4611686018427387904.0; // 2^62
+    if (!(std::abs(u) < MAX_CELLS && std::abs(v) < MAX_CELLS)) return false;
+    const std::int64_t size = mOptions.blockCells;
+    const std::int64_t i = std::int64_t(std::floor(u)), j = std::int64_t(std::floor(v));
+    const std::int64_t bx = floorDiv(i, size), bz = floorDiv(j, size);
+    out.block = block(bx, bz);
+    out.s = std::size_t(out.block->size);
+    out.c = std::size_t(j - bz * size) * out.s + std::size_t(i - bx * size);
+    out.fx = u - double(i);
+    out.fz = v - double(j);
+    return true;
+}
+
 void TalusHeightfield::surface(const double* x, const double* z, std::size_t n, double* ground, double* out) const
 {
     mChild->heights(x, z, n, ground);
     const double cell = mOptions.cellSize;
-    const std::int64_t size = mOptions.blockCells;
-    for (std::size_t k = 0; k < n; ++k) {
-        out[k] = ground[k];
-        const double u = x[k] / cell, v = z[k] / cell;
-        // Beyond ±2^62 cells (or at NaN) a node index does not fit an int64:
-        // no talus there, the child's height alone.
-        constexpr double MAX_CELLS = 4611686018427387904.0; // 2^62
-        if (!(std::abs(u) < MAX_CELLS && std::abs(v) < MAX_CELLS)) continue;
-        const std::int64_t i = std::int64_t(std::floor(u)), j = std::int64_t(std::floor(v));
-        const std::int64_t bx = floorDiv(i, size), bz = floorDiv(j, size);
-        const std::shared_ptr<const Block> b = block(bx, bz);
-        const std::size_t s = std::size_t(b->size);
-        const std::size_t c = std::size_t(j - bz * size) * s + std::size_t(i - bx * size);
-        const double fx = u - double(i), fz = v - double(j);
-        auto bilinear = [&](const std::vector<double>& f) {
-            return (f[c] * (1 - fx) + f[c + 1] * fx) * (1 - fz) + (f[c + s] * (1 - fx) + f[c + s + 1] * fx) * fz;
-        };
-        const double thick = bilinear(b->thickness);
+    Corners k;
+    for (std::size_t p = 0; p < n; ++p) {
+        out[p] = ground[p];
+        if (!corners(x[p], z[p], k)) continue; // far beyond any lattice: the child alone
+        const Block& b = *k.block;
+        const double thick = k.bilinear([&](std::size_t c) { return std::max(0.0, b.cone[c] - b.ground[c]); });
         if (!(thick > 0.0)) continue;
         // Off the talus the child's own detail; on it (thicker than a cell)
         // the bilinear cones; a blend where it thins out.
         const double weight = std::min(1.0, thick / cell);
-        out[k] = ground[k] + weight * std::max(0.0, bilinear(b->surface) - ground[k]);
+        const double top = k.bilinear([&](std::size_t c) { return std::max(b.ground[c], b.cone[c]); });
+        out[p] = ground[p] + weight * std::max(0.0, top - ground[p]);
+    }
+}
+
+void TalusHeightfield::lattice(const double* x, const double* z, std::size_t n, double* ground, double* cone,
+                               double* foot) const
+{
+    Corners k;
+    for (std::size_t p = 0; p < n; ++p) {
+        if (!corners(x[p], z[p], k)) {
+            ground[p] = cone[p] = -HUGE_VAL;
+            foot[p] = HUGE_VAL;
+            continue;
+        }
+        const Block& b = *k.block;
+        ground[p] = k.bilinear([&](std::size_t c) { return b.ground[c]; });
+        cone[p] = k.bilinear([&](std::size_t c) { return b.cone[c]; });
+        foot[p] = k.bilinear([&](std::size_t c) { return b.foot[c]; });
     }
 }
 

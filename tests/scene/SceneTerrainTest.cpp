@@ -96,7 +96,11 @@ root = "all"
 masks = "scree"
 [terrain.nodes.all]
 type = "union"
-children = ["cut", "shapes", "stepped", "moved", "image", "graph", "layered"]
+children = ["cut", "shapes", "stepped", "moved", "image", "graph", "layered", "rubble"]
+[terrain.nodes.rubble]
+type = "scree"
+child = "moved"
+talus = "scree"
 [terrain.nodes.layered]
 type = "beds"
 child = "moved"
@@ -406,8 +410,13 @@ TEST(SceneTerrain, BadNodesNameFileLineKeyAndValue)
               "test.toml:4: terrain.nodes.a.type = 'blob' is not a node type (one of beds, box, capsule, cheese, erode, "
               "erode_detail, height_add, height_blend, height_clamp, height_constant, height_curve, height_max, "
               "height_min, height_multiply, height_scale, height_subtract, height_terrace, height_warp, heightfield, "
-              "image_heightfield, intersect, mask_curvature, mask_height, mask_slope, plane, spaghetti, sphere, "
-              "subtract, talus, terrace, translate, union, warp, worms)");
+              "image_heightfield, intersect, mask_curvature, mask_height, mask_slope, plane, scree, spaghetti, "
+              "sphere, subtract, talus, terrace, translate, union, warp, worms)");
+    const std::string notTalus = parseError(
+        oneNode("scree", "child = \"b\"\ntalus = \"b\"\n[terrain.nodes.b]\ntype = \"sphere\"\nradius = 3\n"));
+    EXPECT_NE(notTalus.find("test.toml:"), std::string::npos) << notTalus;
+    EXPECT_NE(notTalus.find("talus"), std::string::npos) << notTalus;
+    EXPECT_NE(notTalus.find("must name a `talus` node"), std::string::npos) << notTalus;
     EXPECT_EQ(parseError(oneNode("union", "children = [\"b\", \"c\"]\n[terrain.nodes.b]\ntype = \"sphere\"\n")),
               "test.toml:5: terrain.nodes.a.children = 'c' names no node: add a [terrain.nodes.c] table");
     EXPECT_EQ(parseError(oneNode("warp", "child = \"a\"\n")),

@@ -18,6 +18,7 @@
 #include <strata/terrain/NodeRegistry.h>
 #include <strata/terrain/Primitives.h>
 #include <strata/terrain/SimdTarget.h>
+#include <strata/terrain/TalusHeightfield.h>
 #include <strata/terrain/TerrainField.h>
 
 #include <gtest/gtest.h>
@@ -372,7 +373,15 @@ TEST(BlockEvaluation, EveryNodeTypeGivesTheScalarBits)
         const DensityFieldPtr second = heightGraph ? hills : ball;
         for (const NodeKey& key : type->keys) {
             switch (key.type) {
-            case NodeKeyType::Child: args.set(key.name, hills); break;
+            case NodeKeyType::Child:
+                // scree lays a talus node's cones over its child.
+                if (type->name == "scree" && key.name == "talus") {
+                    args.set(key.name, DensityFieldPtr(std::make_shared<TalusHeightfield>(
+                                          std::dynamic_pointer_cast<const HeightfieldBase>(hills), TalusOptions{})));
+                } else {
+                    args.set(key.name, hills);
+                }
+                break;
             case NodeKeyType::Children: args.set(key.name, std::vector<DensityFieldPtr>{hills, second, hills}); break;
             case NodeKeyType::Image: args.set(key.name, std::shared_ptr<const HeightImage>(image)); break;
             case NodeKeyType::Seed: break;

@@ -8,6 +8,7 @@
 
 #include <strata/Error.h>
 #include <strata/terrain/SampleLevelSet.h>
+#include <strata/terrain/ScreeField.h>
 #include <strata/terrain/TalusHeightfield.h>
 
 #include <gtest/gtest.h>
@@ -36,6 +37,22 @@ public:
 
 private:
     double mCx, mCz;
+};
+
+/// The mesa as 3D rock with an alcove cut into its wall: air where r > 56 m
+/// and y < 6 m (4.5 m deep under the wall).
+class UndercutMesa final : public DensityField
+{
+public:
+    double density(const glm::dvec3& p) const override
+    {
+        const double alcove = std::max(56.0 - std::sqrt(p.x * p.x + p.z * p.z), p.y - 6.0);
+        return std::max(p.y - mMesa.height(p.x, p.z), -alcove);
+    }
+    double lipschitz() const override { return std::sqrt(1.0 + 40.0 * 40.0); }
+
+private:
+    Mesa mMesa{0.0, 0.0};
 };
 
 HeightNodePtr hills()
@@ -270,4 +287,78 @@ TEST(TalusHeightfield, BadKeysAreNamed)
     o = options();
     o.maxHeight = 500.0; // 500 m cones on a 2 m lattice: a window of thousands of cells
     fails(o, "max_height");
+}
+
+TEST(ScreeField, FillsTheAlcovesAtTheFootOfAWallAndKeepsItsBounds)
+{
+    const auto talus = std::make_shared<TalusHeightfield>(std::make_shared<Mesa>(0.0, 0.0), options(64));
+    const auto rock = std::make_shared<UndercutMesa>();
+    const ScreeField scree(rock, talus, 2.0);
+    // In the alcove near its floor, under the cones (about 16 m against the
+    // wall): air in the rock, talus with the scree. Above the cones, air.
+    for (const double angle : {0.3, 1.9, 3.5}) {
+        const glm::dvec3 low(58.0 * std::cos(angle), 1.0, 58.0 * std::sin(angle));
+        EXPECT_GT(rock->density(low), 0.0) << angle;
+        EXPECT_LT(scree.density(low), 0.0) << angle;
+        const glm::dvec3 out(64.0 * std::cos(angle), 10.0, 64.0 * std::sin(angle));
+        EXPECT_LT(scree.density(out), 0.0) << angle; // in the apron
+        const glm::dvec3 air(64.0 * std::cos(angle), 20.0, 64.0 * std::sin(angle));
+        EXPECT_GT(scree.density(air), 0.0) << angle;
+        // The mesa's top and the far plain are the rock's.
+        const glm::dvec3 top(10.0 * std::cos(angle), 40.5, 10.0 * std::sin(angle));
+        EXPECT_EQ(scree.density(top), rock->density(top));
+    }
+    // Bounds hold, distance bounds are no further than the surface.
+    std::mt19937 random(5);
+    std::uniform_real_distribution<double> at(-100.0, 100.0), y(-10.0, 50.0), size(0.1, 12.0);
+    for (int k = 0; k < 300; ++k) {
+        const glm::dvec3 lo(at(random), y(random), at(random));
+        const WorldBox box{lo, lo + glm::dvec3(size(random), size(random), size(random))};
+        const Interval b = scree.bounds(box);
+        for (int s = 0; s < 8; ++s) {
+            const glm::dvec3 p(s & 1 ? box.max.x : box.min.x, s & 2 ? box.max.y : box.min.y,
+                               s & 4 ? box.max.z : box.min.z);
+            const double d = scree.density(p);
+            ASSERT_GE(d, b.lo);
+            ASSERT_LE(d, b.hi);
+        }
+        const glm::dvec3 c = box.centre();
+        const double bound = scree.distanceBound(c), d = scree.density(c);
+        ASSERT_EQ(bound < 0.0, d < 0.0);
+        // No sign change within the bound along the six axes.
+        for (int axis = 0; axis < 3; ++axis) {
+            for (const double sign : {-1.0, 1.0}) {
+                glm::dvec3 q = c;
+                q[axis] += sign * std::abs(bound) * 0.999;
+                ASSERT_EQ(scree.density(q) < 0.0, d < 0.0) << k;
+            }
+        }
+    }
+}
+
+TEST(ScreeField, AnyTilingAndThreadCountGivesTheSameBits)
+{
+    auto make = [] {
+        return ScreeField(std::make_shared<UndercutMesa>(),
+                          std::make_shared<TalusHeightfield>(std::make_shared<Mesa>(0.0, 0.0), options(64)), 2.0);
+    };
+    const auto whole = sampleLevelSet(make(), box({-96, -10, -96}, {96, 50, 96}));
+    ASSERT_GT(whole->activeVoxelCount(), 20000u);
+    for (const int threads : {1, 3}) {
+        tbb::global_control limit(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
+        const ScreeField fresh = make();
+        const int tiles = 2;
+        const double step = 96.0;
+        for (int t = 0; t < tiles * tiles; ++t) {
+            const glm::dvec3 lo(-96 + (t % tiles) * step, -10, -96 + (t / tiles) * step);
+            const auto tile = sampleLevelSet(fresh, box(lo, lo + glm::dvec3(step, 60, step)));
+            auto a = whole->getConstAccessor();
+            auto b = tile->getConstAccessor();
+            std::size_t differ = 0;
+            const openvdb::CoordBBox inner({int(lo.x) + 4, -6, int(lo.z) + 4},
+                                           {int(lo.x + step) - 4, 46, int(lo.z + step) - 4});
+            for (auto it = inner.begin(); it; ++it) differ += a.getValue(*it) != b.getValue(*it);
+            EXPECT_EQ(differ, 0u) << "tile " << t << ", " << threads << " threads";
+        }
+    }
 }

@@ -67,6 +67,12 @@ public:
 
     /// Talus thickness (metres, >= 0) at n columns.
     void thickness(const double* x, const double* z, std::size_t n, double* out) const;
+    /// The lattice's fields at n columns, bilinear between nodes: the
+    /// ground H, the cones C and the foot L (metres). Beyond ±2^62 cells
+    /// (or at NaN) −inf, −inf and +inf. The `scree` node lays the talus
+    /// over 3D rock with them.
+    void lattice(const double* x, const double* z, std::size_t n, double* ground, double* cone, double* foot) const;
+    const TalusOptions& options() const { return mOptions; }
     /// Lattice steps a cone pass reaches (R above); a block's window is
     /// block + 12R + 1 nodes a side.
     int reach() const { return mReach; }
@@ -76,6 +82,8 @@ public:
 private:
     struct Block;
     class Cache;
+    struct Corners;
+    bool corners(double x, double z, Corners& out) const;
     std::shared_ptr<const Block> block(std::int64_t bx, std::int64_t bz) const;
     std::shared_ptr<const Block> computeBlock(std::int64_t bx, std::int64_t bz) const;
     /// Child heights into `ground`, talus surface into `out`.
