@@ -22,7 +22,7 @@ sed -e 's/^min = \[-1024.0, -20.0, -1024.0\]/min = [-256.0, -20.0, 240.0]/' \
 grep -q '^min = \[-256.0' "$work/crop.toml" # the region lines were found
 
 "$strata" generate "$work/crop.toml" -o "$work/ground" --backend cpu --size 1280x720 --fov 70 \
-  --camera-position=-60,13.6,425 --camera-target=60,30,415
+  --camera-position=-40,17.1,440 --camera-target=80,30,425
 cp "$work/ground/snapshot.png" "$out/canyon2k-ground.png"
 "$strata" generate examples/worlds/canyon2k.toml -o "$work/above" --quality voxel_size=4 --backend cpu --size 1280x720
 cp "$work/above/snapshot.png" "$out/canyon2k-above.png"
