@@ -20,7 +20,7 @@ awk '
   /^\[terrain\.nodes\.(world|caves|detailed)\]/ { skip = 1; next }
   /^\[/ { skip = 0 }
   !skip' examples/worlds/mountains4k.toml |
-  sed -e 's/^root = "world"/root = "eroded"/' \
+  sed -e 's/^root = "world"/root = "rough"/' \
       -e "s|\"\\.\\./\\.\\./docs/|\"$PWD/docs/|" > "$work/preview.toml"
 
 "$strata" generate "$work/preview.toml" -o "$work/out" --quality voxel_size=4 --no-snapshot -q

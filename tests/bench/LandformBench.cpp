@@ -64,9 +64,9 @@ StreamPowerOptions evolution(double cell)
     o.cellSize = cell;
     o.years = 2e6;
     o.timeStep = 2e4;
-    o.uplift = 5e-4;
+    o.uplift = 3e-4;
     o.erodibility = 1.5e-5;
-    o.diffusivity = 0.01;
+    o.diffusivity = 0.005;
     return o;
 }
 
