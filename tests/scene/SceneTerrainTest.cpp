@@ -485,12 +485,13 @@ TEST(SceneTerrain, TheCanyonShowcaseLoadsAndItsWallsOverhang)
     EXPECT_GT(scene.field->density({0.0, 190.0, 0.0}), 0.0);
     EXPECT_LT(scene.field->density({0.0, -10.0, 0.0}), 0.0);
     // The floor at (-60, 425) is at about 12 m; walk north to the wall and
-    // count columns with rock over air within 60 m of the floor.
+    // count columns with rock over air up to the plateau's top (scree buries
+    // the lower part of the wall, up to 60 m above its foot).
     int overhanging = 0, columns = 0;
     for (double z = 330.0; z <= 400.0; z += 1.0) {
         int ceilings = 0;
         bool wasRock = true;
-        for (double y = 5.0; y <= 70.0; y += 0.25) {
+        for (double y = 5.0; y <= 160.0; y += 0.25) {
             const bool rock = scene.field->density({-60.0, y, z}) < 0.0;
             ceilings += rock && !wasRock;
             wasRock = rock;
