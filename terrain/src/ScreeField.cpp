@@ -78,6 +78,17 @@ double ScreeField::distanceBound(const glm::dvec3& p) const
 Interval ScreeField::bounds(const WorldBox& box) const
 {
     const Interval rock = mRock->bounds(box);
+    // From the lattice nodes around the box: top = C − clamp(1 m − (C −
+    // H), 0, 1 m) lies in [C_lo − 1 m, C_hi], the bottom L − depth in
+    // [L_lo − depth, L_hi − depth], and y − top, bottom − y are monotone.
+    TalusHeightfield::LatticeRange r;
+    if (mTalus->latticeRange({box.min.x, box.min.z}, {box.max.x, box.max.z}, r)) {
+        const double topLo = r.coneLo - FEATHER, topHi = r.coneHi;
+        const double bottomLo = r.footLo - mDepth, bottomHi = r.footHi - mDepth;
+        const Interval slab{std::max(box.min.y - topHi, bottomLo - box.max.y),
+                            std::max(box.max.y - topLo, bottomHi - box.min.y)};
+        return {std::min(rock.lo, slab.lo), std::min(rock.hi, slab.hi)};
+    }
     const glm::dvec3 c = box.centre();
     double talus;
     slab(&c.x, &c.y, &c.z, 1, &talus);

@@ -302,6 +302,41 @@ void TalusHeightfield::lattice(const double* x, const double* z, std::size_t n, 
     }
 }
 
+bool TalusHeightfield::latticeRange(const glm::dvec2& min, const glm::dvec2& max, LatticeRange& out) const
+{
+    const double cell = mOptions.cellSize;
+    const double u0 = std::floor(min.x / cell), u1 = std::floor(max.x / cell) + 1.0;
+    const double v0 = std::floor(min.y / cell), v1 = std::floor(max.y / cell) + 1.0;
+    constexpr double MAX_CELLS = 4611686018427387904.0; // 2^62
+    for (const double u : {u0, u1, v0, v1}) {
+        if (!(std::abs(u) < MAX_CELLS)) return false;
+    }
+    if (!((u1 - u0 + 1.0) * (v1 - v0 + 1.0) <= 65536.0)) return false;
+    const std::int64_t size = mOptions.blockCells;
+    bool first = true;
+    for (std::int64_t j = std::int64_t(v0); j <= std::int64_t(v1); ++j) {
+        const std::int64_t bz = floorDiv(j, size);
+        for (std::int64_t i = std::int64_t(u0); i <= std::int64_t(u1); ++i) {
+            // A node on a block's far edge is also node 0 of the next block
+            // (the same bits); take it from the block that holds i, j.
+            const std::int64_t bx = floorDiv(i, size);
+            const std::shared_ptr<const Block> b = block(bx, bz);
+            const std::size_t c = std::size_t(j - bz * size) * std::size_t(b->size) + std::size_t(i - bx * size);
+            const double cone = b->cone[c], foot = b->foot[c];
+            if (first) {
+                out = {cone, cone, foot, foot};
+                first = false;
+            } else {
+                out.coneLo = std::min(out.coneLo, cone);
+                out.coneHi = std::max(out.coneHi, cone);
+                out.footLo = std::min(out.footLo, foot);
+                out.footHi = std::max(out.footHi, foot);
+            }
+        }
+    }
+    return true;
+}
+
 Interval TalusHeightfield::heightBounds(const glm::dvec2& min, const glm::dvec2& max) const
 {
     // The bilinear surface reads the corners of the cells the rectangle

@@ -72,6 +72,15 @@ public:
     /// (or at NaN) −inf, −inf and +inf. The `scree` node lays the talus
     /// over 3D rock with them.
     void lattice(const double* x, const double* z, std::size_t n, double* ground, double* cone, double* foot) const;
+    /// Ranges of the cones C and the foot L over the rectangle [min, max]
+    /// (world x, z): the extremes of the lattice nodes around it, which hold
+    /// every bilinear value inside. False (and nothing set) beyond the
+    /// lattice or over more than 65,536 nodes.
+    struct LatticeRange
+    {
+        double coneLo = 0.0, coneHi = 0.0, footLo = 0.0, footHi = 0.0;
+    };
+    bool latticeRange(const glm::dvec2& min, const glm::dvec2& max, LatticeRange& out) const;
     const TalusOptions& options() const { return mOptions; }
     /// Lattice steps a cone pass reaches (R above); a block's window is
     /// block + 12R + 1 nodes a side.
