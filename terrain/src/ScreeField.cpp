@@ -41,15 +41,17 @@ ScreeField::ScreeField(std::shared_ptr<const DensityField> rock, std::shared_ptr
 
 void ScreeField::slab(const double* x, const double* y, const double* z, std::size_t n, double* out) const
 {
-    std::vector<double> ground(n), cone(n), foot(n);
-    mTalus->lattice(x, z, n, ground.data(), cone.data(), foot.data());
+    // One column at a time: density() calls this for a single point, and
+    // the lattice is read per column anyway (no buffers to allocate).
     for (std::size_t k = 0; k < n; ++k) {
-        if (!(cone[k] > -HUGE_VAL)) {
+        double ground, cone, foot;
+        mTalus->lattice(&x[k], &z[k], 1, &ground, &cone, &foot);
+        if (!(cone > -HUGE_VAL)) {
             out[k] = HUGE_VAL; // no lattice this far out: no talus
             continue;
         }
-        const double top = cone[k] - std::clamp(FEATHER - (cone[k] - ground[k]), 0.0, FEATHER);
-        out[k] = std::max(y[k] - top, (foot[k] - mDepth) - y[k]);
+        const double top = cone - std::clamp(FEATHER - (cone - ground), 0.0, FEATHER);
+        out[k] = std::max(y[k] - top, (foot - mDepth) - y[k]);
     }
 }
 

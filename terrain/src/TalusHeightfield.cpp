@@ -217,8 +217,8 @@ std::shared_ptr<const TalusHeightfield::Block> TalusHeightfield::computeBlock(st
 
 double TalusHeightfield::height(double x, double z) const
 {
-    double out;
-    heights(&x, &z, 1, &out);
+    double ground, out;
+    surface(&x, &z, 1, &ground, &out);
     return out;
 }
 

@@ -9,6 +9,8 @@
 #include <strata/terrain/DetailErodedHeightfield.h>
 #include <strata/terrain/SampleLevelSet.h>
 
+#include "TilingChecks.h"
+
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
 
@@ -17,6 +19,8 @@
 #include <utility>
 
 using namespace strata::terrain;
+using strata::test::expectTilesMatchWhole;
+using strata::test::openBox;
 
 namespace {
 
@@ -33,15 +37,6 @@ DetailErodeOptions options(int block = 32)
     DetailErodeOptions o;
     o.blockCells = block;
     o.erosion.dropletSteps = 12;
-    return o;
-}
-
-SampleOptions box(const glm::dvec3& lo, const glm::dvec3& hi)
-{
-    SampleOptions o;
-    o.voxelSize = 1.0;
-    o.region = {lo, hi};
-    o.closed = false;
     return o;
 }
 
@@ -68,24 +63,14 @@ TEST(DetailErodedHeightfield, CarvesWithinItsDepthAndLeavesFlatsAlone)
 
 TEST(DetailErodedHeightfield, AnyTilingAndThreadCountGivesTheSameBits)
 {
-    const auto whole = sampleLevelSet(DetailErodedHeightfield(hills(), 5, options()), box({-48, -60, -48}, {48, 60, 48}));
+    const glm::dvec3 lo(-48, -60, -48), hi(48, 60, 48);
+    const auto whole = sampleLevelSet(DetailErodedHeightfield(hills(), 5, options()), openBox(lo, hi));
     ASSERT_GT(whole->activeVoxelCount(), 5000u);
     for (const int threads : {1, 2, 3}) {
         tbb::global_control limit(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
         const DetailErodedHeightfield fresh(hills(), 5, options()); // its own, empty block cache
         for (const int tiles : {2, 3}) {
-            const double step = 96.0 / tiles;
-            for (int t = 0; t < tiles * tiles; ++t) {
-                const glm::dvec3 lo(-48 + (t % tiles) * step, -60, -48 + (t / tiles) * step);
-                const auto tile = sampleLevelSet(fresh, box(lo, lo + glm::dvec3(step, 120, step)));
-                auto a = whole->getConstAccessor();
-                auto b = tile->getConstAccessor();
-                std::size_t differ = 0;
-                const openvdb::CoordBBox inner({int(lo.x) + 4, -56, int(lo.z) + 4},
-                                               {int(lo.x + step) - 4, 56, int(lo.z + step) - 4});
-                for (auto it = inner.begin(); it; ++it) differ += a.getValue(*it) != b.getValue(*it);
-                EXPECT_EQ(differ, 0u) << tiles << "x" << tiles << " tile " << t << ", " << threads << " threads";
-            }
+            expectTilesMatchWhole(fresh, *whole, lo, hi, tiles, std::to_string(threads) + " threads");
         }
     }
 }

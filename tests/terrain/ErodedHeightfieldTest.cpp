@@ -11,6 +11,8 @@
 #include <strata/terrain/SampleLevelSet.h>
 #include <strata/terrain/SimdTarget.h>
 
+#include "TilingChecks.h"
+
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
 
@@ -18,6 +20,8 @@
 #include <memory>
 
 using namespace strata::terrain;
+using strata::test::expectTilesMatchWhole;
+using strata::test::openBox;
 
 namespace {
 
@@ -51,32 +55,13 @@ ErodeOptions smallDomain(double offset = 0.0, double cell = 8.0)
     return o;
 }
 
-SampleOptions box(const glm::dvec3& lo, const glm::dvec3& hi)
-{
-    SampleOptions o;
-    o.voxelSize = 1.0;
-    o.region = {lo, hi};
-    o.closed = false;
-    return o;
-}
-
-std::size_t differences(const openvdb::FloatGrid& a, const openvdb::FloatGrid& b, const openvdb::CoordBBox& where)
-{
-    std::size_t n = 0;
-    auto accA = a.getConstAccessor();
-    auto accB = b.getConstAccessor();
-    for (auto it = where.begin(); it; ++it) {
-        if (accA.getValue(*it) != accB.getValue(*it) || accA.isValueOn(*it) != accB.isValueOn(*it)) ++n;
-    }
-    return n;
-}
-
 } // namespace
 
 TEST(ErodedHeightfield, AnyTilingAndThreadCountGivesTheSameBits)
 {
     const auto field = std::make_shared<ErodedHeightfield>(hills(), nullptr, smallDomain());
-    const auto whole = sampleLevelSet(*field, box({-60, -80, -60}, {60, 80, 60}));
+    const glm::dvec3 lo(-60, -80, -60), hi(60, 80, 60);
+    const auto whole = sampleLevelSet(*field, openBox(lo, hi));
     ASSERT_GT(whole->activeVoxelCount(), 10000u);
     // Evolved anew on 1, 2 and 3 threads (not taken from the cache), then
     // sampled in 2 × 2 and 3 × 3 tiles: every voxel of each tile equals the
@@ -88,18 +73,7 @@ TEST(ErodedHeightfield, AnyTilingAndThreadCountGivesTheSameBits)
         ASSERT_FALSE(rebuilt->cached());
         EXPECT_EQ(rebuilt->grid().heights, field->grid().heights) << threads << " threads";
         for (const int tiles : {2, 3}) {
-            const double step = 120.0 / tiles;
-            for (int tz = 0; tz < tiles; ++tz) {
-                for (int tx = 0; tx < tiles; ++tx) {
-                    const glm::dvec3 lo(-60 + tx * step, -80, -60 + tz * step);
-                    const auto tile = sampleLevelSet(*rebuilt, box(lo, lo + glm::dvec3(step, 160, step)));
-                    // The tile's interior (its band near the open faces may differ).
-                    const openvdb::Coord a(int(lo.x) + 4, -76, int(lo.z) + 4);
-                    const openvdb::Coord b(int(lo.x + step) - 4, 76, int(lo.z + step) - 4);
-                    EXPECT_EQ(differences(*whole, *tile, openvdb::CoordBBox(a, b)), 0u)
-                        << tiles << "x" << tiles << " tile " << tx << "," << tz << " on " << threads << " threads";
-                }
-            }
+            expectTilesMatchWhole(*rebuilt, *whole, lo, hi, tiles, "on " + std::to_string(threads) + " threads");
         }
     }
     // A node of the same key built after them takes the cached evolution.

@@ -11,6 +11,8 @@
 #include <strata/terrain/ScreeField.h>
 #include <strata/terrain/TalusHeightfield.h>
 
+#include "TilingChecks.h"
+
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
 
@@ -20,6 +22,8 @@
 #include <random>
 
 using namespace strata::terrain;
+using strata::test::expectTilesMatchWhole;
+using strata::test::openBox;
 
 namespace {
 
@@ -75,15 +79,6 @@ double thicknessAt(const TalusHeightfield& t, double x, double z)
     double out;
     t.thickness(&x, &z, 1, &out);
     return out;
-}
-
-SampleOptions box(const glm::dvec3& lo, const glm::dvec3& hi)
-{
-    SampleOptions o;
-    o.voxelSize = 1.0;
-    o.region = {lo, hi};
-    o.closed = false;
-    return o;
 }
 
 } // namespace
@@ -180,25 +175,14 @@ TEST(TalusHeightfield, AnyBlockSizeTilingAndThreadCountGivesTheSameBits)
     }
     EXPECT_GT(talusPoints, 200);
 
-    const auto whole = sampleLevelSet(TalusHeightfield(std::make_shared<Mesa>(5.0, -3.0), options()),
-                                      box({-96, -20, -96}, {96, 60, 96}));
+    const glm::dvec3 lo(-96, -20, -96), hi(96, 60, 96);
+    const auto whole = sampleLevelSet(TalusHeightfield(std::make_shared<Mesa>(5.0, -3.0), options()), openBox(lo, hi));
     ASSERT_GT(whole->activeVoxelCount(), 20000u);
     for (const int threads : {1, 2, 3}) {
         tbb::global_control limit(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
         const TalusHeightfield fresh(std::make_shared<Mesa>(5.0, -3.0), options()); // its own, empty cache
         for (const int tiles : {2, 3}) {
-            const double step = 192.0 / tiles;
-            for (int t = 0; t < tiles * tiles; ++t) {
-                const glm::dvec3 lo(-96 + (t % tiles) * step, -20, -96 + (t / tiles) * step);
-                const auto tile = sampleLevelSet(fresh, box(lo, lo + glm::dvec3(step, 80, step)));
-                auto a = whole->getConstAccessor();
-                auto b = tile->getConstAccessor();
-                std::size_t differ = 0;
-                const openvdb::CoordBBox inner({int(lo.x) + 4, -16, int(lo.z) + 4},
-                                               {int(lo.x + step) - 4, 56, int(lo.z + step) - 4});
-                for (auto it = inner.begin(); it; ++it) differ += a.getValue(*it) != b.getValue(*it);
-                EXPECT_EQ(differ, 0u) << tiles << "x" << tiles << " tile " << t << ", " << threads << " threads";
-            }
+            expectTilesMatchWhole(fresh, *whole, lo, hi, tiles, std::to_string(threads) + " threads");
         }
     }
 }
@@ -342,23 +326,11 @@ TEST(ScreeField, AnyTilingAndThreadCountGivesTheSameBits)
         return ScreeField(std::make_shared<UndercutMesa>(),
                           std::make_shared<TalusHeightfield>(std::make_shared<Mesa>(0.0, 0.0), options(64)), 2.0);
     };
-    const auto whole = sampleLevelSet(make(), box({-96, -10, -96}, {96, 50, 96}));
+    const glm::dvec3 lo(-96, -10, -96), hi(96, 50, 96);
+    const auto whole = sampleLevelSet(make(), openBox(lo, hi));
     ASSERT_GT(whole->activeVoxelCount(), 20000u);
     for (const int threads : {1, 3}) {
         tbb::global_control limit(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
-        const ScreeField fresh = make();
-        const int tiles = 2;
-        const double step = 96.0;
-        for (int t = 0; t < tiles * tiles; ++t) {
-            const glm::dvec3 lo(-96 + (t % tiles) * step, -10, -96 + (t / tiles) * step);
-            const auto tile = sampleLevelSet(fresh, box(lo, lo + glm::dvec3(step, 60, step)));
-            auto a = whole->getConstAccessor();
-            auto b = tile->getConstAccessor();
-            std::size_t differ = 0;
-            const openvdb::CoordBBox inner({int(lo.x) + 4, -6, int(lo.z) + 4},
-                                           {int(lo.x + step) - 4, 46, int(lo.z + step) - 4});
-            for (auto it = inner.begin(); it; ++it) differ += a.getValue(*it) != b.getValue(*it);
-            EXPECT_EQ(differ, 0u) << "tile " << t << ", " << threads << " threads";
-        }
+        expectTilesMatchWhole(make(), *whole, lo, hi, 2, std::to_string(threads) + " threads");
     }
 }
