@@ -11,7 +11,7 @@ find_package(TBB CONFIG REQUIRED)
 
 # OpenVDB ships only a find module, outside CMake's default module path.
 find_path(STRATA_OPENVDB_MODULE_DIR FindOpenVDB.cmake
-  PATHS /usr/lib/x86_64-linux-gnu/cmake/OpenVDB /usr/lib/cmake/OpenVDB /usr/local/lib/cmake/OpenVDB
+  PATHS /usr/lib/${CMAKE_LIBRARY_ARCHITECTURE}/cmake/OpenVDB /usr/lib/x86_64-linux-gnu/cmake/OpenVDB /usr/lib/cmake/OpenVDB /usr/local/lib/cmake/OpenVDB
         /usr/local/lib64/cmake/OpenVDB
   NO_DEFAULT_PATH)
 if(STRATA_OPENVDB_MODULE_DIR)

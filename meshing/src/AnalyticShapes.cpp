@@ -4,6 +4,7 @@
 #include <strata/meshing/AnalyticShapes.h>
 
 #include <strata/Error.h>
+#include <strata/IntegerMath.h>
 
 #include <openvdb/tools/SignedFloodFill.h>
 
@@ -96,11 +97,11 @@ openvdb::FloatGrid::Ptr levelSetFromShape(const AnalyticShape& shape, double vox
     openvdb::FloatGrid::Ptr grid = openvdb::FloatGrid::create(background);
     grid->setTransform(openvdb::math::Transform::createLinearTransform(voxelSize));
     grid->setGridClass(openvdb::GRID_LEVEL_SET);
-    const int pad = int(std::ceil(halfWidth)) + 1;
-    const openvdb::Coord lo(int(std::floor(shape.min.x / voxelSize)) - pad, int(std::floor(shape.min.y / voxelSize)) - pad,
-                            int(std::floor(shape.min.z / voxelSize)) - pad);
-    const openvdb::Coord hi(int(std::ceil(shape.max.x / voxelSize)) + pad, int(std::ceil(shape.max.y / voxelSize)) + pad,
-                            int(std::ceil(shape.max.z / voxelSize)) + pad);
+    const int pad = ceilToInt<int>(halfWidth) + 1;
+    const openvdb::Coord lo(floorToInt<int>(shape.min.x / voxelSize) - pad, floorToInt<int>(shape.min.y / voxelSize) - pad,
+                            floorToInt<int>(shape.min.z / voxelSize) - pad);
+    const openvdb::Coord hi(ceilToInt<int>(shape.max.x / voxelSize) + pad, ceilToInt<int>(shape.max.y / voxelSize) + pad,
+                            ceilToInt<int>(shape.max.z / voxelSize) + pad);
     openvdb::FloatGrid::Accessor accessor = grid->getAccessor();
     for (int x = lo.x(); x <= hi.x(); ++x)
         for (int y = lo.y(); y <= hi.y(); ++y)

@@ -3,6 +3,8 @@
 
 #include <strata/meshing/DualMesh.h>
 
+#include <strata/IntegerMath.h>
+
 #include <glm/geometric.hpp>
 
 #include <algorithm>
@@ -906,9 +908,9 @@ private:
     // the result independent of where the cell sits in the samples.
     double trilinear(std::size_t base, const glm::dvec3& p) const
     {
-        const int x = std::clamp(int(std::floor(p[0])), -1, 1);
-        const int y = std::clamp(int(std::floor(p[1])), -1, 1);
-        const int z = std::clamp(int(std::floor(p[2])), -1, 1);
+        const int x = std::clamp(floorToInt<int>(p[0]), -1, 1);
+        const int y = std::clamp(floorToInt<int>(p[1]), -1, 1);
+        const int z = std::clamp(floorToInt<int>(p[2]), -1, 1);
         const double u = p[0] - x, v = p[1] - y, w = p[2] - z;
         return trilinearIn(std::ptrdiff_t(base) + x * mS.stride[0] + y * mS.stride[1] + z * mS.stride[2], u, v, w);
     }

@@ -3,7 +3,9 @@
 
 #include <strata/meshing/GltfCompact.h>
 
+#include <strata/DeterministicMath.h>
 #include <strata/Error.h>
+#include <strata/IntegerMath.h>
 
 #include <glm/geometric.hpp>
 #include <meshoptimizer.h>
@@ -106,7 +108,7 @@ TriangleMesh reorder(const TriangleMesh& mesh)
 /// floor(x + 1/2) commutes with adding an integer, so a point at a half step
 /// rounds the same relative to any corner on the grid (std::llround rounds
 /// halves away from zero, which differs on either side of the corner).
-std::int64_t roundToGrid(double x) { return std::int64_t(std::floor(x + 0.5)); }
+std::int64_t roundToGrid(double x) { return floorToInt<std::int64_t>(x + 0.5); }
 
 /// Grid coordinates of a position relative to the origin.
 std::array<std::int64_t, 3> gridPoint(const glm::vec3& p, double step)
@@ -279,7 +281,7 @@ std::string encodeCompactGlb(const std::vector<GlbPart>& parts, const glm::dvec3
                 }
                 const glm::vec3 v(unit[4 * i], unit[4 * i + 1], unit[4 * i + 2]);
                 const double c = std::clamp(double(glm::dot(glm::normalize(d), v)), -1.0, 1.0);
-                measured.maxNormalAngle = std::max(measured.maxNormalAngle, std::acos(c));
+                measured.maxNormalAngle = std::max(measured.maxNormalAngle, dmath::acos(c));
             }
             json accessor = {{"bufferView", buffers.add(packed.data(), n, stride, false, "OCTAHEDRAL")},
                              {"componentType", wide ? GL_SHORT : GL_BYTE},

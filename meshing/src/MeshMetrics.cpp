@@ -5,6 +5,8 @@
 
 #include "PositionWeld.h"
 
+#include <strata/DeterministicMath.h>
+
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
@@ -165,7 +167,8 @@ AngleStatistics angleStatistics(const TriangleMesh& mesh)
         for (int k = 0; k < 3; ++k) {
             const glm::dvec3 u = p[(k + 1) % 3] - p[k], v = p[(k + 2) % 3] - p[k];
             const double len = glm::length(u) * glm::length(v);
-            const double angle = len > 0 ? std::acos(std::clamp(glm::dot(u, v) / len, -1.0, 1.0)) * 180.0 / std::numbers::pi : 0.0;
+            const double angle =
+                len > 0 ? dmath::acos(std::clamp(glm::dot(u, v) / len, -1.0, 1.0)) * 180.0 / std::numbers::pi : 0.0;
             least = std::min(least, angle);
         }
         sum += least;

@@ -4,6 +4,7 @@
 #include <strata/meshing/Simplify.h>
 
 #include <strata/Error.h>
+#include <strata/IntegerMath.h>
 
 // MeshIO before the kernel header: OpenMesh registers its readers and writers
 // only when IO is included first.
@@ -116,7 +117,7 @@ TriangleMesh simplify(const TriangleMesh& mesh, const SimplifyOptions& options)
         throw Error(ErrorKind::BadInput, "simplify: maximum error must be finite and non-negative");
     }
     if (mesh.indices.empty() || options.ratio == 1.0) return compact(mesh, mesh.indices);
-    const std::size_t target = std::size_t(std::llround(options.ratio * double(mesh.triangleCount())));
+    const std::size_t target = roundToInt<std::size_t>(options.ratio * double(mesh.triangleCount()));
     if (options.method == Simplifier::MeshOptimizer) {
         return compact(mesh, simplifyMeshOptimizer(mesh, options, target));
     }

@@ -3,6 +3,7 @@
 
 #include <strata/meshing/SurfaceError.h>
 
+#include <strata/DeterministicMath.h>
 #include <strata/Error.h>
 
 #include <glm/geometric.hpp>
@@ -294,7 +295,9 @@ SurfaceError measureSurfaceError(const TriangleMesh& mesh, const DistanceFunctio
                 const glm::dvec3 g = options.gradient(mesh.origin + glm::dvec3(mesh.positions[i]));
                 const glm::dvec3 n(mesh.normals[i]);
                 const double len = glm::length(g) * glm::length(n);
-                angles[i] = len > 0 ? std::acos(std::clamp(glm::dot(g, n) / len, -1.0, 1.0)) * 180.0 / std::numbers::pi : 180.0;
+                angles[i] = len > 0
+                                ? dmath::acos(std::clamp(glm::dot(g, n) / len, -1.0, 1.0)) * 180.0 / std::numbers::pi
+                                : 180.0;
             }
         });
         double sum = 0.0;

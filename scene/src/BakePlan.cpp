@@ -106,7 +106,7 @@ BakeTile BakePlan::tile(int index) const
     BakeTile t;
     t.index = index;
     t.cell = {index % counts[0], index / (counts[0] * counts[2]), (index / counts[0]) % counts[2]};
-    const auto tileVoxels = std::int64_t(std::llround(tileSize / voxelSize));
+    const auto tileVoxels = roundToInt<std::int64_t>(tileSize / voxelSize);
     for (int a = 0; a < 3; ++a) {
         t.box.min[a] = minVoxel[a] + t.cell[a] * tileVoxels;
         t.box.size[a] = std::min(tileVoxels, maxVoxel[a] - t.box.min[a]);
@@ -136,7 +136,7 @@ BakePlan planBake(const Scene& scene, const BakeOptions& options)
     const std::string shownSize = formatNumber(tileSize);
     if (!std::isfinite(tileSize) || tileSize <= 0.0) badFlag("--tile-size", shownSize, "must be a positive number of metres");
     const double voxels = tileSize / scene.voxelSize;
-    const auto tileVoxels = std::int64_t(std::llround(voxels));
+    const auto tileVoxels = roundToInt<std::int64_t>(voxels);
     if (tileVoxels < 1 || std::abs(voxels - double(tileVoxels)) > 1e-9 * std::max(1.0, voxels))
         badFlag("--tile-size", shownSize,
                 "is not a multiple of the voxel size " + formatNumber(scene.voxelSize) + " m");
@@ -152,8 +152,8 @@ BakePlan planBake(const Scene& scene, const BakeOptions& options)
 
     for (int a = 0; a < 3; ++a) {
         const double lo = scene.region.min[a] / scene.voxelSize, hi = scene.region.max[a] / scene.voxelSize;
-        plan.minVoxel[a] = floorDiv(std::int64_t(std::floor(lo)), coarse) * coarse;
-        plan.maxVoxel[a] = -floorDiv(-std::int64_t(std::ceil(hi)), coarse) * coarse;
+        plan.minVoxel[a] = floorDiv(floorToInt<std::int64_t>(lo), coarse) * coarse;
+        plan.maxVoxel[a] = -floorDiv(-ceilToInt<std::int64_t>(hi), coarse) * coarse;
     }
     for (int a : {0, 2}) {
         const std::int64_t extent = plan.maxVoxel[a] - plan.minVoxel[a];

@@ -4,6 +4,7 @@
 #include <strata/scene/CaveView.h>
 
 #include <strata/Error.h>
+#include <strata/IntegerMath.h>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -62,7 +63,7 @@ constexpr std::array<glm::ivec3, 6> FACES = {glm::ivec3{-1, 0, 0}, glm::ivec3{1,
 bool lineOfSight(const Cells& cells, const std::vector<std::uint8_t>& kind, const glm::dvec3& a, const glm::dvec3& b)
 {
     const double length = glm::length(b - a);
-    const int steps = std::max(1, int(std::ceil(length / (0.25 * cells.size))));
+    const int steps = std::max(1, ceilToInt<int>(length / (0.25 * cells.size)));
     for (int s = 0; s <= steps; ++s) {
         const glm::dvec3 p = a + (b - a) * (double(s) / double(steps));
         const glm::dvec3 c = glm::floor((p - cells.origin) / cells.size);
@@ -86,9 +87,9 @@ CaveView findCaveView(const openvdb::FloatGrid& grid, const glm::dvec3& regionMi
     Cells cells;
     cells.size = options.cellSize > 0.0 ? options.cellSize : 2.0 * grid.voxelSize()[0];
     auto dimensions = [&] {
-        cells.nx = std::max(1, int(std::ceil(extent.x / cells.size)));
-        cells.ny = std::max(1, int(std::ceil(extent.y / cells.size)));
-        cells.nz = std::max(1, int(std::ceil(extent.z / cells.size)));
+        cells.nx = std::max(1, ceilToInt<int>(extent.x / cells.size));
+        cells.ny = std::max(1, ceilToInt<int>(extent.y / cells.size));
+        cells.nz = std::max(1, ceilToInt<int>(extent.z / cells.size));
     };
     dimensions();
     while (cells.count() > options.maxCells) {

@@ -3,6 +3,7 @@
 
 #include <strata/scene/Georeference.h>
 
+#include <strata/DeterministicMath.h>
 #include <strata/Error.h>
 #include <strata/Format.h>
 
@@ -38,6 +39,21 @@ void checkRanges(const Georeference& p, const std::string& what, const std::stri
         bad(what, text, "the longitude " + shown[1] + " is not in [-180, 180] degrees");
     if (!std::isfinite(p.height) || p.height < MIN_HEIGHT || p.height > MAX_HEIGHT)
         bad(what, text, "the height " + shown[2] + " m is not in [-100000, 10000000] m above the WGS84 ellipsoid");
+}
+
+/// Sines and cosines of a point's latitude and longitude (dmath: the same
+/// bits from every C library).
+struct Angles
+{
+    double sinLat = 0.0, cosLat = 1.0, sinLon = 0.0, cosLon = 1.0;
+};
+
+Angles anglesOf(const Georeference& p)
+{
+    Angles a;
+    dmath::sinCos(p.latitude * PI / 180.0, a.sinLat, a.cosLat);
+    dmath::sinCos(p.longitude * PI / 180.0, a.sinLon, a.cosLon);
+    return a;
 }
 
 } // namespace
@@ -78,17 +94,15 @@ Georeference parseGeoreference(const std::string& text, const std::string& flag)
 
 std::array<double, 3> ecefPosition(const Georeference& p)
 {
-    const double lat = p.latitude * PI / 180.0, lon = p.longitude * PI / 180.0;
-    const double sinLat = std::sin(lat), cosLat = std::cos(lat);
+    const auto [sinLat, cosLat, sinLon, cosLon] = anglesOf(p);
     const double n = WGS84_A / std::sqrt(1.0 - WGS84_E2 * sinLat * sinLat); // prime vertical radius
-    return {(n + p.height) * cosLat * std::cos(lon), (n + p.height) * cosLat * std::sin(lon),
+    return {(n + p.height) * cosLat * cosLon, (n + p.height) * cosLat * sinLon,
             (n * (1.0 - WGS84_E2) + p.height) * sinLat};
 }
 
 std::array<double, 16> eastNorthUpToEcef(const Georeference& p)
 {
-    const double lat = p.latitude * PI / 180.0, lon = p.longitude * PI / 180.0;
-    const double sinLat = std::sin(lat), cosLat = std::cos(lat), sinLon = std::sin(lon), cosLon = std::cos(lon);
+    const auto [sinLat, cosLat, sinLon, cosLon] = anglesOf(p);
     const std::array<double, 3> o = ecefPosition(p);
     return {-sinLon,          cosLon,           0.0,    0.0,  // east
             -sinLat * cosLon, -sinLat * sinLon, cosLat, 0.0,  // north

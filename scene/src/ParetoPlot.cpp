@@ -5,6 +5,8 @@
 
 #include "PlotFont.h"
 
+#include <strata/IntegerMath.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -23,7 +25,7 @@ struct Canvas
     {
         if (x < 0 || y < 0 || x >= image.width || y >= image.height || alpha <= 0.0) return;
         std::uint8_t* p = image.at(x, y);
-        for (int i = 0; i < 3; ++i) p[i] = std::uint8_t(std::lround(p[i] * (1.0 - alpha) + c[std::size_t(i)] * alpha));
+        for (int i = 0; i < 3; ++i) p[i] = std::uint8_t(roundToInt<int>(p[i] * (1.0 - alpha) + c[std::size_t(i)] * alpha));
     }
 
     void line(int x0, int y0, int x1, int y1, const Color& c, int thickness = 1)
@@ -107,7 +109,7 @@ Axis makeAxis(std::vector<double> values, bool log)
     a.lo = lo;
     a.hi = hi;
     if (log) {
-        for (int e = int(std::floor(lo)); e <= int(std::ceil(hi)); ++e) {
+        for (int e = floorToInt<int>(lo); e <= ceilToInt<int>(hi); ++e) {
             for (double m : {1.0, 2.0, 5.0}) {
                 const double v = m * std::pow(10.0, e);
                 if (std::log10(v) >= lo && std::log10(v) <= hi) a.ticks.push_back(v);
@@ -175,8 +177,8 @@ render::Image drawPlot(const std::vector<PlotPanel>& panels, int panelWidth, int
             ys.push_back(p.y);
         }
         const Axis ax = makeAxis(xs, panel.logX), ay = makeAxis(ys, panel.logY);
-        auto px = [&](double v) { return x0 + int(std::lround(ax.fraction(v) * (x1 - x0))); };
-        auto py = [&](double v) { return y1 - int(std::lround(ay.fraction(v) * (y1 - y0))); };
+        auto px = [&](double v) { return x0 + roundToInt<int>(ax.fraction(v) * (x1 - x0)); };
+        auto py = [&](double v) { return y1 - roundToInt<int>(ay.fraction(v) * (y1 - y0)); };
 
         // Grid and ticks.
         for (double t : ax.ticks) {

@@ -14,6 +14,7 @@
 #include <strata/AtomicFile.h>
 #include <strata/Error.h>
 #include <strata/Format.h>
+#include <strata/IntegerMath.h>
 #include <strata/OutputLock.h>
 #include <strata/Stopwatch.h>
 #include <strata/meshing/GltfIO.h>
@@ -72,7 +73,7 @@ void quantiseWeights(const float* shares, int count, std::uint8_t* out)
     float fraction[render::MAX_MATERIAL_LAYERS];
     for (int i = 0; i < count; ++i) {
         const float w = std::clamp(shares[i], 0.0f, 1.0f) * 255.0f;
-        out[i] = std::uint8_t(std::floor(w));
+        out[i] = floorToInt<std::uint8_t>(w);
         fraction[i] = w - float(out[i]);
         sum += out[i];
     }

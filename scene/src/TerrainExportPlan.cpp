@@ -125,7 +125,7 @@ TerrainExportPlan planTerrainExport(const Scene& scene, const TerrainExportOptio
     const std::string shownSize = formatNumber(tileSize);
     if (!std::isfinite(tileSize) || tileSize <= 0.0) badFlag("--tile-size", shownSize, "must be a positive number of metres");
     const double voxels = tileSize / v;
-    plan.tileVoxels = std::llround(voxels);
+    plan.tileVoxels = roundToInt<std::int64_t>(voxels);
     if (plan.tileVoxels < 1 || std::abs(voxels - double(plan.tileVoxels)) > 1e-6 * voxels)
         badFlag("--tile-size", shownSize, "is not a multiple of the voxel size " + formatNumber(v) + " m");
     if (plan.tileVoxels > MAX_TILE_VOXELS)
@@ -135,8 +135,8 @@ TerrainExportPlan planTerrainExport(const Scene& scene, const TerrainExportOptio
     const std::int64_t coarse = std::int64_t(1) << (lods - 1);
     std::array<std::int64_t, 3> maxVoxel{};
     for (int a = 0; a < 3; ++a) {
-        const std::int64_t lo = std::int64_t(std::floor(scene.region.min[a] / v));
-        const std::int64_t hi = std::int64_t(std::ceil(scene.region.max[a] / v));
+        const std::int64_t lo = floorToInt<std::int64_t>(scene.region.min[a] / v);
+        const std::int64_t hi = ceilToInt<std::int64_t>(scene.region.max[a] / v);
         plan.minVoxel[a] = floorDiv(lo, coarse) * coarse;
         maxVoxel[a] = -floorDiv(-hi, coarse) * coarse;
     }
@@ -187,7 +187,11 @@ TerrainExportPlan planTerrainExport(const Scene& scene, const TerrainExportOptio
                         formatNumber(span / MAX_UNITS) + " m, or lower [region]");
         plan.heightStep = options.heightStep;
     } else {
-        plan.heightStep = std::ldexp(1.0, int(std::ceil(std::log2(std::max(span, 1e-300) / MAX_UNITS))));
+        // The smallest power of two >= span / MAX_UNITS, exactly: q = m·2^e
+        // with m in [½, 1), so 2^(e − 1) when m is ½ (q a power of two), else 2^e.
+        int e = 0;
+        const double m = std::frexp(std::max(span, 1e-300) / MAX_UNITS, &e);
+        plan.heightStep = std::ldexp(1.0, m == 0.5 ? e - 1 : e);
         while (span / plan.heightStep > MAX_UNITS) plan.heightStep *= 2.0;
     }
 

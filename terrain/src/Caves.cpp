@@ -4,7 +4,6 @@
 #include <strata/terrain/Caves.h>
 
 #include "WormSimd.h"
-#include "DeterministicMath.h"
 
 #include "NodeRegistrations.h"
 #include <strata/Format.h>
@@ -12,7 +11,9 @@
 
 #include "ShowValue.h"
 
+#include <strata/DeterministicMath.h>
 #include <strata/Error.h>
+#include <strata/IntegerMath.h>
 
 #include "NoiseHash.h"
 
@@ -265,7 +266,7 @@ std::vector<WormCaves::Segment> WormCaves::wormsOfCell(std::int64_t cx, std::int
     const WormOptions& o = mOptions;
     const std::uint64_t cell = hashCombine(hashCombine(seedHash(deriveSeed(mSeed, 5)), cx), cz);
     const double expected = o.wormsPerCell;
-    const int count = int(std::floor(expected)) + (unit(mix64(cell ^ 0x51)) < expected - std::floor(expected) ? 1 : 0);
+    const int count = floorToInt<int>(expected) + (unit(mix64(cell ^ 0x51)) < expected - std::floor(expected) ? 1 : 0);
     std::vector<Segment> segments;
     for (int w = 0; w < count; ++w) {
         std::uint64_t h = mix64(cell + 0x9e3779b97f4a7c15ULL * std::uint64_t(w + 1));
@@ -292,8 +293,8 @@ std::vector<WormCaves::Segment> WormCaves::wormsOfCell(std::int64_t cx, std::int
             const double yaw = yaw0 + 2.0 * o.turn * wander(yawSeed, t);
             const double pitch = o.maxPitch * std::clamp(1.6 * wander(pitchSeed, t), -1.0, 1.0);
             double sinPitch = 0.0, cosPitch = 1.0, sinYaw = 0.0, cosYaw = 1.0;
-            detail::sinCos(pitch, sinPitch, cosPitch);
-            detail::sinCos(yaw, sinYaw, cosYaw);
+            dmath::sinCos(pitch, sinPitch, cosPitch);
+            dmath::sinCos(yaw, sinYaw, cosYaw);
             const glm::dvec3 dir(cosPitch * cosYaw, sinPitch, cosPitch * sinYaw);
             const glm::dvec3 to = at + o.segmentLength * dir;
             const double rb = radiusAt(i + 1);

@@ -3,10 +3,10 @@
 
 #include <strata/terrain/DetailErodedHeightfield.h>
 
-#include "DeterministicMath.h"
 #include "ShowValue.h"
 #include "WorldBlockCache.h"
 
+#include <strata/DeterministicMath.h>
 #include <strata/Error.h>
 #include <strata/IntegerMath.h>
 
@@ -124,7 +124,7 @@ void DetailErodedHeightfield::heights(const double* x, const double* z, std::siz
     const double halo = mOptions.halo;
     // The weight of a block at distance e (cells) inside its patch's outer
     // edge: 0 over the outer quarter of the halo, 1 from three quarters on.
-    auto ramp = [&](double e) { return detail::smoothstep01((e - 0.25 * halo) / (0.5 * halo)); };
+    auto ramp = [&](double e) { return dmath::smoothstep01((e - 0.25 * halo) / (0.5 * halo)); };
     for (std::size_t k = 0; k < n; ++k) {
         const double u = x[k] / cell, v = z[k] / cell;
         // Beyond ±2^62 cells (or at NaN) a block index does not fit an
@@ -133,10 +133,10 @@ void DetailErodedHeightfield::heights(const double* x, const double* z, std::siz
         // height alone, the same on the scalar and the block path.
         constexpr double MAX_CELLS = 4611686018427387904.0; // 2^62
         if (!(std::abs(u) < MAX_CELLS && std::abs(v) < MAX_CELLS)) continue;
-        const std::int64_t bx0 = floorDiv(std::int64_t(std::floor(u - halo)), size);
-        const std::int64_t bx1 = floorDiv(std::int64_t(std::floor(u + halo)), size);
-        const std::int64_t bz0 = floorDiv(std::int64_t(std::floor(v - halo)), size);
-        const std::int64_t bz1 = floorDiv(std::int64_t(std::floor(v + halo)), size);
+        const std::int64_t bx0 = floorDiv(floorToInt<std::int64_t>(u - halo), size);
+        const std::int64_t bx1 = floorDiv(floorToInt<std::int64_t>(u + halo), size);
+        const std::int64_t bz0 = floorDiv(floorToInt<std::int64_t>(v - halo), size);
+        const std::int64_t bz1 = floorDiv(floorToInt<std::int64_t>(v + halo), size);
         double sum = 0.0, weights = 0.0;
         for (std::int64_t bz = bz0; bz <= bz1; ++bz) {
             for (std::int64_t bx = bx0; bx <= bx1; ++bx) {

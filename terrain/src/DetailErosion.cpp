@@ -4,9 +4,10 @@
 #include <strata/terrain/DetailErosion.h>
 
 #include "ShowValue.h"
-#include "DeterministicMath.h"
 
+#include <strata/DeterministicMath.h>
 #include <strata/Error.h>
+#include <strata/IntegerMath.h>
 
 #include <algorithm>
 #include <cmath>
@@ -85,7 +86,7 @@ void runDroplet(Patch& patch, double x, double z, const DetailErosionOptions& o)
         patch.sample(x, z, h, gx, gz);
         dx = dx * o.inertia - gx * (1.0 - o.inertia);
         dz = dz * o.inertia - gz * (1.0 - o.inertia);
-        const double length = detail::hypot(dx, dz);
+        const double length = dmath::hypot(dx, dz);
         if (!(length > 1e-12)) break; // a flat: the droplet soaks in
         dx /= length;
         dz /= length;
@@ -116,7 +117,7 @@ void runDroplet(Patch& patch, double x, double z, const DetailErosionOptions& o)
 /// gives it a quarter of the excess difference, all read from the previous sweep.
 void relaxTalus(std::vector<double>& h, int w, int hgt, const DetailErosionOptions& o)
 {
-    const double talus = detail::tanDegrees(o.talusAngle) * o.cellSize;
+    const double talus = dmath::tanDegrees(o.talusAngle) * o.cellSize;
     std::vector<double> change(h.size());
     for (int sweep = 0; sweep < o.talusSweeps; ++sweep) {
         std::fill(change.begin(), change.end(), 0.0);
@@ -174,7 +175,7 @@ void erodeDetail(std::vector<double>& heights, int width, int height, std::int64
     }
     const std::vector<double> original = heights;
     Patch patch{heights, width, height};
-    const int whole = int(std::floor(o.dropletsPerCell));
+    const int whole = floorToInt<int>(o.dropletsPerCell);
     const double fraction = o.dropletsPerCell - whole;
     for (int j = 0; j + 1 < height; ++j) {
         for (int i = 0; i + 1 < width; ++i) {

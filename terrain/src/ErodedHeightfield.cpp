@@ -4,9 +4,10 @@
 #include <strata/terrain/ErodedHeightfield.h>
 
 #include "ShowValue.h"
-#include "DeterministicMath.h"
 
+#include <strata/DeterministicMath.h>
 #include <strata/Error.h>
+#include <strata/IntegerMath.h>
 #include <strata/Stopwatch.h>
 
 #include <glm/common.hpp>
@@ -104,7 +105,7 @@ ErosionCache& cache()
 /// Grid corners per axis: enough that the last reaches max.
 int cornersAlong(double min, double max, double cell)
 {
-    return int(std::ceil((max - min) / cell - 1e-9)) + 1;
+    return ceilToInt<int>((max - min) / cell - 1e-9) + 1;
 }
 
 /// Samples `node` at every corner, row by row in parallel (each row one
@@ -125,7 +126,7 @@ std::vector<double> sampleCorners(const HeightfieldBase& node, int width, int he
     return out;
 }
 
-double smoothstep(double e0, double e1, double v) { return detail::smoothstep01((v - e0) / (e1 - e0)); }
+double smoothstep(double e0, double e1, double v) { return dmath::smoothstep01((v - e0) / (e1 - e0)); }
 
 /// Uniform cubic B-spline weights of the four control points around t in [0, 1).
 void splineWeights(double t, double w[4])
@@ -152,8 +153,8 @@ SplineTap tap(const ErodedGrid& g, double x, double z)
     const double v = std::clamp((z - g.min.y) / g.cellSize, 0.0, double(g.height - 1));
     SplineTap t;
     const double fu = std::floor(u), fv = std::floor(v);
-    t.i = int(fu) - 1;
-    t.j = int(fv) - 1;
+    t.i = clampToInt<int>(fu) - 1;
+    t.j = clampToInt<int>(fv) - 1;
     splineWeights(u - fu, t.wx);
     splineWeights(v - fv, t.wz);
     return t;
@@ -188,9 +189,9 @@ std::shared_ptr<ErodedGrid> evolve(const std::vector<double>& input, const std::
     g->heights = std::move(run.heights);
     const std::size_t count = g->heights.size();
     g->masks.resize(count);
-    const double river = detail::log10(o.riverArea);
+    const double river = dmath::log10(o.riverArea);
     for (std::size_t i = 0; i < count; ++i) {
-        const double flow = detail::log10(run.area[i]);
+        const double flow = dmath::log10(run.area[i]);
         const double water = std::max(smoothstep(river - 0.25, river + 0.25, flow), smoothstep(0.0, 0.5, run.lakeDepth[i]));
         g->masks[i] = glm::vec4(float(flow), float(run.wear[i]), float(run.sediment[i]), float(water));
     }
@@ -216,7 +217,7 @@ std::shared_ptr<ErodedGrid> evolve(const std::vector<double>& input, const std::
             g->hi = std::max(g->hi, h);
         }
     }
-    g->slopeBound = detail::hypot(steepX, steepZ) / g->cellSize;
+    g->slopeBound = dmath::hypot(steepX, steepZ) / g->cellSize;
     run.area.clear();
     run.wear.clear();
     run.sediment.clear();
@@ -338,8 +339,8 @@ Interval ErodedHeightfield::heightBounds(const glm::dvec2& min, const glm::dvec2
     const double u1 = std::clamp((max.x - g.min.x) / g.cellSize, 0.0, double(g.width - 1));
     const double v0 = std::clamp((min.y - g.min.y) / g.cellSize, 0.0, double(g.height - 1));
     const double v1 = std::clamp((max.y - g.min.y) / g.cellSize, 0.0, double(g.height - 1));
-    const int i0 = std::max(0, int(std::floor(u0)) - 1), i1 = std::min(g.width - 1, int(std::floor(u1)) + 2);
-    const int j0 = std::max(0, int(std::floor(v0)) - 1), j1 = std::min(g.height - 1, int(std::floor(v1)) + 2);
+    const int i0 = std::max(0, floorToInt<int>(u0) - 1), i1 = std::min(g.width - 1, floorToInt<int>(u1) + 2);
+    const int j0 = std::max(0, floorToInt<int>(v0) - 1), j1 = std::min(g.height - 1, floorToInt<int>(v1) + 2);
     Interval out{HUGE_VAL, -HUGE_VAL};
     for (int bz = j0 / BLOCK; bz <= j1 / BLOCK; ++bz) {
         for (int bx = i0 / BLOCK; bx <= i1 / BLOCK; ++bx) {

@@ -4,8 +4,8 @@
 #include <strata/terrain/HeightGraph.h>
 
 #include "ShowValue.h"
-#include "DeterministicMath.h"
 
+#include <strata/DeterministicMath.h>
 #include <strata/Error.h>
 
 #include <algorithm>
@@ -305,7 +305,7 @@ HeightTerrace::HeightTerrace(HeightNodePtr child, double step, double sharpness)
 double HeightTerrace::map(double h) const
 {
     const double s = h / mStep, k = std::floor(s);
-    return mStep * (k + detail::pow(s - k, mSharpness));
+    return mStep * (k + dmath::pow(s - k, mSharpness));
 }
 
 Interval HeightTerrace::heightBounds(const glm::dvec2& min, const glm::dvec2& max) const
@@ -390,8 +390,8 @@ HeightMask::HeightMask(HeightNodePtr child, const MaskOptions& options)
 
 double HeightMask::band(double v) const
 {
-    if (v < mOptions.min) return detail::smoothstep01(1.0 - (mOptions.min - v) / mOptions.softness);
-    if (v > mOptions.max) return detail::smoothstep01(1.0 - (v - mOptions.max) / mOptions.softness);
+    if (v < mOptions.min) return dmath::smoothstep01(1.0 - (mOptions.min - v) / mOptions.softness);
+    if (v > mOptions.max) return dmath::smoothstep01(1.0 - (v - mOptions.max) / mOptions.softness);
     return 1.0;
 }
 
@@ -424,7 +424,7 @@ void HeightMask::heights(const double* x, const double* z, std::size_t n, double
         const double c = h[i], e = h[n + i], w = h[2 * n + i], s = h[3 * n + i], nn = h[4 * n + i];
         double v;
         if (mOptions.source == MaskSource::Slope) {
-            v = detail::hypot((e - w) / (2.0 * r), (s - nn) / (2.0 * r));
+            v = dmath::hypot((e - w) / (2.0 * r), (s - nn) / (2.0 * r));
         } else {
             v = -(e + w + s + nn - 4.0 * c) / (r * r);
         }

@@ -6,6 +6,7 @@
 // SlopeDistribution, HeightSpectrum, SurfaceTexture) share: the check of a
 // height grid given by the user, and a least-squares line in log–log space.
 
+#include <strata/DeterministicMath.h>
 #include <strata/Error.h>
 #include <strata/Format.h>
 #include <strata/terrain/LandformStatistics.h>
@@ -77,7 +78,7 @@ inline LogLogFit fitLogLog(const std::vector<double>& x, const std::vector<doubl
         residual += e * e;
     }
     fit.exponent = b;
-    fit.coefficient = std::exp(a);
+    fit.coefficient = dmath::exp(a);
     fit.rSquared = syy > 0.0 ? std::max(0.0, 1.0 - residual / syy) : 1.0;
     return fit;
 }

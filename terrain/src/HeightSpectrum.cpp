@@ -5,15 +5,16 @@
 
 #include "HeightGridChecks.h"
 
+#include <strata/DeterministicMath.h>
 #include <strata/Error.h>
 #include <strata/Format.h>
+#include <strata/IntegerMath.h>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 #include <string>
 
 namespace strata::terrain {
@@ -43,8 +44,8 @@ public:
             mReverse[i] = r;
         }
         for (std::size_t k = 0; k < n / 2; ++k) {
-            const double angle = -2.0 * std::numbers::pi * double(k) / double(n);
-            mTwiddle[k] = {std::cos(angle), std::sin(angle)};
+            // −360°·k/n exactly (n is a power of two): exact at the quarter turns.
+            dmath::sinCosDegrees(-360.0 * double(k) / double(n), mTwiddle[k].im, mTwiddle[k].re);
         }
     }
 
@@ -86,7 +87,8 @@ std::vector<double> hann(std::size_t n)
 {
     std::vector<double> w(n);
     for (std::size_t i = 0; i < n; ++i) {
-        const double s = std::sin(std::numbers::pi * (double(i) + 0.5) / double(n));
+        double s = 0.0, c = 0.0;
+        dmath::sinCosDegrees(180.0 * (double(i) + 0.5) / double(n), s, c);
         w[i] = s * s;
     }
     return w;
@@ -118,10 +120,10 @@ struct BandBins
     BandBins(double minCells, double maxCells, double binsPerDecade)
     {
         if (!(maxCells > minCells)) return;
-        logLow = std::log(1.0 / maxCells);
-        logHigh = std::log(1.0 / minCells);
-        const double decades = std::log10(maxCells / minCells);
-        count = std::max(1, int(std::ceil(decades * binsPerDecade - 1e-9)));
+        logLow = dmath::log(1.0 / maxCells);
+        logHigh = dmath::log(1.0 / minCells);
+        const double decades = dmath::log10(maxCells / minCells);
+        count = std::max(1, ceilToInt<int>(decades * binsPerDecade - 1e-9));
         power.assign(std::size_t(count), 0.0);
         logK.assign(std::size_t(count), 0.0);
         members.assign(std::size_t(count), 0);
@@ -147,8 +149,8 @@ struct BandBins
         if (!plane) {
             for (std::size_t b = 0; b < std::size_t(count); ++b) {
                 if (members[b] == 0 || !(power[b] > 0.0)) continue;
-                x.push_back(logK[b] / double(members[b]) - std::log(cellSize));
-                y.push_back(std::log(power[b] / double(members[b])));
+                x.push_back(logK[b] / double(members[b]) - dmath::log(cellSize));
+                y.push_back(dmath::log(power[b] / double(members[b])));
             }
         }
         band.fit = detail::fitLogLog(x, y);
@@ -230,7 +232,7 @@ HeightSpectrum measureHeightSpectrum(const std::vector<double>& heights, int wid
         for (std::size_t i = 0; i < PW; ++i) {
             if (i == 0 && j == 0) continue;
             const double kx = (i <= PW / 2 ? double(i) : double(i) - double(PW)) / double(PW);
-            const double logK = std::log(std::hypot(kx, kz)); // cycles per cell
+            const double logK = dmath::log(dmath::hypot(kx, kz)); // cycles per cell
             const Complex f = grid[j * PW + i];
             const double power = f.re * f.re + f.im * f.im;
             fine.add(logK, power);

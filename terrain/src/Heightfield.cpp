@@ -12,6 +12,7 @@
 #include "ShowValue.h"
 
 #include <strata/Error.h>
+#include <strata/IntegerMath.h>
 
 #include <glm/geometric.hpp>
 
@@ -157,8 +158,8 @@ Interval ImageHeightfield::heightBounds(const glm::dvec2& min, const glm::dvec2&
     const double u1 = pixel(max.x, mOptions.min.x, mOptions.max.x, mImage.width);
     const double v0 = pixel(min.y, mOptions.min.y, mOptions.max.y, mImage.height);
     const double v1 = pixel(max.y, mOptions.min.y, mOptions.max.y, mImage.height);
-    const int i0 = std::max(0, int(std::floor(u0))), i1 = std::min(mImage.width - 1, int(std::ceil(u1)));
-    const int j0 = std::max(0, int(std::floor(v0))), j1 = std::min(mImage.height - 1, int(std::ceil(v1)));
+    const int i0 = std::max(0, floorToInt<int>(u0)), i1 = std::min(mImage.width - 1, ceilToInt<int>(u1));
+    const int j0 = std::max(0, floorToInt<int>(v0)), j1 = std::min(mImage.height - 1, ceilToInt<int>(v1));
     double lo = mMinValue, hi = mMaxValue;
     constexpr double MAX_PIXELS = 4096.0;
     if (double(i1 - i0 + 1) * double(j1 - j0 + 1) <= MAX_PIXELS) {

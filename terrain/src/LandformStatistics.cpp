@@ -5,6 +5,7 @@
 
 #include "HeightGridChecks.h"
 
+#include <strata/DeterministicMath.h>
 #include <strata/Error.h>
 #include <strata/Format.h>
 #include <strata/terrain/FlowRouting.h>
@@ -93,8 +94,8 @@ LandformStatistics measureLandforms(const std::vector<double>& heights, int widt
             const double drop = heights[c] - heights[to];
             const double slope = drop > 0.0 ? drop / distance : filledSlope;
             if (slope > options.minChannelSlope) {
-                logA.push_back(std::log(area[c]));
-                logS.push_back(std::log(slope));
+                logA.push_back(dmath::log(area[c]));
+                logS.push_back(dmath::log(slope));
             }
         }
     }
@@ -107,8 +108,8 @@ LandformStatistics measureLandforms(const std::vector<double>& heights, int widt
         std::vector<double> x, y;
         for (std::size_t c = 0; c < n; ++c) {
             if (area[c] < options.hackMinCells * cellArea || !(longest[c] > 0.0)) continue;
-            x.push_back(std::log(area[c]));
-            y.push_back(std::log(longest[c]));
+            x.push_back(dmath::log(area[c]));
+            y.push_back(dmath::log(longest[c]));
         }
         s.hack = detail::fitLogLog(x, y);
     }

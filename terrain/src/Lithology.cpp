@@ -3,9 +3,9 @@
 
 #include <strata/terrain/Lithology.h>
 
-#include "DeterministicMath.h"
 #include "ShowValue.h"
 
+#include <strata/DeterministicMath.h>
 #include <strata/Error.h>
 #include <strata/terrain/Noise.h>
 
@@ -79,12 +79,12 @@ Lithology::Lithology(std::uint64_t seed, const LithologyOptions& options)
     }
 
     double sd = 0.0, cd = 1.0, sa = 0.0, ca = 1.0;
-    detail::sinCosDegrees(o.dip, sd, cd);
-    detail::sinCosDegrees(o.dipDirection, sa, ca);
+    dmath::sinCosDegrees(o.dip, sd, cd);
+    dmath::sinCosDegrees(o.dipDirection, sa, ca);
     mNormal = glm::dvec3(sd * ca, cd, sd * sa); // rises away from the dip direction
     double sfd = 1.0, cfd = 0.0, ss = 0.0, cs = 1.0;
-    detail::sinCosDegrees(o.faultDip, sfd, cfd);
-    detail::sinCosDegrees(o.faultStrike, ss, cs);
+    dmath::sinCosDegrees(o.faultDip, sfd, cfd);
+    dmath::sinCosDegrees(o.faultStrike, ss, cs);
     mFaultNormal = glm::dvec3(-ss * sfd, cfd, cs * sfd);
 
     mMinHardness = mMaxHardness = mBeds[0].hardness;
@@ -103,7 +103,7 @@ Lithology::Lithology(std::uint64_t seed, const LithologyOptions& options)
 double Lithology::faultOffset(double across) const
 {
     if (mOptions.faultThrow == 0.0) return 0.0;
-    return mOptions.faultThrow * detail::smoothstep01(across / mOptions.faultWidth + 0.5);
+    return mOptions.faultThrow * dmath::smoothstep01(across / mOptions.faultWidth + 0.5);
 }
 
 double Lithology::stratigraphicHeight(const glm::dvec3& p) const
@@ -151,7 +151,7 @@ double Lithology::hardnessAt(double s) const
         const double below = u - mBeds[i].base;
         if (below < half) {
             const double other = mBeds[i > 0 ? i - 1 : n - 1].hardness;
-            return other + (h - other) * detail::smoothstep01(0.5 + below / mOptions.transition);
+            return other + (h - other) * dmath::smoothstep01(0.5 + below / mOptions.transition);
         }
     }
     if (i + 1 < n || repeat) {
@@ -159,7 +159,7 @@ double Lithology::hardnessAt(double s) const
         const double above = top - u;
         if (above < half) {
             const double other = mBeds[(i + 1) % n].hardness;
-            return h + (other - h) * detail::smoothstep01(0.5 - above / mOptions.transition);
+            return h + (other - h) * dmath::smoothstep01(0.5 - above / mOptions.transition);
         }
     }
     return h;

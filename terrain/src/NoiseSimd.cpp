@@ -761,6 +761,10 @@ hwy::ChosenTarget& chosenTarget()
 
 bool nativeLaneHashing() { return STRATA_DISPATCH(NativeLaneHashingImpl)(); }
 
+// Called from inside namespace detail: with a single target (aarch64 has
+// NEON alone) the dispatch names the function in the target's namespace.
+std::string targetInUse() { return STRATA_DISPATCH(TargetInUse)(); }
+
 void hashedLanes(LaneBasis basis, std::uint64_t seed, const SplitPoints& split, std::size_t n, bool threeD, double* out)
 {
     STRATA_DISPATCH(HashedLanesImpl)(basis, seed, split, n, threeD, out);
@@ -809,7 +813,7 @@ std::vector<std::string> availableSimdTargets()
     return list;
 }
 
-std::string simdTarget() { return STRATA_DISPATCH(detail::TargetInUse)(); }
+std::string simdTarget() { return detail::targetInUse(); }
 
 void useSimdTarget(const std::string& name)
 {

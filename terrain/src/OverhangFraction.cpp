@@ -5,6 +5,7 @@
 
 #include <strata/Error.h>
 #include <strata/Format.h>
+#include <strata/IntegerMath.h>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -63,7 +64,7 @@ OverhangStatistics measureOverhangs(const DensityField& field, const TopSurfaceG
                                     const OverhangOptions& options, const std::function<bool(double)>& progress)
 {
     checkInput(top, options);
-    const std::size_t steps = std::size_t(std::ceil(options.depth / options.step));
+    const std::size_t steps = ceilToInt<std::size_t>(options.depth / options.step);
     const double step = options.depth / double(steps);
     const std::size_t samples = steps + 2; // from depth below the top to one step above it
 

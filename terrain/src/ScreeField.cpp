@@ -3,9 +3,9 @@
 
 #include <strata/terrain/ScreeField.h>
 
-#include "DeterministicMath.h"
 #include "ShowValue.h"
 
+#include <strata/DeterministicMath.h>
 #include <strata/Error.h>
 
 #include <algorithm>
@@ -32,7 +32,7 @@ ScreeField::ScreeField(std::shared_ptr<const DensityField> rock, std::shared_ptr
     // |∇C| <= √2·tan(angle) (bilinear of nodes whose differences along an
     // axis are at most tan·cell), |∇H| and |∇L| <= √2·s (the ground's
     // bound; L is a minimum of it); top = 2C − H − 1 m where it feathers.
-    const double tan = detail::tanDegrees(mTalus->options().angle), s = mTalus->slopeBound();
+    const double tan = dmath::tanDegrees(mTalus->options().angle), s = mTalus->slopeBound();
     const double root2 = std::sqrt(2.0);
     const double slope = std::max(2.0 * root2 * tan + root2 * s, root2 * s);
     mSlabLipschitz = std::sqrt(1.0 + slope * slope);

@@ -5,8 +5,10 @@
 
 #include "HeightGridChecks.h"
 
+#include <strata/DeterministicMath.h>
 #include <strata/Error.h>
 #include <strata/Format.h>
+#include <strata/IntegerMath.h>
 
 #include <algorithm>
 #include <cmath>
@@ -20,7 +22,7 @@ namespace {
 double percentile(const std::vector<double>& sorted, double p)
 {
     const double rank = double(sorted.size() - 1) * p;
-    const std::size_t lo = std::size_t(std::floor(rank)), hi = std::min(sorted.size() - 1, lo + 1);
+    const std::size_t lo = floorToInt<std::size_t>(rank), hi = std::min(sorted.size() - 1, lo + 1);
     const double t = rank - double(lo);
     return t == 0.0 ? sorted[lo] : sorted[lo] + t * (sorted[hi] - sorted[lo]);
 }
@@ -45,7 +47,7 @@ SlopeDistribution measureSlopeDistribution(const std::vector<double>& heights, i
             const std::size_t c = z * W + x;
             const double gx = (heights[c + 1] - heights[c - 1]) / twoCells;
             const double gz = (heights[c + W] - heights[c - W]) / twoCells;
-            const double angle = std::atan(std::hypot(gx, gz)) * toDegrees;
+            const double angle = dmath::atan(dmath::hypot(gx, gz)) * toDegrees;
             angles.push_back(angle);
             sum += angle;
             cliffs += angle > options.cliffAngle ? 1 : 0;

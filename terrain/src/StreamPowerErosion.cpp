@@ -6,9 +6,10 @@
 #include <strata/terrain/FlowRouting.h>
 
 #include "ShowValue.h"
-#include "DeterministicMath.h"
 
+#include <strata/DeterministicMath.h>
 #include <strata/Error.h>
+#include <strata/IntegerMath.h>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -61,7 +62,7 @@ double solveIncision(double c, double f, double n)
 {
     double lo = 0.0, hi = c, x = c;
     for (int i = 0; i < 40; ++i) {
-        const double xn = detail::pow(x, n);
+        const double xn = dmath::pow(x, n);
         const double g = x - c + f * xn;
         if (g > 0.0) hi = x;
         else lo = x;
@@ -152,7 +153,7 @@ StreamPowerResult evolveLandscape(std::vector<double> heights, int width, int he
         for (int x = 0; x < width; ++x) edge[std::size_t(z) * std::size_t(width) + std::size_t(x)] = onEdge(x, z, width, height);
     }
 
-    const int steps = options.years > 0.0 ? int(std::ceil(options.years / options.timeStep - 1e-9)) : 0;
+    const int steps = options.years > 0.0 ? ceilToInt<int>(options.years / options.timeStep - 1e-9) : 0;
     std::vector<double> flux(count), previous(count);
     FlowRouting routing;
     for (int step = 0; step < steps; ++step) {
@@ -172,8 +173,8 @@ StreamPowerResult evolveLandscape(std::vector<double> heights, int width, int he
             const double drop = lifted - heights[rcv];
             if (underwater || drop <= 0.0 || options.erodibility == 0.0) continue;
             const double distance = receiverDistance(routing, i, dx);
-            const double f = options.erodibility * dt * detail::pow(area[i], options.areaExponent) /
-                             detail::pow(distance, options.slopeExponent);
+            const double f = options.erodibility * dt * dmath::pow(area[i], options.areaExponent) /
+                             dmath::pow(distance, options.slopeExponent);
             const double x = options.slopeExponent == 1.0 ? drop / (1.0 + f) : solveIncision(drop, f, options.slopeExponent);
             heights[i] = heights[rcv] + x;
         }

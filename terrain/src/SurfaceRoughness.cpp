@@ -5,6 +5,7 @@
 
 #include "HeightGridChecks.h"
 
+#include <strata/DeterministicMath.h>
 #include <strata/Error.h>
 
 #include <algorithm>
@@ -84,8 +85,8 @@ SurfaceRoughness measureSurfaceRoughness(const std::vector<double>& heights, int
             scale.cells = residuals.size();
             scale.residualStd = std::sqrt(squares / double(residuals.size()));
             if (scale.residualStd > zeroStd) {
-                x.push_back(std::log(scale.length));
-                y.push_back(std::log(scale.residualStd));
+                x.push_back(dmath::log(scale.length));
+                y.push_back(dmath::log(scale.residualStd));
             }
         }
         result.scales.push_back(scale);

@@ -3,10 +3,10 @@
 
 #include <strata/terrain/TalusHeightfield.h>
 
-#include "DeterministicMath.h"
 #include "ShowValue.h"
 #include "WorldBlockCache.h"
 
+#include <strata/DeterministicMath.h>
 #include <strata/Error.h>
 #include <strata/IntegerMath.h>
 
@@ -112,7 +112,7 @@ TalusHeightfield::TalusHeightfield(HeightNodePtr child, const TalusOptions& opti
     // (22.5° off a pass) it is 1 / cos 22.5° steeper. t = tan(angle) · cos
     // 22.5° keeps every direction at most tan(angle).
     const double cos22_5 = 0.5 * std::sqrt(2.0 + std::sqrt(2.0));
-    mAxisSlope = detail::tanDegrees(o.angle) * cos22_5;
+    mAxisSlope = dmath::tanDegrees(o.angle) * cos22_5;
     const double reach = std::ceil(o.maxHeight / (mAxisSlope * o.cellSize));
     const double window = double(o.blockCells) + 12.0 * reach + 1.0;
     if (!(window <= MAX_WINDOW)) {
@@ -130,7 +130,7 @@ TalusHeightfield::TalusHeightfield(HeightNodePtr child, const TalusOptions& opti
     // (m = max(s, tan angle), s the child's bound) and e at most (tan + s)
     // · cell, so |∇T| <= √2·m and |∇w| <= √2·(tan + s) / cell; where w < 1,
     // g < cell + √2·s·cell.
-    const double s = mChild->slopeBound(), tan = detail::tanDegrees(o.angle);
+    const double s = mChild->slopeBound(), tan = dmath::tanDegrees(o.angle);
     const double root2 = std::sqrt(2.0);
     setSlopeBound(2.0 * s + root2 * std::max(s, tan) + (1.0 + root2 * s) * root2 * (tan + s));
 }
@@ -256,7 +256,7 @@ bool TalusHeightfield::corners(double x, double z, Corners& out) const
     constexpr double MAX_CELLS = 4611686018427387904.0; // 2^62
     if (!(std::abs(u) < MAX_CELLS && std::abs(v) < MAX_CELLS)) return false;
     const std::int64_t size = mOptions.blockCells;
-    const std::int64_t i = std::int64_t(std::floor(u)), j = std::int64_t(std::floor(v));
+    const std::int64_t i = floorToInt<std::int64_t>(u), j = floorToInt<std::int64_t>(v);
     const std::int64_t bx = floorDiv(i, size), bz = floorDiv(j, size);
     out.block = block(bx, bz);
     out.s = std::size_t(out.block->size);

@@ -4,12 +4,12 @@
 #include <strata/terrain/Transforms.h>
 
 #include "NodeRegistrations.h"
-#include "DeterministicMath.h"
 #include <strata/Format.h>
 #include <strata/terrain/NodeRegistry.h>
 
 #include "ShowValue.h"
 
+#include <strata/DeterministicMath.h>
 #include <strata/Error.h>
 
 #include <cmath>
@@ -115,7 +115,7 @@ TerraceField::TerraceField(DensityFieldPtr child, double step, double sharpness)
 double TerraceField::terrace(double y) const
 {
     const double s = y / mStep, k = std::floor(s);
-    return mStep * (k + detail::pow(s - k, mSharpness));
+    return mStep * (k + dmath::pow(s - k, mSharpness));
 }
 
 double TerraceField::density(const glm::dvec3& p) const

@@ -3,6 +3,8 @@
 
 #include "ClipToBox.h"
 
+#include <strata/IntegerMath.h>
+
 #include <glm/geometric.hpp>
 
 #include <array>
@@ -36,7 +38,8 @@ public:
 
     Key key(const glm::dvec3& p) const
     {
-        return {std::llround(p.x * mQuantum), std::llround(p.y * mQuantum), std::llround(p.z * mQuantum)};
+        return {roundToInt<std::int64_t>(p.x * mQuantum), roundToInt<std::int64_t>(p.y * mQuantum),
+                roundToInt<std::int64_t>(p.z * mQuantum)};
     }
 
     /// The cut of edge a–b by the plane x[axis] = c (a and b on either side).

@@ -5,6 +5,7 @@
 #include <strata/detail/TsanHandOver.h>
 
 #include <strata/Error.h>
+#include <strata/IntegerMath.h>
 #include <strata/meshing/GridIO.h>
 #include <strata/terrain/Csg.h>
 
@@ -75,10 +76,10 @@ std::vector<Coord> EditLayer::apply(const Edit& edit, const terrain::DensityFiel
     shape.bounds(lo, hi);
     lo -= bandWidth + k;
     hi += bandWidth + k;
-    const Coord cmin(int(std::ceil(lo.x / mVoxelSize)), int(std::ceil(lo.y / mVoxelSize)),
-                     int(std::ceil(lo.z / mVoxelSize)));
-    const Coord cmax(int(std::floor(hi.x / mVoxelSize)), int(std::floor(hi.y / mVoxelSize)),
-                     int(std::floor(hi.z / mVoxelSize)));
+    const Coord cmin(ceilToInt<int>(lo.x / mVoxelSize), ceilToInt<int>(lo.y / mVoxelSize),
+                     ceilToInt<int>(lo.z / mVoxelSize));
+    const Coord cmax(floorToInt<int>(hi.x / mVoxelSize), floorToInt<int>(hi.y / mVoxelSize),
+                     floorToInt<int>(hi.z / mVoxelSize));
     const bool dig = edit.mode == EditMode::DIG;
 
     std::lock_guard<std::mutex> writer(mWriteMutex);

@@ -3,6 +3,8 @@
 
 #include "Skirts.h"
 
+#include <strata/IntegerMath.h>
+
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
@@ -64,7 +66,7 @@ double rockDepth(const glm::dvec3& top, const glm::dvec3& d, double depth,
     constexpr double STEP = 0.25; // cells
     bool inRock = false;
     double previous = 0.0;
-    const int steps = int(std::ceil(depth / STEP));
+    const int steps = ceilToInt<int>(depth / STEP);
     for (int s = 1; s <= steps; ++s) {
         const double t = std::min(depth, s * STEP);
         const double value = density(top + t * d);

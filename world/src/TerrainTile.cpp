@@ -7,6 +7,7 @@
 #include "TileSurface.h"
 
 #include <strata/Error.h>
+#include <strata/IntegerMath.h>
 
 #include <algorithm>
 #include <cmath>
@@ -115,7 +116,7 @@ TerrainTile extractTerrainTile(const terrain::DensityField& field, const TileBox
                 hole = hole || topIndex[c] < 0;
             }
             // The lowest lattice index at or above lowest − HOLE_DEPTH voxels.
-            const int floorIndex = int(std::ceil(lowest / v - double(box.min[1]))) - HOLE_DEPTH;
+            const int floorIndex = ceilToInt<int>(lowest / v - double(box.min[1])) - HOLE_DEPTH;
             for (std::size_t c : corners) hole = hole || (airBelow[c] >= 0 && airBelow[c] >= floorIndex);
             tile.holes[std::size_t(k) * cells[0] + i] = hole ? 1 : 0;
         }
@@ -154,11 +155,11 @@ HeightfieldHoles engineHoles(const TerrainTile& tile, int cellsX, int cellsZ, do
     const double ratio = cellSize / tile.voxelSize; // lattice cells per engine cell
     const int latticeX = tile.columns - 1, latticeZ = tile.rows - 1;
     for (int z = 0; z < cellsZ; ++z) {
-        const int z0 = std::clamp(int(std::floor(z * ratio + 1e-9)), 0, latticeZ - 1);
-        const int z1 = std::clamp(int(std::ceil((z + 1) * ratio - 1e-9)) - 1, z0, latticeZ - 1);
+        const int z0 = std::clamp(floorToInt<int>(z * ratio + 1e-9), 0, latticeZ - 1);
+        const int z1 = std::clamp(ceilToInt<int>((z + 1) * ratio - 1e-9) - 1, z0, latticeZ - 1);
         for (int x = 0; x < cellsX; ++x) {
-            const int x0 = std::clamp(int(std::floor(x * ratio + 1e-9)), 0, latticeX - 1);
-            const int x1 = std::clamp(int(std::ceil((x + 1) * ratio - 1e-9)) - 1, x0, latticeX - 1);
+            const int x0 = std::clamp(floorToInt<int>(x * ratio + 1e-9), 0, latticeX - 1);
+            const int x1 = std::clamp(ceilToInt<int>((x + 1) * ratio - 1e-9) - 1, x0, latticeX - 1);
             bool hole = false;
             for (int k = z0; k <= z1 && !hole; ++k)
                 for (int i = x0; i <= x1 && !hole; ++i) hole = tile.hole(i, k);
@@ -179,10 +180,10 @@ meshing::TriangleMesh heightfieldRemainder(const TerrainTile& tile, const Height
         // The lattice cells the vertex lies in (two or four on a cell edge:
         // its dual cube may be either).
         const double fx = double(p.x) / v, fz = double(p.z) / v;
-        const int i0 = std::clamp(int(std::floor(fx - 1e-6)), 0, latticeX - 1);
-        const int i1 = std::clamp(int(std::floor(fx + 1e-6)), 0, latticeX - 1);
-        const int k0 = std::clamp(int(std::floor(fz - 1e-6)), 0, latticeZ - 1);
-        const int k1 = std::clamp(int(std::floor(fz + 1e-6)), 0, latticeZ - 1);
+        const int i0 = std::clamp(floorToInt<int>(fx - 1e-6), 0, latticeX - 1);
+        const int i1 = std::clamp(floorToInt<int>(fx + 1e-6), 0, latticeX - 1);
+        const int k0 = std::clamp(floorToInt<int>(fz - 1e-6), 0, latticeZ - 1);
+        const int k1 = std::clamp(floorToInt<int>(fz + 1e-6), 0, latticeZ - 1);
         bool open = true;
         double lowest = HUGE_VAL;
         for (int k = k0; k <= k1; ++k)
@@ -194,10 +195,10 @@ meshing::TriangleMesh heightfieldRemainder(const TerrainTile& tile, const Height
         if (!open) continue;
         if (holes.cellsX > 0 && holes.cellsZ > 0) {
             const double ex = double(p.x) / holes.cellSize, ez = double(p.z) / holes.cellSize;
-            const int x0 = std::clamp(int(std::floor(ex - 1e-6)), 0, holes.cellsX - 1);
-            const int x1 = std::clamp(int(std::floor(ex + 1e-6)), 0, holes.cellsX - 1);
-            const int z0 = std::clamp(int(std::floor(ez - 1e-6)), 0, holes.cellsZ - 1);
-            const int z1 = std::clamp(int(std::floor(ez + 1e-6)), 0, holes.cellsZ - 1);
+            const int x0 = std::clamp(floorToInt<int>(ex - 1e-6), 0, holes.cellsX - 1);
+            const int x1 = std::clamp(floorToInt<int>(ex + 1e-6), 0, holes.cellsX - 1);
+            const int z0 = std::clamp(floorToInt<int>(ez - 1e-6), 0, holes.cellsZ - 1);
+            const int z1 = std::clamp(floorToInt<int>(ez + 1e-6), 0, holes.cellsZ - 1);
             for (int z = z0; z <= z1; ++z)
                 for (int x = x0; x <= x1; ++x) open = open && !holes.cells[std::size_t(z) * holes.cellsX + x];
             if (!open) continue;
