@@ -47,6 +47,7 @@ arm64_sysroot() {
   if [ ! -f "$sysroot/.complete" ]; then
     echo "   unpacking arm64 packages into $sysroot"
     rm -rf "$sysroot"
+    mkdir -p "$sysroot" # mmdebstrap resolves the target's absolute path: its parent must exist
     sources=/etc/apt/sources.list.d/debian.sources
     [ -f "$sources" ] || sources=/etc/apt/sources.list
     mmdebstrap --quiet --variant=extract --arch=arm64 --include="$ARM64_PACKAGES" bookworm "$sysroot" "$sources"
