@@ -88,8 +88,13 @@ std::vector<double> BakeManifest::geometricErrors() const
 BakeManifest manifestFor(const BakePlan& plan, const Scene& scene, bool grids)
 {
     BakeManifest m;
-    // Absolute, so the folder's scene resolves its textures from anywhere.
-    m.sceneSource = scene.source == "<default scene>" ? scene.source : std::filesystem::absolute(scene.source).string();
+    // A file's path made absolute, so the folder's scene resolves its
+    // textures from anywhere; a name in angle brackets ("<default scene>",
+    // a text scene from Python or a test) is not a path and stays as given
+    // (made absolute it named the working directory, so the same scene
+    // baked from two folders wrote two bake.json).
+    const bool named = scene.source.size() >= 2 && scene.source.front() == '<' && scene.source.back() == '>';
+    m.sceneSource = named ? scene.source : std::filesystem::absolute(scene.source).string();
     m.sceneHash = plan.sceneHash;
     m.seed = plan.seed;
     m.voxelSize = plan.voxelSize;

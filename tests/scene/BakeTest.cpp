@@ -92,6 +92,22 @@ nlohmann::json readJson(const fs::path& path) { return nlohmann::json::parse(rea
 
 } // namespace
 
+TEST(Bake, ATextScenesNameIsKeptAndTheBakeJsonIsTheSameFromAnyWorkingDirectory)
+{
+    const Scene scene = parseScene(HILL_SCENE, "<hills from text>");
+    const fs::path dir = test::freshTestDir();
+    BakeOptions options = smallBake(1);
+    options.lods = 1;
+    options.tiles = "0";
+    const fs::path before = fs::current_path();
+    bakeInto(scene, dir / "a", options);
+    fs::current_path(dir); // another working directory
+    bakeInto(scene, dir / "b", options);
+    fs::current_path(before);
+    EXPECT_EQ(readJson(dir / "a" / "bake.json").at("scene").at("source"), "<hills from text>");
+    EXPECT_EQ(readBytes(dir / "a" / "bake.json"), readBytes(dir / "b" / "bake.json"));
+}
+
 TEST(Bake, PlansTilesSlabsAndNamesFromTheRegion)
 {
     const Scene scene = parseScene(CAVE_SCENE, "caves.toml");
