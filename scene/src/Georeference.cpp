@@ -23,8 +23,6 @@ constexpr double WGS84_E2 = WGS84_F * (2.0 - WGS84_F); // first eccentricity squ
 constexpr double MIN_HEIGHT = -100e3; // deeper than any ocean trench, far from the centre
 constexpr double MAX_HEIGHT = 10e6;   // well past low orbit
 
-constexpr double PI = 3.14159265358979323846;
-
 [[noreturn]] void bad(const std::string& what, const std::string& value, const std::string& why)
 {
     throw Error(ErrorKind::BadInput, what + " " + value + ": " + why, {"", 0, what, value});
@@ -51,8 +49,9 @@ struct Angles
 Angles anglesOf(const Georeference& p)
 {
     Angles a;
-    dmath::sinCos(p.latitude * PI / 180.0, a.sinLat, a.cosLat);
-    dmath::sinCos(p.longitude * PI / 180.0, a.sinLon, a.cosLon);
+    // In degrees: reduced exactly, so 90° and 180° give exactly 1, 0 and −1.
+    dmath::sinCosDegrees(p.latitude, a.sinLat, a.cosLat);
+    dmath::sinCosDegrees(p.longitude, a.sinLon, a.cosLon);
     return a;
 }
 
