@@ -8,7 +8,9 @@
 #include <strata/serve/FileServer.h>
 
 #include "ByteRanges.h"
+#include "CompressedBodyCache.h"
 #include "Gzip.h"
+#include "OpenBeneath.h"
 
 #include <strata/Error.h>
 #include <strata/serve/MimeType.h>
@@ -18,6 +20,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cctype>
 #include <cerrno>
 #include <cstdio>
@@ -112,15 +115,18 @@ bool accepts(const httplib::Request& request, std::string_view coding)
     return false;
 }
 
+std::uint64_t modifiedNs(const timespec& modified)
+{
+    return std::uint64_t(modified.tv_sec) * 1000000000ULL + std::uint64_t(modified.tv_nsec);
+}
+
 // A strong entity tag from size and modification time (nanoseconds), with
 // "-z" for the compressed representation.
 std::string entityTag(std::uint64_t size, const timespec& modified, bool compressed)
 {
     char text[80];
     std::snprintf(text, sizeof(text), "\"%llx-%llx%s\"", static_cast<unsigned long long>(size),
-                  static_cast<unsigned long long>(modified.tv_sec) * 1000000000ULL +
-                      static_cast<unsigned long long>(modified.tv_nsec),
-                  compressed ? "-z" : "");
+                  static_cast<unsigned long long>(modifiedNs(modified)), compressed ? "-z" : "");
     return text;
 }
 
@@ -162,19 +168,30 @@ std::string readWhole(int fd, std::uint64_t size)
 struct FileServer::Impl
 {
     fs::path root;
+    // The root, opened once: every file is opened relative to it and beneath
+    // it (OpenBeneath.h), whatever its path names later.
+    int rootFd = -1;
     FileServerOptions options;
     int port = 0;
     HttpServer server;
+    std::unique_ptr<detail::CompressedBodyCache> compressedBodies;
+    std::atomic<std::uint64_t> compressions{0};
+    std::atomic<std::uint64_t> compressedHits{0};
 
     std::mutex mutex; // guards the three flags
     bool listening = false;
     bool stopRequested = false;
     bool ran = false;
 
-    void handle(const httplib::Request& request, httplib::Response& response) const;
+    ~Impl()
+    {
+        if (rootFd >= 0) ::close(rootFd);
+    }
+
+    void handle(const httplib::Request& request, httplib::Response& response);
 };
 
-void FileServer::Impl::handle(const httplib::Request& request, httplib::Response& response) const
+void FileServer::Impl::handle(const httplib::Request& request, httplib::Response& response)
 {
     const ResolvedPath resolved = resolveRequestPath(root, request.path);
     switch (resolved.status) {
@@ -193,8 +210,11 @@ void FileServer::Impl::handle(const httplib::Request& request, httplib::Response
     default: answer(request, response, 404, "404 not found"); return;
     }
 
+    // Opened beneath the root, following no link: a folder of the checked
+    // path swapped for a link since the check makes this fail (404), not
+    // lead out of the folder.
     auto file = std::make_shared<OpenFile>();
-    file->fd = ::open(resolved.file.c_str(), O_RDONLY | O_CLOEXEC | O_NOFOLLOW);
+    file->fd = detail::openBeneath(rootFd, resolved.file.lexically_relative(root));
     struct stat info{};
     if (file->fd < 0 || ::fstat(file->fd, &info) != 0 || !S_ISREG(info.st_mode)) {
         answer(request, response, 404, "404 not found");
@@ -202,7 +222,7 @@ void FileServer::Impl::handle(const httplib::Request& request, httplib::Response
     }
     const auto size = std::uint64_t(info.st_size);
     const std::string mimeType(mimeTypeFor(resolved.file));
-    const Compressibility kind = compressibilityOf(mimeType);
+    const Compressibility kind = compressibilityFor(resolved.file);
     const bool compressible = (kind == Compressibility::Text && options.compression != Compression::None) ||
                               (kind == Compressibility::Binary && options.compression == Compression::All);
     response.set_header("Accept-Ranges", "bytes");
@@ -212,6 +232,9 @@ void FileServer::Impl::handle(const httplib::Request& request, httplib::Response
 
     httplib::Ranges& ranges = rangesToSend(request);
     if (ranges.size() > MAX_RANGES) ranges.clear();
+    // Range is defined for GET only (RFC 9110 14.2): a HEAD gets the headers
+    // of the whole file, and never makes the multipart case below read it.
+    if (request.method == "HEAD") ranges.clear();
     // The validator: size and modification time, which a re-bake's atomic
     // replace changes; the gzipped representation has its own.
     const std::string etag = entityTag(size, info.st_mtim, false);
@@ -252,15 +275,38 @@ void FileServer::Impl::handle(const httplib::Request& request, httplib::Response
         response.set_content("", mimeType);
         return;
     } else if (compressWhole) {
-        // Whole and compressible: held in memory and gzipped here, every
-        // type, and handed over as a sized provider, which httplib sends as
-        // it is. (Given the bytes, httplib 0.11 compresses text itself, with
-        // brotli at quality 11 whenever the client accepts br, as browsers
-        // do: 0.95 s for the viewer's 880 KB script and 0.65 s for a 4 km
-        // world's tileset.json, against 18 and 3 ms for gzip; that was half
-        // of the viewer's first frame.)
-        auto zipped = std::make_shared<const std::string>(detail::gzipCompress(readWhole(file->fd, size), options.gzipLevel));
+        // Whole and compressible: gzipped here, kept in the cache for the
+        // next request of this version, and handed over as a sized provider,
+        // which httplib sends as it is. (Given the bytes, httplib 0.11
+        // compresses text itself, with brotli at quality 11 whenever the
+        // client accepts br, as browsers do: 0.95 s for the viewer's 880 KB
+        // script and 0.65 s for a 4 km world's tileset.json, against 8 and
+        // 3 ms for gzip; that was half of the viewer's first frame.)
         response.set_header("Content-Encoding", "gzip");
+        const detail::CompressedBodyKey key{std::uint64_t(info.st_dev), std::uint64_t(info.st_ino), size,
+                                            modifiedNs(info.st_mtim), options.gzipLevel};
+        std::shared_ptr<const std::string> zipped = compressedBodies->find(key);
+        if (zipped) {
+            ++compressedHits;
+        } else if (request.method == "HEAD") {
+            // The headers only: no file is read and compressed for a length
+            // nobody will download (the post-routing handler drops the
+            // Content-Length: 0 httplib adds to an answer without a body).
+            response.status = 200;
+            response.set_header("Content-Type", mimeType);
+            return;
+        } else {
+            ++compressions;
+            zipped = std::make_shared<const std::string>(detail::gzipCompress(readWhole(file->fd, size), options.gzipLevel));
+            // Kept only if the file did not change while it was read (a torn
+            // body under this version's key would be served until it changes
+            // again).
+            struct stat after{};
+            if (::fstat(file->fd, &after) == 0 && std::uint64_t(after.st_size) == size &&
+                modifiedNs(after.st_mtim) == key.modifiedNs) {
+                zipped = compressedBodies->insert(key, zipped);
+            }
+        }
         response.set_content_provider(
             zipped->size(), mimeType, [zipped](std::size_t offset, std::size_t length, httplib::DataSink& sink) {
                 return sink.write(zipped->data() + offset, std::min(length, zipped->size() - offset));
@@ -293,6 +339,12 @@ FileServer::FileServer(const fs::path& root, const FileServerOptions& options) :
         throw Error(ErrorKind::BadInput, "serve: gzip level " + std::to_string(options.gzipLevel) + " is not in [1, 9]");
     }
     mImpl->root = fs::canonical(root);
+    mImpl->rootFd = ::open(mImpl->root.c_str(), O_PATH | O_DIRECTORY | O_CLOEXEC);
+    if (mImpl->rootFd < 0) {
+        throw Error(ErrorKind::Io, "serve: cannot open '" + root.string() + "': " + std::strerror(errno),
+                    ErrorPlace{root.string()});
+    }
+    mImpl->compressedBodies = std::make_unique<detail::CompressedBodyCache>(options.compressedCacheBytes);
     mImpl->options = options;
 
     HttpServer& server = mImpl->server;
@@ -318,6 +370,15 @@ FileServer::FileServer(const fs::path& root, const FileServerOptions& options) :
         answer(request, response, 405, "405 method not allowed: this server is read-only (GET, HEAD)");
         response.set_header("Allow", "GET, HEAD");
         return httplib::Server::HandlerResponse::Handled;
+    });
+    // A HEAD of a gzipped answer whose body is not cached has no length to
+    // give; httplib writes "Content-Length: 0" for an answer without a body.
+    // Drop it (a gzip body is never empty, so 0 is never its real length).
+    server.set_post_routing_handler([](const httplib::Request& request, httplib::Response& response) {
+        if (request.method == "HEAD" && response.get_header_value("Content-Encoding") == "gzip" &&
+            response.get_header_value("Content-Length") == "0") {
+            response.headers.erase("Content-Length");
+        }
     });
     if (options.onRequest) {
         server.set_logger([impl](const httplib::Request& request, const httplib::Response& response) {
@@ -376,6 +437,11 @@ std::string FileServer::url() const
 }
 
 const fs::path& FileServer::root() const { return mImpl->root; }
+
+FileServerStats FileServer::stats() const
+{
+    return {mImpl->compressions.load(), mImpl->compressedHits.load(), mImpl->compressedBodies->bytes()};
+}
 
 void FileServer::run()
 {

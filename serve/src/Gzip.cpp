@@ -26,6 +26,7 @@ std::string gzipCompress(std::string_view data, int level)
     deflateEnd(&stream);
     if (rc != Z_STREAM_END) throw Error(ErrorKind::Internal, "gzip: zlib deflate failed (code " + std::to_string(rc) + ")");
     out.resize(written);
+    out.shrink_to_fit(); // the bound is about the input's size: a body kept in a cache would hold that much
     return out;
 }
 

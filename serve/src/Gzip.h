@@ -10,7 +10,8 @@
 
 namespace strata::serve::detail {
 
-/// `data` as one gzip member at zlib `level` (1-9). Throws strata::Error
+/// `data` as one gzip member at zlib `level` (1-9), its capacity trimmed to
+/// its size (it may be kept in a cache). Throws strata::Error
 /// (Internal) if zlib fails (out of memory).
 std::string gzipCompress(std::string_view data, int level);
 

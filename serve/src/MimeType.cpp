@@ -43,9 +43,8 @@ constexpr std::array<std::pair<std::string_view, std::string_view>, 22> TYPES = 
     {".ico", "image/vnd.microsoft.icon"},
 }};
 
-} // namespace
-
-std::string_view mimeTypeFor(const std::filesystem::path& file)
+// The type of an extension in TYPES; empty for any other.
+std::string_view knownTypeFor(const std::filesystem::path& file)
 {
     std::string extension = file.extension().string();
     std::transform(extension.begin(), extension.end(), extension.begin(),
@@ -53,7 +52,15 @@ std::string_view mimeTypeFor(const std::filesystem::path& file)
     for (const auto& [ext, type] : TYPES) {
         if (ext == extension) return type;
     }
-    return OCTET_STREAM;
+    return {};
+}
+
+} // namespace
+
+std::string_view mimeTypeFor(const std::filesystem::path& file)
+{
+    const std::string_view type = knownTypeFor(file);
+    return type.empty() ? OCTET_STREAM : type;
 }
 
 Compressibility compressibilityOf(std::string_view mimeType)
@@ -67,6 +74,12 @@ Compressibility compressibilityOf(std::string_view mimeType)
                                                         "application/octet-stream"};
     if (std::find(BINARY.begin(), BINARY.end(), base) != BINARY.end()) return Compressibility::Binary;
     return Compressibility::None;
+}
+
+Compressibility compressibilityFor(const std::filesystem::path& file)
+{
+    const std::string_view type = knownTypeFor(file);
+    return type.empty() ? Compressibility::None : compressibilityOf(type);
 }
 
 } // namespace strata::serve

@@ -14,9 +14,15 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cstdint>
+#include <cstdio>
 #include <cstring>
 #include <mutex>
 #include <thread>
+
+#include <fcntl.h>
 
 namespace fs = std::filesystem;
 using strata::test::rawRequest;
@@ -68,11 +74,13 @@ protected:
 
     void TearDown() override { stopServer(); }
 
-    void startServer(strata::serve::Compression compression = strata::serve::Compression::Text)
+    void startServer(strata::serve::Compression compression = strata::serve::Compression::Text,
+                     std::size_t compressedCacheBytes = strata::serve::FileServerOptions{}.compressedCacheBytes)
     {
         strata::serve::FileServerOptions options;
         options.port = 0;
         options.compression = compression;
+        options.compressedCacheBytes = compressedCacheBytes;
         server = std::make_unique<strata::serve::FileServer>(root, options);
         port = server->port();
         thread = std::thread([this] { server->run(); });
@@ -100,6 +108,18 @@ protected:
 };
 
 const httplib::Headers IDENTITY = {{"Accept-Encoding", "identity"}};
+const httplib::Headers GZIP = {{"Accept-Encoding", "gzip"}};
+
+// JSON that gzip shrinks to about half: `count` pseudo-random hex digits.
+std::string hexJson(std::uint32_t seed, int count)
+{
+    std::string text = "{\"hex\":\"";
+    for (int i = 0; i < count; ++i) {
+        seed = seed * 1664525u + 1013904223u;
+        text += "0123456789abcdef"[seed >> 28];
+    }
+    return text + "\"}";
+}
 
 } // namespace
 
@@ -515,4 +535,151 @@ TEST_F(FileServerTest, PortInUseAndBadFolderAreClearErrors)
     } catch (const strata::Error& e) {
         EXPECT_EQ(e.kind(), strata::ErrorKind::BadInput);
     }
+}
+
+TEST_F(FileServerTest, GzippedBodiesAreCachedAndAHeadCompressesNothing)
+{
+    auto c = client();
+    // A HEAD before any GET: the headers of the gzipped answer, without
+    // compressing the file for a length nobody reads (so no Content-Length).
+    const auto headFirst = c.Head("/tileset.json", GZIP);
+    ASSERT_TRUE(headFirst);
+    EXPECT_EQ(headFirst->status, 200);
+    EXPECT_EQ(headFirst->get_header_value("Content-Encoding"), "gzip");
+    EXPECT_FALSE(headFirst->has_header("Content-Length"));
+    EXPECT_EQ(server->stats().compressions, 0u) << "a HEAD compressed the file";
+
+    const auto first = c.Get("/tileset.json", GZIP);
+    const auto second = c.Get("/tileset.json", GZIP);
+    ASSERT_TRUE(first && second);
+    EXPECT_EQ(first->get_header_value("Content-Encoding"), "gzip");
+    EXPECT_EQ(second->body, first->body);
+    EXPECT_EQ(second->get_header_value("ETag"), first->get_header_value("ETag"));
+    EXPECT_EQ(strata::test::gunzip(second->body), readFile(root / "tileset.json"));
+    EXPECT_EQ(server->stats().compressions, 1u) << "the second GET compressed the file again";
+    EXPECT_EQ(server->stats().compressedHits, 1u);
+    EXPECT_GT(server->stats().compressedCacheBytes, 0u);
+
+    // Once the body is cached a HEAD gives its length, still compressing nothing.
+    const auto head = c.Head("/tileset.json", GZIP);
+    ASSERT_TRUE(head);
+    EXPECT_EQ(head->get_header_value("Content-Length"), std::to_string(first->body.size()));
+    EXPECT_EQ(server->stats().compressions, 1u);
+
+    // A re-bake replaces the file (a new size), or rewrites it in place with
+    // the same size (a new modification time): either is compressed afresh.
+    const std::string rebaked = R"({"asset":{"version":"1.1"},"geometricError":20,"root":{"children":[]}})";
+    writeFile(root / "tileset.json", rebaked);
+    const auto changed = c.Get("/tileset.json", GZIP);
+    ASSERT_TRUE(changed);
+    EXPECT_EQ(strata::test::gunzip(changed->body), rebaked);
+    EXPECT_EQ(server->stats().compressions, 2u);
+    std::string sameSize = rebaked;
+    sameSize[sameSize.find("20")] = '3';
+    const auto before = fs::last_write_time(root / "tileset.json");
+    writeFile(root / "tileset.json", sameSize);
+    fs::last_write_time(root / "tileset.json", before + std::chrono::seconds(5)); // a coarse clock could give the same time
+    const auto rewritten = c.Get("/tileset.json", GZIP);
+    ASSERT_TRUE(rewritten);
+    EXPECT_EQ(strata::test::gunzip(rewritten->body), sameSize);
+    EXPECT_NE(rewritten->get_header_value("ETag"), changed->get_header_value("ETag"));
+    EXPECT_EQ(server->stats().compressions, 3u);
+}
+
+TEST_F(FileServerTest, TheCacheOfGzippedBodiesKeepsToItsBudget)
+{
+    // Two files that gzip to about 11 kB each, a budget that holds one.
+    writeFile(root / "a.json", hexJson(1, 20000));
+    writeFile(root / "b.json", hexJson(2, 20000));
+    constexpr std::size_t BUDGET = 16 * 1024;
+    stopServer();
+    startServer(strata::serve::Compression::Text, BUDGET);
+    const auto getGzipped = [&](const char* path) {
+        const auto response = client().Get(path, GZIP);
+        ASSERT_TRUE(response);
+        EXPECT_EQ(response->get_header_value("Content-Encoding"), "gzip");
+        EXPECT_GT(response->body.size(), BUDGET / 2) << "the test needs bodies two of which overflow the budget";
+        EXPECT_LE(response->body.size(), BUDGET);
+        EXPECT_EQ(strata::test::gunzip(response->body), readFile(root / (path + 1)));
+        EXPECT_LE(server->stats().compressedCacheBytes, BUDGET);
+    };
+    getGzipped("/a.json");
+    getGzipped("/b.json"); // a is dropped to make room
+    EXPECT_EQ(server->stats().compressions, 2u);
+    getGzipped("/b.json");
+    EXPECT_EQ(server->stats().compressions, 2u) << "b, the most recent, was not kept";
+    getGzipped("/a.json");
+    EXPECT_EQ(server->stats().compressions, 3u) << "a was kept beyond the budget";
+    EXPECT_GT(server->stats().compressedCacheBytes, 0u);
+
+    // A budget of 0 keeps nothing.
+    stopServer();
+    startServer(strata::serve::Compression::Text, 0);
+    getGzipped("/a.json");
+    getGzipped("/a.json");
+    EXPECT_EQ(server->stats().compressions, 2u);
+    EXPECT_EQ(server->stats().compressedCacheBytes, 0u);
+}
+
+TEST_F(FileServerTest, AnUnknownExtensionIsNeverCompressed)
+{
+    // Compression::All (what `--compress auto` means on a network address)
+    // covers the binary types a bake holds, not whatever an unknown extension
+    // is: it may be a zip or a video, compressed already.
+    writeFile(root / "archive.xyz", std::string(5000, 'a'));
+    stopServer();
+    startServer(strata::serve::Compression::All);
+    auto c = client();
+    for (const std::string path : {"/archive.xyz", "/notes"}) {
+        SCOPED_TRACE(path);
+        const auto response = c.Get(path.c_str(), {{"Accept-Encoding", "gzip"}});
+        ASSERT_TRUE(response);
+        EXPECT_EQ(response->status, 200);
+        EXPECT_EQ(response->get_header_value("Content-Type"), "application/octet-stream");
+        EXPECT_FALSE(response->has_header("Content-Encoding"));
+        EXPECT_TRUE(response->body == readFile(root / path.substr(1))) << "not the file as it is";
+    }
+    const auto bin = c.Get("/buffer.bin", {{"Accept-Encoding", "gzip"}});
+    ASSERT_TRUE(bin);
+    EXPECT_EQ(bin->get_header_value("Content-Encoding"), "gzip") << ".bin (a glTF buffer) is still compressed";
+    EXPECT_EQ(server->stats().compressions, 1u);
+}
+
+TEST_F(FileServerTest, AFolderSwappedForALinkOutNeverLeaks)
+{
+    // root/swap is a folder holding file.txt; root/swap-link a link to a
+    // folder outside holding a file of the same name. A thread exchanges the
+    // two names (atomically) while requests ask for /swap/file.txt: each gets
+    // the inside file or a refusal, never the outside one, however the
+    // exchange falls between the path's check and the open.
+    writeFile(root / "swap" / "file.txt", "inside");
+    writeFile(top / "out" / "file.txt", "TOP SECRET");
+    fs::create_directory_symlink("../out", root / "swap-link");
+    const int rootFd = ::open(root.c_str(), O_PATH | O_DIRECTORY | O_CLOEXEC);
+    ASSERT_GE(rootFd, 0);
+    if (::renameat2(rootFd, "swap", rootFd, "swap-link", RENAME_EXCHANGE) != 0) {
+        ::close(rootFd);
+        GTEST_SKIP() << "this file system cannot exchange names: " << std::strerror(errno);
+    }
+    std::atomic<bool> done{false};
+    std::thread swapper([&] {
+        while (!done) ::renameat2(rootFd, "swap", rootFd, "swap-link", RENAME_EXCHANGE);
+    });
+    auto c = client();
+    c.set_keep_alive(true);
+    int inside = 0, refused = 0, leaked = 0;
+    const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(1);
+    while (std::chrono::steady_clock::now() < until && leaked == 0) {
+        const auto response = c.Get("/swap/file.txt", IDENTITY);
+        if (!response) continue;
+        if (response->body.find("TOP SECRET") != std::string::npos) ++leaked;
+        else if (response->status == 200) ++inside;
+        else ++refused;
+    }
+    done = true;
+    swapper.join();
+    ::close(rootFd);
+    EXPECT_EQ(leaked, 0) << "the file outside the folder was served (after " << inside << " inside, " << refused
+                         << " refused)";
+    EXPECT_GT(inside + refused, 0);
 }

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+using strata::serve::compressibilityFor;
 using strata::serve::compressibilityOf;
 using strata::serve::mimeTypeFor;
 
@@ -45,4 +46,21 @@ TEST(MimeType, CompressedFormatsAreNotCompressedAgain)
     EXPECT_EQ(compressibilityOf("image/jpeg"), Compressibility::None);
     EXPECT_EQ(compressibilityOf("image/ktx2"), Compressibility::None);
     EXPECT_EQ(compressibilityOf("image/webp"), Compressibility::None);
+}
+
+TEST(MimeType, OnlyKnownExtensionsAreCompressible)
+{
+    using strata::serve::Compressibility;
+    EXPECT_EQ(compressibilityFor("tileset.json"), Compressibility::Text);
+    EXPECT_EQ(compressibilityFor("viewer/Main.JS"), Compressibility::Text);
+    EXPECT_EQ(compressibilityFor("tiles/0/1_2_3.glb"), Compressibility::Binary);
+    EXPECT_EQ(compressibilityFor("buffer.bin"), Compressibility::Binary);
+    EXPECT_EQ(compressibilityFor("draco.wasm"), Compressibility::Binary);
+    EXPECT_EQ(compressibilityFor("albedo.png"), Compressibility::None);
+    // application/octet-stream as .bin is, but of unknown content: maybe a
+    // zip, a video or a VDB, compressed already.
+    EXPECT_EQ(mimeTypeFor("world.vdb"), "application/octet-stream");
+    EXPECT_EQ(compressibilityFor("world.vdb"), Compressibility::None);
+    EXPECT_EQ(compressibilityFor("archive.zip"), Compressibility::None);
+    EXPECT_EQ(compressibilityFor("README"), Compressibility::None);
 }

@@ -5,16 +5,21 @@
 /// \file
 /// A read-only HTTP server for one folder (a bake: tileset.json, tiles/,
 /// viewer/), on cpp-httplib. GET and HEAD only (others: 405); files only
-/// from inside the folder (RequestPath.h); Content-Type from the extension
-/// (MimeType.h); byte ranges (206 with Content-Range, several ranges as
-/// multipart/byteranges, 416 with `Content-Range: bytes *\/SIZE` when none
-/// is satisfiable); gzip (never brotli: at the quality httplib uses it
-/// takes a second for a large script) when the client's Accept-Encoding
-/// asks and options.compression covers
-/// the type (never for a range, never for PNG/JPEG/KTX2). Each file has an
-/// ETag (size and modification time): If-None-Match gives 304, an If-Range
-/// that does not match sends the whole file. A folder serves its
-/// index.html, or 404: there is no listing.
+/// from inside the folder (RequestPath.h checks the path; the file is then
+/// opened relative to the folder's descriptor with openat2(RESOLVE_BENEATH |
+/// RESOLVE_NO_SYMLINKS), so a link swapped in after the check is not
+/// followed); Content-Type from the extension (MimeType.h); byte ranges on
+/// GET (206 with Content-Range, several ranges as multipart/byteranges, 416
+/// with `Content-Range: bytes *\/SIZE` when none is satisfiable; a HEAD
+/// ignores Range); gzip (never brotli: at the quality httplib uses it takes
+/// a second for a large script) when the client's Accept-Encoding asks and
+/// options.compression covers the type (never for a range, never for
+/// PNG/JPEG/KTX2 or an unknown extension), the gzipped body kept in a cache
+/// bounded in bytes for the next request of the same version of the file;
+/// a HEAD never compresses (without a cached body it has no
+/// Content-Length). Each file has an ETag (size and modification time):
+/// If-None-Match gives 304, an If-Range that does not match sends the whole
+/// file. A folder serves its index.html, or 404: there is no listing.
 ///
 /// Usage: construct (binds the port), print url(), run() on one thread,
 /// stop() from another (a signal watcher, a test).
@@ -34,7 +39,8 @@ enum class Compression
     None, ///< nothing: every file as it is
     Text, ///< text, JSON and glTF JSON (Compressibility::Text): on the loopback, where
           ///< sending a binary tile as it is costs less than compressing it
-    All,  ///< also binary glTF, .bin and WebAssembly (Compressibility::Binary): for a network
+    All,  ///< also binary glTF, .bin and WebAssembly (Compressibility::Binary): for a network.
+          ///< Never an unknown extension (compressibilityFor()), nor PNG/JPEG/KTX2
 };
 
 /// One answered request, for a log.
@@ -43,7 +49,8 @@ struct RequestRecord
     std::string method;  ///< "GET", "HEAD", ... (others were answered 405)
     std::string target;  ///< as the client sent it (percent-encoded, with the query)
     int status = 0;      ///< the HTTP status sent
-    std::uint64_t bytes = 0; ///< the Content-Length sent (compressed size when compressed; for HEAD, a GET's)
+    std::uint64_t bytes = 0; ///< the Content-Length sent (compressed size when compressed; for HEAD, a GET's,
+                             ///< or 0 for a gzipped answer whose body is not cached)
 };
 
 struct FileServerOptions
@@ -63,8 +70,22 @@ struct FileServerOptions
     /// (several at once: synchronise inside); null: no log.
     std::function<void(const RequestRecord&)> onRequest{};
     /// Files larger than this are never compressed (they would be held in
-    /// memory whole); they are streamed as they are.
+    /// memory whole); they are streamed as they are. Also the largest file
+    /// whose several ranges are answered as multipart (read whole).
     std::size_t maxCompressedFileBytes = std::size_t(64) << 20;
+    /// The gzipped bodies kept for the next request of the same version of
+    /// the same file (device, inode, size, modification time), in bytes of
+    /// gzip, least recently used dropped first; a body larger than this is
+    /// sent but not kept; 0 keeps none (every GET compresses again).
+    std::size_t compressedCacheBytes = std::size_t(64) << 20;
+};
+
+/// What the server did since it was constructed (for tests and a log).
+struct FileServerStats
+{
+    std::uint64_t compressions = 0;     ///< files read and gzipped (a GET that found no cached body)
+    std::uint64_t compressedHits = 0;   ///< GETs and HEADs answered with a cached gzipped body
+    std::size_t compressedCacheBytes = 0; ///< what the cache of gzipped bodies holds now
 };
 
 class FileServer
@@ -89,6 +110,8 @@ public:
     std::string url() const;
     /// The served folder, canonical.
     const std::filesystem::path& root() const;
+    /// Counters since construction; callable from any thread.
+    FileServerStats stats() const;
 
     /// Serves requests until stop(); returns once the listening socket is
     /// closed and every connection has finished. Call once. Throws

@@ -16,7 +16,7 @@ namespace strata::serve {
 /// model/gltf+json, `.html` text/html, `.js`/`.mjs` text/javascript, `.css`
 /// text/css, `.png` image/png, `.jpg`/`.jpeg` image/jpeg, `.ktx2`
 /// image/ktx2, `.wasm` application/wasm, `.bin` application/octet-stream,
-/// and a few more (`.txt`, `.svg`, `.webp`, `.exr`, `.vdb`, `.toml`, `.md`);
+/// and a few more (`.txt`, `.md`, `.toml`, `.svg`, `.webp`, `.exr`, `.map`, `.ico`);
 /// anything else application/octet-stream. Text types carry
 /// `; charset=utf-8`. Never empty.
 std::string_view mimeTypeFor(const std::filesystem::path& file);
@@ -33,5 +33,11 @@ enum class Compressibility
 /// The compressibility of a type as mimeTypeFor() gives it (parameters
 /// such as `; charset=utf-8` are ignored).
 Compressibility compressibilityOf(std::string_view mimeType);
+
+/// The compressibility of a file from its extension: that of its type for
+/// the extensions mimeTypeFor() knows, None for any other (an unknown
+/// extension is application/octet-stream, like `.bin`, but may be a zip,
+/// a video or a VDB that gzip only spends time on).
+Compressibility compressibilityFor(const std::filesystem::path& file);
 
 } // namespace strata::serve

@@ -9,7 +9,9 @@
 /// `..` and `%252e%252e` as the harmless name `%2e%2e`), NUL bytes,
 /// backslashes, relative paths, and symbolic links whose target lies
 /// outside the folder. A link inside the folder that points inside it is
-/// followed.
+/// followed. The check alone leaves a race (a folder on the path swapped for
+/// a link before the file is opened): the file server opens the canonical
+/// `file` relative to the root's descriptor, following no link at all.
 
 #include <filesystem>
 #include <string>
