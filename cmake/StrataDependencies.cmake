@@ -61,4 +61,9 @@ find_package(glfw3 CONFIG REQUIRED)
 # strata::scene reads TOML scene files and writes JSON reports (header-only
 # libraries, but its exported static target names them).
 find_package(tomlplusplus CONFIG REQUIRED)
+# GDAL: digital elevation models for the dem_heightfield node (scene's
+# DemFile.cpp); left out where STRATA_WITH_GDAL is OFF.
+if(STRATA_WITH_GDAL)
+  find_package(GDAL CONFIG REQUIRED)
+endif()
 find_package(nlohmann_json CONFIG REQUIRED)

@@ -19,14 +19,14 @@
 #            the sysroot's own loader and libraries
 #            (cmake/toolchain-aarch64-linux-gnu.cmake). Installs qemu-user,
 #            g++-aarch64-linux-gnu and mmdebstrap when missing (root).
-# No programs, Python module or web viewer in these builds: the table needs
-# none of them.
+# No programs, Python module, web viewer or GDAL (DEMs) in these builds: the
+# table needs none of them (and the arm64 sysroot holds no GDAL).
 set -eu
 root=$(cd "$(dirname "$0")/.." && pwd)
 jobs=${JOBS:-2}
 builds=${*:-clang O0 aarch64}
 now() { date +%s; }
-common="-G Ninja -DSTRATA_BUILD_APPS=OFF -DSTRATA_BUILD_PYTHON=OFF -DSTRATA_BUILD_WEB_VIEWER=OFF"
+common="-G Ninja -DSTRATA_BUILD_APPS=OFF -DSTRATA_BUILD_PYTHON=OFF -DSTRATA_BUILD_WEB_VIEWER=OFF -DSTRATA_WITH_GDAL=OFF"
 
 # The arm64 packages the libraries and the test link against.
 ARM64_PACKAGES=libopenvdb-dev,libtbb-dev,libhwy-dev,libglm-dev,zlib1g-dev,libssl-dev,libopenmesh-dev,\

@@ -16,6 +16,7 @@ PACKAGES=(
   libcli11-dev libtomlplusplus-dev nlohmann-json3-dev libfmt-dev
   libgtest-dev libbenchmark-dev libssl-dev
   libcpp-httplib-dev
+  libgdal-dev
   clang libclang-rt-dev llvm
   slurm-wlm munge python3 python3-yaml
   python3-dev python3-pybind11 pybind11-dev python3-numpy python3-pytest blender
@@ -31,6 +32,8 @@ PACKAGES=(
 # (serve/; Debian builds it as libcpp-httplib.so with zlib and brotli).
 # chromium: Debian's headless browser, driven by puppeteer-core (web/package-lock.json),
 # draws the bake's web viewer on software WebGL in tests/web (WebViewer.*).
+# libgdal-dev: GDAL reads digital elevation models (GeoTIFF and other rasters)
+# for the dem_heightfield node (scene/src/DemFile.cpp).
 # reuse runs `reuse lint` (ctest's ReuseLint): every file states its licence.
 # python-matplotlib-data ships a real DEM (sample_data/jacksboro_fault_dem.npz)
 # that tests/apps/BenchLandformsCommandTest.cpp measures (docs/landform-statistics.md).

@@ -185,7 +185,8 @@ Command registerBakeCommand(CLI::App& app)
     bake->add_option("--georeference", args->georeference,
                      "LAT,LON,HEIGHT: put the world on the Earth for globe clients (CesiumJS): the tileset's root "
                      "transform is east-north-up at that WGS84 point (degrees, degrees, metres above the ellipsoid), "
-                     "the scene's origin there, +x east, -z north, +y up");
+                     "the scene's origin there, +x east, -z north, +y up. Default: where the scene's georeferenced DEM "
+                     "(dem_heightfield) puts it; none: nowhere");
     bake->add_flag("-q,--quiet", args->quiet, "Print nothing but errors");
     bake->add_flag("--worker", args->worker,
                    "One worker of a scheduler's array: bakes tiles I·K to I·K+K−1 (K = --tiles-per-worker) into the "
@@ -234,7 +235,7 @@ Command registerBakeCommand(CLI::App& app)
                 options.worker = args->worker;
                 // Erode nodes run their global pass while the scene loads: once
                 // per worker, refused first when over --max-memory (exit 2).
-                const SceneLoadOptions load{options.maxMemoryBytes};
+                const SceneLoadOptions load = sceneLoadOptions(options.maxMemoryBytes, progress);
                 const Scene scene = args->scenePath.empty() ? defaultScene() : loadScene(args->scenePath, load);
                 if (args->worker) {
                     // Check the world's size first, then the worker's slice of it.

@@ -97,7 +97,7 @@ Command registerExportTerrainCommand(CLI::App& app)
                     bake = args->input;
                     scene = loadBakedScene(args->input);
                 } else {
-                    const SceneLoadOptions load{options.maxMemoryBytes};
+                    const SceneLoadOptions load = sceneLoadOptions(options.maxMemoryBytes, progress);
                     scene = args->input.empty() ? defaultScene() : loadScene(args->input, load);
                 }
                 const TerrainExportPlan plan = planTerrainExport(scene, options, bake); // bad flags: exit 2

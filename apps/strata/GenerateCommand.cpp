@@ -137,7 +137,7 @@ Command registerGenerateCommand(CLI::App& app)
                 offsetRequest(options.request, offset);
                 const Scene scene = offsetScene(args->scenePath.empty()
                                                     ? defaultScene()
-                                                    : loadScene(args->scenePath, {options.maxMemoryBytes}),
+                                                    : loadScene(args->scenePath, sceneLoadOptions(options.maxMemoryBytes, progress)),
                                                 offset);
 
                 std::unique_ptr<tbb::global_control> threadLimit;

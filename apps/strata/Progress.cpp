@@ -60,6 +60,18 @@ TerminalProgress::~TerminalProgress()
     restore(SIGTERM);
 }
 
+void TerminalProgress::beginStageOnce(const std::string& stage)
+{
+    if (mStage != stage) beginStage(stage);
+}
+
+void TerminalProgress::dropStage()
+{
+    if (mInteractive && mShownPercent >= 0) mOut << "\r\033[K" << std::flush;
+    mStage.clear();
+    mShownPercent = -1;
+}
+
 void TerminalProgress::beginStage(const std::string& stage)
 {
     mStage = stage;
@@ -110,6 +122,20 @@ void TerminalProgress::endStage(const std::string& stage, double seconds, const 
 }
 
 void TerminalProgress::notice(const std::string& line) { std::cerr << line << std::endl; }
+
+scene::SceneLoadOptions sceneLoadOptions(std::uint64_t maxMemoryBytes, TerminalProgress& progress)
+{
+    scene::SceneLoadOptions load;
+    load.maxMemoryBytes = maxMemoryBytes;
+    // The passes' times are printed with the scene (the "landform" lines).
+    load.progress = [&progress](double fraction) {
+        progress.beginStageOnce("erode");
+        const bool go = progress.progress(fraction);
+        if (fraction >= 1.0) progress.dropStage();
+        return go;
+    };
+    return load;
+}
 
 bool stdoutIsTerminal() { return ::isatty(STDOUT_FILENO) == 1; }
 

@@ -25,6 +25,11 @@ public:
     ~TerminalProgress() override;
 
     void beginStage(const std::string& stage) override;
+    /// beginStage() unless `stage` is the one running.
+    void beginStageOnce(const std::string& stage);
+    /// Ends the running stage without a line of its own (its live line is
+    /// cleared): for work whose summary is printed elsewhere.
+    void dropStage();
     /// Shows "stage  NN%" in place (redraws at most once per percent);
     /// false once SIGINT or SIGTERM arrived.
     bool progress(double fraction) override;
@@ -42,6 +47,11 @@ private:
     int mShownPercent = -1;
     std::chrono::steady_clock::time_point mStageStart;
 };
+
+/// How the CLI loads a scene: the memory budget, and the erode passes'
+/// progress shown as the "erode" stage, stopped by Ctrl-C or SIGTERM (exit
+/// 130 or 143) like every other stage.
+scene::SceneLoadOptions sceneLoadOptions(std::uint64_t maxMemoryBytes, TerminalProgress& progress);
 
 /// True when file descriptor 1 is a terminal.
 bool stdoutIsTerminal();

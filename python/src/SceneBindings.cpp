@@ -6,6 +6,7 @@
 // Blender add-on reads the same values the renderers use.
 
 #include "Bindings.h"
+#include "Progress.h"
 
 #include <strata/scene/SceneMaterial.h>
 
@@ -165,6 +166,10 @@ void bindScene(py::module_& m)
             for (const auto& f : s.inputFiles) files.append(f.string());
             return files;
         })
+        .def_property_readonly("georeference", [](const Scene& s) -> py::object {
+            if (!s.georeference) return py::none();
+            return py::make_tuple(s.georeference->latitude, s.georeference->longitude, s.georeference->height);
+        }, "(latitude, longitude, height) of the scene's origin from a georeferenced DEM (dem_heightfield), or None")
         .def_property_readonly("camera", [](const Scene& s) {
             py::dict d;
             d["azimuth"] = s.camera.azimuth;
@@ -255,21 +260,29 @@ void bindScene(py::module_& m)
     m.def("default_scene", [] { return std::make_shared<Scene>(scene::defaultScene()); },
           "The scene built into Strata (the one `strata generate` uses without a scene file).");
     m.def("default_scene_text", [] { return std::string(scene::defaultSceneText()); }, "The default scene's TOML text.");
-    m.def("load_scene", [](const std::filesystem::path& path, std::uint64_t maxMemory) {
+    m.def("load_scene", [](const std::filesystem::path& path, std::uint64_t maxMemory, const py::object& progressCallback) {
         scene::SceneLoadOptions options;
         options.maxMemoryBytes = maxMemory;
-        py::gil_scoped_release release; // an erode node's pass may run for seconds
-        return std::make_shared<Scene>(scene::loadScene(path, options));
-    }, py::arg("path"), py::arg("max_memory") = 0,
+        PythonProgress progress(progressCallback);
+        options.progress = std::ref(progress);
+        // An erode node's pass may run for minutes: without the GIL, Ctrl-C
+        // (KeyboardInterrupt) and progress checked at each of its steps.
+        return progress.run([&] { return std::make_shared<Scene>(scene::loadScene(path, options)); });
+    }, py::arg("path"), py::arg("max_memory") = 0, py::arg("progress") = py::none(),
           "Reads and parses a scene file (TOML). Raises BadInputError naming the file, line and key.\n"
-          "max_memory: bytes an erode node's pass may use (0: no limit).");
-    m.def("parse_scene", [](const std::string& text, const std::string& source, std::uint64_t maxMemory) {
+          "max_memory: bytes an erode node's pass may use (0: no limit).\n"
+          "progress: None or a callable taking the erode passes' progress in [0, 1]; returning False or Ctrl-C\n"
+          "stops the load (KeyboardInterrupt).");
+    m.def("parse_scene", [](const std::string& text, const std::string& source, std::uint64_t maxMemory,
+                            const py::object& progressCallback) {
         scene::SceneLoadOptions options;
         options.maxMemoryBytes = maxMemory;
-        py::gil_scoped_release release;
-        return std::make_shared<Scene>(scene::parseScene(text, source, options));
-    }, py::arg("text"), py::arg("source") = "<string>", py::arg("max_memory") = 0,
-          "Parses scene text (TOML); `source` names it in errors. Relative paths resolve against the working folder.");
+        PythonProgress progress(progressCallback);
+        options.progress = std::ref(progress);
+        return progress.run([&] { return std::make_shared<Scene>(scene::parseScene(text, source, options)); });
+    }, py::arg("text"), py::arg("source") = "<string>", py::arg("max_memory") = 0, py::arg("progress") = py::none(),
+          "Parses scene text (TOML); `source` names it in errors. Relative paths resolve against the working folder.\n"
+          "progress: as for load_scene.");
 }
 
 } // namespace strata::python

@@ -83,3 +83,38 @@ def test_resolve_quality_matches_presets(small_scene):
     assert caught.value.key == "mesher" and caught.value.value == "marching-squares"
     with pytest.raises(strata.BadInputError, match="not a preset"):
         small_scene.resolve_quality("fastest")
+
+
+ERODED = """seed = 3
+[terrain]
+root = "eroded"
+[terrain.nodes.eroded]
+type = "erode"
+height = "land"
+min = [-32.0, -32.0]
+max = [32.0, 32.0]
+cell_size = 2.0
+years = %d
+[terrain.nodes.land]
+type = "heightfield"
+amplitude = 10.0
+wavelength = 40.0
+"""
+
+
+def test_an_erode_pass_reports_progress_and_stops_on_false():
+    # The erode pass runs while the scene loads: its progress reaches the
+    # callable, and False stops the load with KeyboardInterrupt (issue 41:
+    # the pass could not be interrupted). Each run its own years: not cached.
+    seen = []
+    scene = strata.parse_scene(ERODED % 1000000, progress=seen.append)
+    assert scene.has_landform and len(seen) >= 10
+    assert seen == sorted(seen) and seen[-1] == 1.0
+    calls = []
+    with pytest.raises(KeyboardInterrupt):
+        strata.parse_scene(ERODED % 1020000, progress=lambda f: calls.append(f) or len(calls) < 3)
+    assert len(calls) == 3
+
+
+def test_the_default_scene_has_no_place_on_the_earth():
+    assert strata.default_scene().georeference is None

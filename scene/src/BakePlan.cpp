@@ -168,7 +168,10 @@ BakePlan planBake(const Scene& scene, const BakeOptions& options)
     plan.skirtDepth = options.skirtDepth > 0.0 ? options.skirtDepth : 2.0 * double(coarse) * scene.voxelSize;
     plan.tileFormat = options.tileFormat;
     plan.selected = detail::parseTileSelection(options.tiles, plan.tileCount());
-    if (!options.georeference.empty()) plan.georeference = parseGeoreference(options.georeference);
+    // A georeferenced DEM places the scene unless the flag says otherwise.
+    if (options.georeference == "none") plan.georeference.reset();
+    else if (!options.georeference.empty()) plan.georeference = parseGeoreference(options.georeference);
+    else plan.georeference = scene.georeference;
 
     // Per tile: the level-0 sample array (the largest), and the grid's
     // narrow band estimated as a sheet through the tile (4 bytes a voxel,

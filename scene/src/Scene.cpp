@@ -40,6 +40,7 @@ void useTerrainTree(Scene& scene, const TerrainBuilder& build)
     if (tree.landformMasks) {
         scene.buildLandformMasks = [build](std::uint64_t seed) { return build(seed).landformMasks; };
     }
+    scene.georeference = tree.georeference;
     scene.rockMasks = tree.rockMasks;
     if (tree.rockMasks) scene.buildRockMasks = [build](std::uint64_t seed) { return build(seed).rockMasks; };
 }
@@ -58,7 +59,7 @@ void readTerrain(TableReader& root, Scene& scene, const SceneLoadOptions& load)
         }
         useTerrainTree(scene, readTerrainNodes(terrainNode->as_table(), scene.source,
                                                std::filesystem::path(scene.source).parent_path(), scene.terrain.seed,
-                                               &scene.inputFiles, load.maxMemoryBytes));
+                                               &scene.inputFiles, load.maxMemoryBytes, load.progress));
         return;
     }
     if (!terrainTable.has("height") && !terrainTable.has("caves")) {

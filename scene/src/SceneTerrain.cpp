@@ -5,10 +5,12 @@
 
 #include <strata/terrain/ErodedHeightfield.h>
 
+#include "DemFile.h"
 #include "HeightImageFile.h"
 
 #include <strata/Error.h>
 #include <strata/Format.h>
+#include <strata/terrain/DemHeightfield.h>
 #include <strata/terrain/Heightfield.h>
 #include <strata/terrain/NodeRegistry.h>
 #include <strata/terrain/Noise.h>
@@ -37,27 +39,32 @@ std::uint64_t nameStream(const std::string& name)
     return h;
 }
 
-/// Images read once per scene, shared by every build (seed override).
+/// Input files (height images, DEMs) read once per scene, shared by every
+/// build (seed override).
 struct ImageCache
 {
     std::mutex mutex;
     std::map<std::string, std::shared_ptr<const HeightImage>> images;
+    std::map<std::string, std::shared_ptr<const terrain::ElevationRaster>> dems;
 };
 
-std::shared_ptr<const HeightImage> readHeightImage(const std::filesystem::path& path, TableReader& t,
-                                                   const std::string& key, ImageCache& cache)
+/// The file at `path` from `files`, read by `read` the first time; a read
+/// error names the scene key.
+template <typename T, typename Read>
+std::shared_ptr<const T> readCached(std::map<std::string, std::shared_ptr<const T>>& files, std::mutex& mutex,
+                                    const std::filesystem::path& path, TableReader& t, const std::string& key, Read read)
 {
-    std::lock_guard<std::mutex> lock(cache.mutex);
-    auto found = cache.images.find(path.string());
-    if (found != cache.images.end()) return found->second;
-    std::shared_ptr<const HeightImage> image;
+    std::lock_guard<std::mutex> lock(mutex);
+    auto found = files.find(path.string());
+    if (found != files.end()) return found->second;
+    std::shared_ptr<const T> file;
     try {
-        image = std::make_shared<const HeightImage>(readHeightImageFile(path));
+        file = std::make_shared<const T>(read(path));
     } catch (const Error& e) {
         t.fail(nullptr, key, "= '" + path.string() + "': " + e.what());
     }
-    cache.images.emplace(path.string(), image);
-    return image;
+    files.emplace(path.string(), file);
+    return file;
 }
 
 /// The deepest node tree a scene may have: deeper chains are almost surely a
@@ -107,6 +114,8 @@ public:
         mBuilt.emplace(name, field);
         if (auto masks = std::dynamic_pointer_cast<const LandformMasks>(field)) mLandform.emplace(name, masks);
         if (auto rock = std::dynamic_pointer_cast<const terrain::RockMasks>(field)) mRock.emplace(name, rock);
+        if (auto dem = std::dynamic_pointer_cast<const terrain::DemHeightfield>(field); dem && dem->originLatitudeLongitude())
+            mPlaced.emplace(name, dem);
         if (auto eroded = std::dynamic_pointer_cast<const ErodedHeightfield>(field); eroded && !mPassOf.count(eroded.get())) {
             mPassOf.insert(eroded.get());
             const ErodedGrid& grid = eroded->grid();
@@ -123,12 +132,21 @@ public:
     const std::map<std::string, LandformMasksPtr>& landformNodes() const { return mLandform; }
     /// The built nodes with rock masks (beds nodes), by name.
     const std::map<std::string, RockMasksPtr>& rockNodes() const { return mRock; }
+    /// The DEM nodes whose CRS puts them on the Earth.
+    const std::map<std::string, std::shared_ptr<const terrain::DemHeightfield>>& placedNodes() const { return mPlaced; }
     /// The erode nodes' passes, in build order.
     const std::vector<LandformPass>& passes() const { return mPasses; }
 
 private:
     /// Reads every key of `type` from `t` into arguments: types and ranges
     /// checked, defaults filled in, children built, images loaded.
+    /// A file key's path, relative ones from the scene's folder.
+    std::filesystem::path inputFile(TableReader& t, const std::string& key) const
+    {
+        std::filesystem::path file = t.string(key, "");
+        return file.is_relative() ? mBase / file : file;
+    }
+
     NodeArgs readArgs(const std::string& name, const NodeType& type, TableReader& t)
     {
         // The seed first: NodeArgs carries the derived one.
@@ -170,12 +188,14 @@ private:
                 break;
             case NodeKeyType::Points: args.set(key.name, points(t, key)); break;
             case NodeKeyType::Children: args.set(key.name, children(t, key.name)); break;
-            case NodeKeyType::Image: {
-                std::filesystem::path file = t.string(key.name, "");
-                if (file.is_relative()) file = mBase / file;
-                args.set(key.name, readHeightImage(file, t, key.name, mImages));
+            case NodeKeyType::Image:
+                args.set(key.name, readCached(mImages.images, mImages.mutex, inputFile(t, key.name), t, key.name,
+                                              readHeightImageFile));
                 break;
-            }
+            case NodeKeyType::Elevation:
+                args.set(key.name, readCached(mImages.dems, mImages.mutex, inputFile(t, key.name), t, key.name,
+                                              readDemFile));
+                break;
             case NodeKeyType::Seed: break; // read above
             }
         }
@@ -195,6 +215,7 @@ private:
         try {
             return type->build(args);
         } catch (const Error& e) {
+            if (e.kind() == ErrorKind::Interrupted) throw; // stopped, not wrong
             // A check across keys (NodeArgs::fail) names its key: point at it.
             const std::string& key = e.place().key;
             const std::string what = e.what();
@@ -279,6 +300,7 @@ private:
     std::map<std::string, DensityFieldPtr> mBuilt;
     std::map<std::string, LandformMasksPtr> mLandform;
     std::map<std::string, RockMasksPtr> mRock;
+    std::map<std::string, std::shared_ptr<const terrain::DemHeightfield>> mPlaced;
     NodeBuildContext mContext;
     std::vector<LandformPass> mPasses;
     std::set<const void*> mPassOf;
@@ -299,7 +321,8 @@ std::string quotedNames(const std::map<std::string, Masks>& nodes)
 /// the masks ("landform masks"), `nodeType` the node that has them.
 template<typename Masks>
 Masks chooseMaskSource(TableReader& terrain, const std::map<std::string, Masks>& nodes, const std::string& key,
-                       const std::string& what, const std::string& nodeType)
+                       const std::string& what, const std::string& nodeType,
+                       const std::string& purpose = "the one layer rules read")
 {
     if (terrain.has(key)) {
         const std::string name = terrain.string(key, "");
@@ -319,7 +342,7 @@ Masks chooseMaskSource(TableReader& terrain, const std::map<std::string, Masks>&
     if (distinct.size() > 1) {
         terrain.fail(nullptr, key,
                      "is required: the tree has " + std::to_string(nodes.size()) + " nodes with " + what + " (" +
-                         quotedNames(nodes) + "); name the one layer rules read, e.g. " + key + " = '" +
+                         quotedNames(nodes) + "); name " + purpose + ", e.g. " + key + " = '" +
                          nodes.begin()->first + "'");
     }
     return nodes.empty() ? nullptr : nodes.begin()->second;
@@ -355,6 +378,12 @@ TerrainTree buildTree(const toml::table* table, const std::string& source, const
     tree.root = nodes.build(rootName, terrain, "root");
     tree.landformMasks = chooseMaskSource(terrain, nodes.landformNodes(), "masks", "landform masks", "an `erode`");
     tree.rockMasks = chooseMaskSource(terrain, nodes.rockNodes(), "rock", "rock masks", "a `beds`");
+    if (auto dem = chooseMaskSource(terrain, nodes.placedNodes(), "georeference", "a georeferenced DEM",
+                                    "a `dem_heightfield`",
+                                    "the one that places the scene on the Earth")) {
+        const glm::dvec2 latLon = *dem->originLatitudeLongitude();
+        tree.georeference = Georeference{latLon.x, latLon.y, dem->originHeight()};
+    }
     tree.passes = nodes.passes();
     terrain.finish();
     // A node that nothing uses is most likely a mistake (a misspelt name).
@@ -382,20 +411,26 @@ struct LastTree
 
 TerrainBuilder readTerrainNodes(const toml::table* terrainTable, const std::string& source,
                                 const std::filesystem::path& baseDirectory, std::uint64_t seed,
-                                std::vector<std::filesystem::path>* inputFiles, std::uint64_t maxMemoryBytes)
+                                std::vector<std::filesystem::path>* inputFiles, std::uint64_t maxMemoryBytes,
+                                const std::function<bool(double)>& progress)
 {
-    const NodeBuildContext context{maxMemoryBytes};
+    NodeBuildContext context{maxMemoryBytes, progress};
     auto images = std::make_shared<ImageCache>();
     // Built once now, from the parsed document, so errors carry its lines.
     auto last = std::make_shared<LastTree>();
     last->seed = seed;
     last->tree = buildTree(terrainTable, source, baseDirectory, *images, seed, context);
     if (inputFiles)
-        for (const auto& [path, image] : images->images) inputFiles->push_back(path); // a sorted map
+    {
+        for (const auto& [path, image] : images->images) inputFiles->push_back(path);
+        for (const auto& [path, dem] : images->dems) inputFiles->push_back(path);
+        std::sort(inputFiles->begin(), inputFiles->end());
+    }
     // Rebuilds (another seed) work on a copy of the table, which cannot fail
     // where this one did not (images are cached).
     auto table = std::make_shared<toml::table>(terrainTable ? *terrainTable : toml::table{});
     auto sourceCopy = std::make_shared<std::string>(source);
+    context.progress = nullptr; // the caller's callable need not outlive the load
     return [table, sourceCopy, images, baseDirectory, last, context](std::uint64_t s) -> TerrainTree {
         std::lock_guard<std::mutex> lock(last->mutex);
         if (last->seed != s) {

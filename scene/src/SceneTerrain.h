@@ -30,9 +30,11 @@
 #include <filesystem>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include <strata/scene/Georeference.h>
 #include <strata/scene/Scene.h>
 
 namespace strata::scene {
@@ -56,6 +58,10 @@ struct TerrainTree
     RockMasksPtr rockMasks;
     /// The erode nodes' global passes, in the order they were built.
     std::vector<LandformPass> passes;
+    /// Where the scene's origin lies on the Earth: from the tree's one
+    /// dem_heightfield whose file has a CRS (or the one `[terrain]
+    /// georeference = "NAME"` names); empty when it has none.
+    std::optional<Georeference> georeference;
 };
 
 /// Makes the terrain's tree for a seed (`strata generate --seed` rebuilds
@@ -74,15 +80,17 @@ const std::vector<std::string>& terrainNodeTypes();
 /// types, keys or child names, cycles, values out of range, NaN or
 /// infinite, missing or unreadable heightmap images, a `masks` that names
 /// no node with landform masks, several such nodes without `masks`.
-/// `inputFiles` (may be null) receives the image files read, sorted.
+/// `inputFiles` (may be null) receives the files read (images, DEMs), sorted.
 /// Relative image paths are taken from `baseDirectory` (the scene file's
 /// folder). Throws strata::Error "SOURCE:LINE: terrain.nodes.NAME.KEY ...".
 /// `terrainTable` must be the reader of [terrain]; its keys are consumed.
 /// `maxMemoryBytes` (0: none) refuses, before any work, an erode node whose
 /// pass would need more (strata::Error BadInput at its cell_size key).
+/// `progress` (may be empty) gets the erode passes' progress during this
+/// first build only (SceneLoadOptions::progress); false stops it.
 TerrainBuilder readTerrainNodes(const toml::table* terrainTable, const std::string& source,
                                 const std::filesystem::path& baseDirectory, std::uint64_t seed,
                                 std::vector<std::filesystem::path>* inputFiles = nullptr,
-                                std::uint64_t maxMemoryBytes = 0);
+                                std::uint64_t maxMemoryBytes = 0, const std::function<bool(double)>& progress = {});
 
 } // namespace strata::scene

@@ -210,7 +210,8 @@ void registerHeightGraphNodes(NodeRegistry& registry)
                                     " MiB, over the memory budget of " + std::to_string(budget >> 20) +
                                     " MiB (--max-memory): use a larger cell_size or a smaller domain");
         }
-        return std::make_shared<ErodedHeightfield>(heightChild(a, "height"), heightChild(a, "uplift_map"), o);
+        return std::make_shared<ErodedHeightfield>(heightChild(a, "height"), heightChild(a, "uplift_map"), o,
+                                                   a.context().progress);
     };
     registry.add(std::move(erode));
 

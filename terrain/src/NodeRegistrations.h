@@ -21,6 +21,7 @@ void registerCsgNodes(NodeRegistry& registry);         // Csg.cpp
 void registerPrimitiveNodes(NodeRegistry& registry);   // Primitives.cpp
 void registerHeightGraphNodes(NodeRegistry& registry); // HeightGraphNodes.cpp
 void registerGeologyNodes(NodeRegistry& registry);     // DifferentialErosion.cpp
+void registerDemNodes(NodeRegistry& registry);         // DemHeightfield.cpp
 
 /// The height node a child key names (null for an absent optional key);
 /// fails naming the key when it names a 3D node. HeightGraphNodes.cpp.

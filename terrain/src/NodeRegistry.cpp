@@ -59,6 +59,7 @@ const char* nodeKeyTypeName(NodeKeyType type)
     case NodeKeyType::Child: return "node";
     case NodeKeyType::Children: return "nodes";
     case NodeKeyType::Image: return "image";
+    case NodeKeyType::Elevation: return "DEM file";
     case NodeKeyType::Seed: return "seed";
     case NodeKeyType::Points: return "[[in, out], ...]";
     }
@@ -132,6 +133,13 @@ const HeightImage& NodeArgs::image(const std::string& key) const
     return *image;
 }
 
+const ElevationRaster& NodeArgs::elevation(const std::string& key) const
+{
+    const std::shared_ptr<const ElevationRaster>& raster = get<std::shared_ptr<const ElevationRaster>>(key);
+    if (!raster) throw Error(ErrorKind::Internal, "node '" + mNodeName + "': DEM '" + key + "' was not loaded");
+    return *raster;
+}
+
 void NodeArgs::fail(const std::string& key, const std::string& what) const
 {
     throw Error(ErrorKind::BadInput, key + " " + what, {"", 0, key, ""});
@@ -176,6 +184,7 @@ const NodeRegistry& NodeRegistry::builtin()
     static const NodeRegistry registry = [] {
         NodeRegistry r;
         registerHeightfieldNodes(r);
+        registerDemNodes(r);
         registerCaveNodes(r);
         registerTransformNodes(r);
         registerCsgNodes(r);
@@ -284,6 +293,13 @@ NodeKey imageKey(std::string name, std::string description)
 {
     NodeKey k = childKey(std::move(name), std::move(description));
     k.type = NodeKeyType::Image;
+    return k;
+}
+
+NodeKey elevationKey(std::string name, std::string description)
+{
+    NodeKey k = childKey(std::move(name), std::move(description));
+    k.type = NodeKeyType::Elevation;
     return k;
 }
 

@@ -12,9 +12,15 @@
 
 #include <OpenImageIO/imageio.h>
 #include "SceneParseError.h"
+#include "ErodedScene.h"
+#include <strata/terrain/ErodedHeightfield.h>
+#ifdef STRATA_TEST_WITH_GDAL
+#include "DemTestFiles.h"
+#endif
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <deque>
@@ -90,13 +96,13 @@ TEST(SceneTerrain, EveryNodeTypeIsReachableFromTheSceneFile)
 {
     const auto dir = strata::test::freshTestDir();
     writeRamp(dir / "ramp.png", 64, 64, false);
-    const std::string text = R"(
+    std::string text = R"(
 [terrain]
 root = "all"
 masks = "scree"
 [terrain.nodes.all]
 type = "union"
-children = ["cut", "shapes", "stepped", "moved", "image", "graph", "layered", "rubble"]
+children = ["cut", "shapes", "stepped", "moved", "image", "graph", "layered", "rubble", "real"]
 [terrain.nodes.rubble]
 type = "scree"
 child = "moved"
@@ -251,10 +257,19 @@ min = [-50, -50]
 max = [50, 50]
 height_scale = 10
 )";
+#ifdef STRATA_TEST_WITH_GDAL
+    ASSERT_TRUE(strata::test::writeDem(dir / "dem.tif", {}));
+    text += "[terrain.nodes.real]\ntype = \"dem_heightfield\"\nfile = \"dem.tif\"\nbase = -150\n";
+#else
+    text += "[terrain.nodes.real]\ntype = \"plane\"\n"; // a build without GDAL reads no DEM
+#endif
     std::set<std::string> used;
     for (const std::string& type : strata::scene::terrainNodeTypes()) {
         if (text.find("type = \"" + type + "\"") != std::string::npos) used.insert(type);
     }
+#ifndef STRATA_TEST_WITH_GDAL
+    used.insert("dem_heightfield");
+#endif
     EXPECT_EQ(used.size(), strata::scene::terrainNodeTypes().size()) << "a node type is missing from this test";
     {
         std::ofstream(dir / "all.toml") << text;
@@ -407,7 +422,7 @@ TEST(SceneTerrain, TunnelsReachTheSurfaceInTheDefaultScene)
 TEST(SceneTerrain, BadNodesNameFileLineKeyAndValue)
 {
     EXPECT_EQ(parseError(oneNode("blob", "")),
-              "test.toml:4: terrain.nodes.a.type = 'blob' is not a node type (one of beds, box, capsule, cheese, erode, "
+              "test.toml:4: terrain.nodes.a.type = 'blob' is not a node type (one of beds, box, capsule, cheese, dem_heightfield, erode, "
               "erode_detail, height_add, height_blend, height_clamp, height_constant, height_curve, height_max, "
               "height_min, height_multiply, height_scale, height_subtract, height_terrace, height_warp, heightfield, "
               "image_heightfield, intersect, mask_curvature, mask_height, mask_slope, plane, scree, spaghetti, "
@@ -501,4 +516,44 @@ TEST(SceneTerrain, TheCanyonShowcaseLoadsAndItsWallsOverhang)
     }
     std::cout << overhanging << " of " << columns << " columns overhang\n";
     EXPECT_GT(overhanging, 0);
+}
+
+// The erode pass reports its progress while the scene loads and stops when
+// the progress says so (Ctrl-C in the CLI, KeyboardInterrupt in Python):
+// an Interrupted error, not a bad scene, and nothing half-done is cached
+// (issue 41: the pass could not be interrupted).
+TEST(SceneTerrain, TheErodePassReportsProgressAndStopsWhenAsked)
+{
+    using strata::terrain::ErodedHeightfield;
+    const std::string text = strata::test::erodedSceneToml();
+    ErodedHeightfield::clearCache();
+    std::vector<double> seen;
+    strata::scene::SceneLoadOptions load;
+    load.progress = [&](double fraction) {
+        seen.push_back(fraction);
+        return true;
+    };
+    parseScene(text, "<eroded>", load);
+    ASSERT_GE(seen.size(), 10u);
+    EXPECT_TRUE(std::is_sorted(seen.begin(), seen.end()));
+    EXPECT_GT(seen.front(), 0.0);
+    EXPECT_EQ(seen.back(), 1.0);
+
+    ErodedHeightfield::clearCache();
+    int calls = 0;
+    load.progress = [&](double) { return ++calls < 3; };
+    try {
+        parseScene(text, "<eroded>", load);
+        ADD_FAILURE() << "the load went on after progress returned false";
+    } catch (const strata::Error& e) {
+        EXPECT_EQ(e.kind(), strata::ErrorKind::Interrupted) << e.what();
+    }
+    EXPECT_EQ(calls, 3);
+    seen.clear();
+    load.progress = [&](double fraction) {
+        seen.push_back(fraction);
+        return true;
+    };
+    parseScene(text, "<eroded>", load);
+    EXPECT_GE(seen.size(), 10u) << "an interrupted pass was cached";
 }

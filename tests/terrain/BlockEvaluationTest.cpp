@@ -13,6 +13,7 @@
 #include "NoiseSimd.h"    // internal: hashedLanes
 
 #include <strata/Error.h>
+#include <strata/terrain/DemHeightfield.h>
 #include <strata/terrain/FractalNoise.h>
 #include <strata/terrain/Heightfield.h>
 #include <strata/terrain/NodeRegistry.h>
@@ -363,6 +364,9 @@ TEST(BlockEvaluation, EveryNodeTypeGivesTheScalarBits)
     image->width = 5;
     image->height = 4;
     for (int i = 0; i < 20; ++i) image->values.push_back(float(i % 7) / 7.0f);
+    auto dem = std::make_shared<ElevationRaster>();
+    dem->heights = *image;
+    dem->cellStep = {30.0, -30.0};
 
     TalusOptions smallTalus;
     smallTalus.maxHeight = 4.0;
@@ -387,6 +391,7 @@ TEST(BlockEvaluation, EveryNodeTypeGivesTheScalarBits)
                 break;
             case NodeKeyType::Children: args.set(key.name, std::vector<DensityFieldPtr>{hills, second, hills}); break;
             case NodeKeyType::Image: args.set(key.name, std::shared_ptr<const HeightImage>(image)); break;
+            case NodeKeyType::Elevation: args.set(key.name, std::shared_ptr<const ElevationRaster>(dem)); break;
             case NodeKeyType::Seed: break;
             default:
                 // A talus block reads a window 12 reaches wider than itself:

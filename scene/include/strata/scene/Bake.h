@@ -96,7 +96,9 @@ struct BakeOptions
     double skirtDepth = 0.0;
     TileFormat tileFormat = TileFormat::Meshopt; ///< part of the bake's identity
     /// Where the world lies on the Earth, "LAT,LON,HEIGHT" (parseGeoreference());
-    /// empty: nowhere (the tileset has no root transform). Not part of the
+    /// empty: where the scene's georeferenced DEM puts it (Scene::georeference),
+    /// else nowhere (the tileset has no root transform); "none": nowhere,
+    /// whatever the scene says. Not part of the
     /// bake's identity: a rerun with another point keeps the tiles and
     /// rewrites the tileset.
     std::string georeference;

@@ -5,6 +5,7 @@
 /// \file
 /// The scene file: everything `strata generate` needs, read from TOML.
 
+#include <strata/scene/Georeference.h>
 #include <strata/scene/Quality.h>
 #include <strata/scene/SceneMaterial.h>
 
@@ -56,6 +57,12 @@ struct SceneLoadOptions
     /// Bytes (0: no budget): an erode node whose pass would need more is
     /// refused before it runs, naming its cell_size (--max-memory).
     std::uint64_t maxMemoryBytes = 0;
+    /// The erode nodes' passes report their progress in [0, 1] here (one
+    /// pass after the other); returning false stops the load (strata::Error,
+    /// Interrupted: Ctrl-C in the CLI, KeyboardInterrupt in Python). Called
+    /// while loading only, from the loading thread; a later rebuild for
+    /// another seed (Scene::buildField) runs without it. May be empty.
+    std::function<bool(double)> progress;
 };
 
 struct SnapshotSettings
@@ -103,6 +110,10 @@ struct Scene
     /// Rebuilds it for another seed (the beds' folds are seeded), from the
     /// same tree as buildField; empty when the tree has none.
     std::function<std::shared_ptr<const terrain::RockMasks>(std::uint64_t)> buildRockMasks;
+    /// Where the scene's origin lies on the Earth, from a georeferenced DEM
+    /// (a dem_heightfield node's file with a CRS); the bake's tileset is
+    /// placed there unless --georeference says otherwise. Empty otherwise.
+    std::optional<Georeference> georeference;
     terrain::Region region;
     double voxelSize = 0.5;
     int halfWidth = 3;

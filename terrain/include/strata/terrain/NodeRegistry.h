@@ -31,6 +31,7 @@
 namespace strata::terrain {
 
 struct HeightImage;
+struct ElevationRaster;
 struct FractalOptions;
 
 using DensityFieldPtr = std::shared_ptr<const DensityField>;
@@ -47,11 +48,12 @@ enum class NodeKeyType
     Child,    ///< the name of another node
     Children, ///< two or more node names
     Image,    ///< a height image file (relative to the scene's folder)
+    Elevation, ///< a DEM file read through GDAL (relative to the scene's folder)
     Seed,     ///< this node's seed stream, an integer in [0, 2^63 − 1]; default: a hash of the node's name
     Points,   ///< a curve: two or more [input, output] pairs, inputs strictly increasing
 };
 
-/// "number", "integer", "boolean", "choice", "[x, z]", "[x, y, z]", "node", "nodes", "image", "seed",
+/// "number", "integer", "boolean", "choice", "[x, z]", "[x, y, z]", "node", "nodes", "image", "DEM file", "seed",
 /// "[[in, out], ...]".
 const char* nodeKeyTypeName(NodeKeyType type);
 
@@ -59,7 +61,7 @@ const char* nodeKeyTypeName(NodeKeyType type);
 /// image paths), vectors, child nodes, or the loaded image.
 using NodeValue = std::variant<std::monostate, double, std::int64_t, bool, std::string, glm::dvec2, glm::dvec3,
                                DensityFieldPtr, std::vector<DensityFieldPtr>, std::shared_ptr<const HeightImage>,
-                               std::vector<glm::dvec2>>;
+                               std::shared_ptr<const ElevationRaster>, std::vector<glm::dvec2>>;
 
 /// One key of a node type.
 struct NodeKey
@@ -85,6 +87,9 @@ struct NodeKey
 struct NodeBuildContext
 {
     std::uint64_t maxMemoryBytes = 0; ///< 0: no budget
+    /// Progress of a node's heavy work in [0, 1] (an erode node's pass);
+    /// returning false stops it (strata::Error, Interrupted). May be empty.
+    std::function<bool(double)> progress;
 };
 
 /// The checked values of one node's keys, given or defaulted. A reader
@@ -109,6 +114,7 @@ public:
         return get<std::vector<DensityFieldPtr>>(key);
     }
     const HeightImage& image(const std::string& key) const;
+    const ElevationRaster& elevation(const std::string& key) const;
     /// A Points key's pairs.
     const std::vector<glm::dvec2>& points(const std::string& key) const { return get<std::vector<glm::dvec2>>(key); }
     /// Whether the user wrote `key` (rather than taking its default).
@@ -189,6 +195,8 @@ NodeKey pointsKey(std::string name, std::vector<glm::dvec2> fallback, double lim
                   std::string description);
 NodeKey childrenKey(std::string name, std::string description);
 NodeKey imageKey(std::string name, std::string description);
+/// A required DEM file key (NodeKeyType::Elevation).
+NodeKey elevationKey(std::string name, std::string description);
 NodeKey seedKey();
 
 /// The noise keys every noise node takes (noise, fractal, octaves,
