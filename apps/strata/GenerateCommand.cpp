@@ -135,9 +135,8 @@ Command registerGenerateCommand(CLI::App& app)
                 const glm::dvec3 offset =
                     args->offset.empty() ? glm::dvec3(0.0) : parseVec3Flag("--offset", args->offset);
                 offsetRequest(options.request, offset);
-                const Scene scene = offsetScene(args->scenePath.empty()
-                                                    ? defaultScene()
-                                                    : loadScene(args->scenePath, sceneLoadOptions(options.maxMemoryBytes, progress)),
+                const SceneLoadOptions load = sceneLoadOptions(options.maxMemoryBytes, progress);
+                const Scene scene = offsetScene(args->scenePath.empty() ? defaultScene() : loadScene(args->scenePath, load),
                                                 offset);
 
                 std::unique_ptr<tbb::global_control> threadLimit;

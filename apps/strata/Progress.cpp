@@ -3,6 +3,8 @@
 
 #include "Progress.h"
 
+#include <strata/CacheMemory.h>
+
 #include <algorithm>
 #include <atomic>
 #include <csignal>
@@ -127,6 +129,8 @@ scene::SceneLoadOptions sceneLoadOptions(std::uint64_t maxMemoryBytes, TerminalP
 {
     scene::SceneLoadOptions load;
     load.maxMemoryBytes = maxMemoryBytes;
+    // The caches (erosion grids, detail blocks, worm buckets) keep within it too.
+    setCacheMemoryLimit(maxMemoryBytes);
     // The passes' times are printed with the scene (the "landform" lines).
     load.progress = [&progress](double fraction) {
         progress.beginStageOnce("erode");

@@ -48,9 +48,10 @@ private:
     std::chrono::steady_clock::time_point mStageStart;
 };
 
-/// How the CLI loads a scene: the memory budget, and the erode passes'
-/// progress shown as the "erode" stage, stopped by Ctrl-C or SIGTERM (exit
-/// 130 or 143) like every other stage.
+/// How the CLI loads a scene: the memory budget (which also becomes the
+/// limit of the process's caches, strata/CacheMemory.h), and the erode
+/// passes' progress shown as the "erode" stage, stopped by Ctrl-C or
+/// SIGTERM (exit 130 or 143) like every other stage.
 scene::SceneLoadOptions sceneLoadOptions(std::uint64_t maxMemoryBytes, TerminalProgress& progress);
 
 /// True when file descriptor 1 is a terminal.

@@ -3,6 +3,8 @@
 
 #include <strata/terrain/Caves.h>
 
+#include <strata/ByteBoundedCache.h>
+
 #include "WormSimd.h"
 
 #include "NodeRegistrations.h"
@@ -179,66 +181,24 @@ inline double wander(std::uint64_t hashedSeed, double t)
     return noise2(hashedSeed, glm::dvec2(t, 0.37));
 }
 
-/// A bounded cache: keys are spread over SHARDS shards by hash, each a map
-/// with its own mutex holding at most CAPACITY / SHARDS entries; when a
-/// shard is full, its oldest entry goes (first in, first out). Values are
-/// immutable and shared, so an evicted value stays valid for whoever still
-/// holds it.
-template <class Key, class Value, std::size_t CAPACITY, std::size_t SHARDS = 64>
-class BoundedCache
+/// A key's shard in the worm caches (ShardedByteBoundedCache).
+struct ShardOfKey
 {
-public:
-    std::shared_ptr<const Value> find(const Key& key) const
-    {
-        Shard& shard = mShards[shardOf(key)];
-        std::lock_guard<std::mutex> lock(shard.mutex);
-        const auto it = shard.map.find(key);
-        return it != shard.map.end() ? it->second : nullptr;
-    }
-    void store(const Key& key, std::shared_ptr<const Value> value)
-    {
-        Shard& shard = mShards[shardOf(key)];
-        std::lock_guard<std::mutex> lock(shard.mutex);
-        if (!shard.map.emplace(key, std::move(value)).second) return; // another thread stored it first
-        shard.order.push_back(key);
-        if (shard.order.size() > CAPACITY / SHARDS) {
-            shard.map.erase(shard.order.front());
-            shard.order.pop_front();
-        }
-    }
-    std::size_t size() const
-    {
-        std::size_t n = 0;
-        for (Shard& shard : mShards) {
-            std::lock_guard<std::mutex> lock(shard.mutex);
-            n += shard.map.size();
-        }
-        return n;
-    }
-
-private:
-    static_assert(CAPACITY % SHARDS == 0);
-    static std::size_t shardOf(const Key& key)
+    template <std::size_t N>
+    std::size_t operator()(const std::array<std::int64_t, N>& key) const
     {
         std::uint64_t h = 0x2545f4914f6cdd1dULL;
         for (const std::int64_t k : key) h = hashCombine(h, k);
-        return std::size_t(mix64(h) % SHARDS);
+        return std::size_t(mix64(h));
     }
-    struct Shard
-    {
-        std::mutex mutex;
-        std::map<Key, std::shared_ptr<const Value>> map;
-        std::deque<Key> order; ///< keys in the order they were stored
-    };
-    mutable Shard mShards[SHARDS];
 };
 
 } // namespace
 
 struct WormCaves::Cache
 {
-    BoundedCache<Key, Region, BUCKET_CACHE_SLOTS / REGION_BUCKETS, 16> regions;
-    BoundedCache<std::array<std::int64_t, 2>, std::vector<Segment>, CELL_CACHE_SLOTS> cells;
+    ShardedByteBoundedCache<Key, Region, 16, ShardOfKey> regions{REGION_CACHE_BYTES};
+    ShardedByteBoundedCache<std::array<std::int64_t, 2>, std::vector<Segment>, 64, ShardOfKey> cells{CELL_CACHE_BYTES};
 };
 
 WormCaves::WormCaves(std::uint64_t seed, const WormOptions& options)
@@ -311,13 +271,12 @@ std::shared_ptr<const std::vector<WormCaves::Segment>> WormCaves::cell(std::int6
     const std::array<std::int64_t, 2> key{cx, cz};
     if (auto found = mCache->cells.find(key)) return found;
     auto segments = std::make_shared<const std::vector<Segment>>(wormsOfCell(cx, cz));
-    mCache->cells.store(key, segments);
-    return segments;
+    return mCache->cells.insert(key, segments, sizeof(*segments) + segments->capacity() * sizeof(Segment));
 }
 
-std::size_t WormCaves::cachedBuckets() const
+std::uint64_t WormCaves::cacheBytes() const
 {
-    return mCache->regions.size() * REGION_BUCKETS;
+    return mCache->regions.stats().bytes + mCache->cells.stats().bytes;
 }
 
 std::vector<WormCaves::Segment> WormCaves::bucketSegments(const Key& key) const
@@ -454,9 +413,9 @@ std::shared_ptr<const WormCaves::Region> WormCaves::region(const Key& regionKey)
             }
         }
     }
-    std::shared_ptr<const Region> result = std::move(region);
-    mCache->regions.store(regionKey, result);
-    return result;
+    std::uint64_t bytes = sizeof(Region);
+    for (const Bucket& b : region->buckets) bytes += b.capacity() * sizeof(Cone);
+    return mCache->regions.insert(regionKey, std::move(region), bytes);
 }
 
 namespace {

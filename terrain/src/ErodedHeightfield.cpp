@@ -5,6 +5,7 @@
 
 #include "ShowValue.h"
 
+#include <strata/ByteBoundedCache.h>
 #include <strata/DeterministicMath.h>
 #include <strata/Error.h>
 #include <strata/IntegerMath.h>
@@ -63,37 +64,31 @@ std::uint64_t hashOptions(const ErodeOptions& o)
     return h;
 }
 
-/// The process-wide cache: the last few evolutions by key. A bake's tiles
-/// and a World's chunks build the scene's node tree once each, or rebuild
-/// it with the same keys: they all share one evolution.
+/// The process-wide cache of evolutions by key, bounded in bytes by the
+/// process's cache limit (strata/CacheMemory.h, --max-memory) and keeping
+/// at least the last one. A bake's tiles and a World's chunks build the
+/// scene's node tree once each, or rebuild it with the same keys: they all
+/// share one evolution.
 class ErosionCache
 {
 public:
-    std::shared_ptr<const ErodedGrid> find(std::uint64_t key)
-    {
-        std::lock_guard<std::mutex> lock(mMutex);
-        for (const auto& [k, grid] : mEntries) {
-            if (k == key) return grid;
-        }
-        return nullptr;
-    }
+    std::shared_ptr<const ErodedGrid> find(std::uint64_t key) { return mGrids.find(key); }
     void add(std::uint64_t key, std::shared_ptr<const ErodedGrid> grid)
     {
-        std::lock_guard<std::mutex> lock(mMutex);
-        mEntries.emplace_back(key, std::move(grid));
-        if (mEntries.size() > 4) mEntries.erase(mEntries.begin());
+        const std::uint64_t bytes = sizeof(ErodedGrid) + grid->heights.capacity() * sizeof(double) +
+                                    grid->masks.capacity() * sizeof(glm::vec4) +
+                                    (grid->blockLo.capacity() + grid->blockHi.capacity()) * sizeof(double);
+        mGrids.insert(key, std::move(grid), bytes);
     }
-    void clear()
-    {
-        std::lock_guard<std::mutex> lock(mMutex);
-        mEntries.clear();
-    }
-    /// Only one evolution at a time per key: a second thread waits for it.
+    void clear() { mGrids.clear(); }
+    /// Only one evolution at a time: a second thread waits for it (and then
+    /// finds it cached), and two passes never hold their work arrays at once.
     std::mutex& running() { return mRunning; }
 
 private:
-    std::mutex mMutex, mRunning;
-    std::vector<std::pair<std::uint64_t, std::shared_ptr<const ErodedGrid>>> mEntries;
+    std::mutex mRunning;
+    // Its own budget is the whole limit: the process limit bounds it.
+    ByteBoundedCache<std::uint64_t, ErodedGrid> mGrids{~std::uint64_t(0), 1};
 };
 
 ErosionCache& cache()

@@ -4,23 +4,23 @@
 #pragma once
 /// \file
 /// The cache of a height node computed in fixed world blocks (erode_detail,
-/// talus): blocks by their (bx, bz) index, bounded in bytes (the oldest are
-/// dropped; a dropped block computed again gives the same bits), plus the
-/// last few blocks each thread used for the node, since neighbouring
-/// columns and a thread's next calls mostly read the same blocks.
+/// talus): blocks by their (bx, bz) index in a ByteBoundedCache (bounded in
+/// bytes and by the process's cache limit, --max-memory; a dropped block
+/// computed again gives the same bits), plus the last few blocks each
+/// thread used for the node, since neighbouring columns and a thread's next
+/// calls mostly read the same blocks.
 ///
 /// `Block` has `std::size_t bytes() const`. Two threads that miss the same
 /// block may both compute it; the first one stored is kept (both are the
 /// same bits: a block is a pure function of its index).
 
+#include <strata/ByteBoundedCache.h>
+
 #include <algorithm>
 #include <atomic>
 #include <cstddef>
 #include <cstdint>
-#include <deque>
-#include <map>
 #include <memory>
-#include <mutex>
 #include <utility>
 
 namespace strata::terrain::detail {
@@ -32,7 +32,7 @@ public:
     /// Keeps blocks up to `byteBudget` bytes, and at least `minBlocks` (the
     /// blocks one query may need together).
     explicit WorldBlockCache(std::size_t byteBudget, std::size_t minBlocks = 4)
-        : mBudget(byteBudget), mMinBlocks(minBlocks), mId(nextId())
+        : mBlocks(byteBudget, minBlocks), mId(nextId())
     {
     }
 
@@ -82,35 +82,17 @@ private:
         if (recent.cache != mId) recent = Recent{mId, {}};
         return recent;
     }
-    std::shared_ptr<const Block> find(std::int64_t bx, std::int64_t bz)
-    {
-        std::lock_guard<std::mutex> lock(mMutex);
-        const auto found = mBlocks.find({bx, bz});
-        return found == mBlocks.end() ? nullptr : found->second;
-    }
+    std::shared_ptr<const Block> find(std::int64_t bx, std::int64_t bz) { return mBlocks.find({bx, bz}); }
     std::shared_ptr<const Block> add(std::int64_t bx, std::int64_t bz, std::shared_ptr<const Block> block)
     {
-        std::lock_guard<std::mutex> lock(mMutex);
-        const auto [at, added] = mBlocks.emplace(std::make_pair(bx, bz), block);
-        if (!added) return at->second;
-        mOrder.emplace_back(bx, bz);
-        mBytes += block->bytes();
-        ++mComputed;
-        while (mOrder.size() > mMinBlocks && mBytes > mBudget) {
-            const auto oldest = mBlocks.find(mOrder.front());
-            mBytes -= oldest->second->bytes();
-            mBlocks.erase(oldest);
-            mOrder.pop_front();
-        }
-        return block;
+        const std::size_t bytes = block->bytes();
+        std::shared_ptr<const Block> kept = mBlocks.insert({bx, bz}, block, bytes);
+        if (kept == block) ++mComputed;
+        return kept;
     }
 
-    const std::size_t mBudget, mMinBlocks;
+    ByteBoundedCache<std::pair<std::int64_t, std::int64_t>, Block> mBlocks;
     const std::uint64_t mId; ///< this cache among all made in the process (threads' recent blocks)
-    std::mutex mMutex;
-    std::map<std::pair<std::int64_t, std::int64_t>, std::shared_ptr<const Block>> mBlocks;
-    std::deque<std::pair<std::int64_t, std::int64_t>> mOrder;
-    std::size_t mBytes = 0;
     std::atomic<std::size_t> mComputed{0};
 };
 

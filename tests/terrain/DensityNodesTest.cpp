@@ -2,6 +2,7 @@
 // SPDX-License-Identifier: MIT
 
 #include <strata/Error.h>
+#include <strata/CacheMemory.h>
 #include <strata/terrain/Caves.h>
 #include <strata/terrain/Csg.h>
 #include <strata/terrain/DifferentialErosion.h>
@@ -438,9 +439,12 @@ TEST(DensityNodes, WormCacheStaysBoundedAndEvictionChangesNothing)
 {
     WormOptions o;
     o.wormsPerCell = 2.0;
+    // The process-wide cache limit (--max-memory) bounds the worm caches
+    // too: under a 1 MiB limit they evict constantly.
+    const std::uint64_t before = strata::cacheMemoryLimit();
+    strata::setCacheMemoryLimit(std::uint64_t(1) << 20);
     const WormCaves streamed(12, o), fresh(12, o);
-    // More 8 m buckets than the cache holds: a 96 × 96 grid of them at
-    // tunnel depth (9216 > BUCKET_CACHE_SLOTS), walked twice.
+    // A 96 × 96 grid of 8 m buckets at tunnel depth (144 regions), walked twice.
     std::vector<double> first;
     for (int pass = 0; pass < 2; ++pass) {
         std::size_t n = 0;
@@ -452,9 +456,11 @@ TEST(DensityNodes, WormCacheStaysBoundedAndEvictionChangesNothing)
                 else ASSERT_EQ(d, first[n]) << "after eviction";
                 ++n;
             }
-        EXPECT_LE(streamed.cachedBuckets(), WormCaves::BUCKET_CACHE_SLOTS);
-        EXPECT_GT(streamed.cachedBuckets(), WormCaves::BUCKET_CACHE_SLOTS / 2);
+        // The limit, give or take the one entry per shard a cache keeps.
+        EXPECT_LE(streamed.cacheBytes(), (std::uint64_t(1) << 20) + (std::uint64_t(1) << 20));
+        EXPECT_GT(streamed.cacheBytes(), 0u);
     }
+    strata::setCacheMemoryLimit(before);
     // A fresh instance, walked backwards (a different cache history), agrees.
     std::size_t n = first.size();
     for (int i = 95; i >= 0; --i)

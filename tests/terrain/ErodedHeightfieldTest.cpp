@@ -5,6 +5,7 @@
 // one evolution per process, smooth read-back, masks, the extremes and
 // errors naming their key.
 
+#include <strata/CacheMemory.h>
 #include <strata/Error.h>
 #include <strata/terrain/ErodedHeightfield.h>
 #include <strata/terrain/NodeRegistry.h>
@@ -121,6 +122,35 @@ TEST(ErodedHeightfield, EvolvesOncePerProcessAndErodesValleys)
     }
     EXPECT_GT(maxFlow, 3.0);
     EXPECT_GT(maxWear, 1.0);
+}
+
+// The evolutions a process keeps are bounded in bytes by the process's
+// cache limit (--max-memory), keeping at least the last one: under a limit
+// that holds one grid, a second evolution drops the first (issue 41: four
+// grids of up to 1.6 GB each were kept whatever the budget). A grid
+// evolved again is the same bits.
+TEST(ErodedHeightfield, KeptEvolutionsStayWithinTheCacheLimit)
+{
+    ErodeOptions a = smallDomain(), b = smallDomain();
+    a.evolution.years = 3.4e5; // keys no other test uses
+    b.evolution.years = 3.6e5;
+    const std::uint64_t before = strata::cacheMemoryLimit();
+    ErodedHeightfield::clearCache();
+    const std::uint64_t empty = strata::cacheMemoryUsed();
+    const ErodedHeightfield firstA(hills(), nullptr, a);
+    const std::uint64_t oneGrid = strata::cacheMemoryUsed() - empty;
+    EXPECT_GT(oneGrid, 65u * 65u * (sizeof(double) + 16u)) << "a 65 x 65 grid's heights and masks";
+    strata::setCacheMemoryLimit(empty + oneGrid + oneGrid / 2);
+    const ErodedHeightfield firstB(hills(), nullptr, b);
+    EXPECT_LE(strata::cacheMemoryUsed(), empty + oneGrid + oneGrid / 2);
+    const ErodedHeightfield againA(hills(), nullptr, a);
+    EXPECT_FALSE(againA.cached()) << "the first grid was kept over the limit";
+    EXPECT_EQ(againA.grid().heights, firstA.grid().heights);
+    strata::setCacheMemoryLimit(before);
+    const ErodedHeightfield againB(hills(), nullptr, b);
+    const ErodedHeightfield thirdA(hills(), nullptr, a);
+    EXPECT_TRUE(thirdA.cached()) << "under the default limit both grids stay";
+    ErodedHeightfield::clearCache();
 }
 
 TEST(ErodedHeightfield, ReadBackIsSmoothAndWithinItsBounds)

@@ -94,13 +94,13 @@ private:
 /// capped at CAP metres (so it is 1-Lipschitz and its own distance bound).
 ///
 /// Segments are gathered lazily into 8 m buckets, built a region of 4³
-/// buckets at a time and kept in a bounded
-/// thread-safe cache (at most BUCKET_CACHE_SLOTS buckets and
-/// CELL_CACHE_SLOTS spawn cells; when full, the oldest entries of a shard
-/// are dropped). The contents of a bucket depend only on its position, so
+/// buckets at a time and kept in thread-safe caches bounded in bytes
+/// (REGION_CACHE_BYTES of regions, CELL_CACHE_BYTES of spawn cells, and the
+/// process's cache limit, strata/CacheMemory.h; the least recently used
+/// go first). The contents of a bucket depend only on its position, so
 /// eviction costs only a rebuild and results are the same on any thread
 /// count and in any order of evaluation. Any region can be evaluated; memory
-/// stays below that many buckets' worth however large it is.
+/// stays within those bytes however large it is.
 struct WormOptions
 {
     double cellSize = 64.0;       ///< metres, > 0: one spawn cell
@@ -145,13 +145,13 @@ public:
     static constexpr int REGION_SHIFT = 2;
     static constexpr int REGION_SIDE = 1 << REGION_SHIFT;
     static constexpr std::size_t REGION_BUCKETS = std::size_t(REGION_SIDE) * REGION_SIDE * REGION_SIDE;
-    /// Capacity of the bucket and cell caches (entries; buckets are cached
-    /// a whole region at a time, BUCKET_CACHE_SLOTS / REGION_BUCKETS regions).
-    static constexpr std::size_t BUCKET_CACHE_SLOTS = 4096;
-    static constexpr std::size_t CELL_CACHE_SLOTS = 512;
-    /// How many buckets the cache holds now (<= BUCKET_CACHE_SLOTS), for
-    /// tests and diagnostics. Locks the cache.
-    std::size_t cachedBuckets() const;
+    /// Budgets of the region and spawn-cell caches, bytes (a region of 64
+    /// buckets weighs about 10-100 KB, a cell's worms a few KB).
+    static constexpr std::uint64_t REGION_CACHE_BYTES = std::uint64_t(32) << 20;
+    static constexpr std::uint64_t CELL_CACHE_BYTES = std::uint64_t(4) << 20;
+    /// The bytes the caches hold now (at most their budgets, plus one entry
+    /// per shard). Locks the caches.
+    std::uint64_t cacheBytes() const;
 
     struct Segment
     {
