@@ -88,7 +88,10 @@ begin=$(now)
 #    instrumented under world_tests, scene_tests and determinism_tests.
 #    By hand: ASAN_SUITES='...|render_tests|meshing_tests' scripts/sanitizers.sh
 ASAN_SUITES=${ASAN_SUITES:-'common_tests|terrain_tests|world_tests|scene_tests|tile_workers_tests|serve_tests|determinism_tests'}
-# Tests of those suites that run in CI's main run only: each takes 2 s or
+# Tests of those suites that run in CI's main run only (23 of them; the
+# shader variants, the CPU renderer's combinations, TerrainLayers,
+# MaterialShading and the meshers' goldens are render_tests' and
+# meshing_tests', named for a run that adds those suites): each takes 2 s or
 # more in Release (3 to 6 times that under ASan) and repeats, on a whole
 # scene or bake, code that the suite's smaller tests run here:
 #  - every shader variant on llvmpipe (Mesa's compiler at work, not Strata;

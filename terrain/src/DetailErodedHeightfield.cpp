@@ -28,8 +28,10 @@ struct DetailErodedHeightfield::Block
 };
 
 // Bounded in bytes, not blocks: a block of 64 cells with the default halo of
-// 24 is 113² floats (51 KiB: about 1,300 fit), one of 1024 cells up to 2049²
-// (16 MiB: the budget still keeps the 4 a query can blend).
+// 24 is 113² floats (50 KiB: about 1,300 fit in the 64 MiB, fewer while the
+// process's caches are over --max-memory), one of 1024 cells up to 2049²
+// (16 MiB: four exceed the 64 MiB, but WorldBlockCache always keeps its 4
+// most recent, as many as a query blends).
 class DetailErodedHeightfield::Cache : public detail::WorldBlockCache<Block>
 {
 public:

@@ -26,9 +26,11 @@
 /// left the view (evicted: reported removed by that poll(), edits stay) or
 /// were split or merged (replaced, below).
 ///
-/// **Look-ahead.** A point of interest that moved since the previous
-/// setPointsOfInterest() (the point with the same index) is heading for the
-/// level-0 chunk its ray of motion enters next. The partition thread also
+/// **Look-ahead.** A point of interest is heading for the level-0 chunk its
+/// ray of motion enters next, along its last move (from the point with the
+/// same index in an earlier setPointsOfInterest()); a point at rest keeps
+/// that direction, and only one that has not moved since the number of
+/// points last changed stays in its own chunk. The partition thread also
 /// computes the resident set for those chunks, and when the pool has no
 /// resident chunk to mesh it meshes the chunks of that set that are not
 /// resident as they will be (new, or with other neighbour levels). When the
