@@ -186,7 +186,7 @@ std::shared_ptr<ErodedGrid> evolve(const std::vector<double>& input, const std::
     g->masks.resize(count);
     const double river = dmath::log10(o.riverArea);
     for (std::size_t i = 0; i < count; ++i) {
-        const double flow = dmath::log10(run.area[i]);
+        const double flow = dmath::log10(run.flowArea[i]);
         const double water = std::max(smoothstep(river - 0.25, river + 0.25, flow), smoothstep(0.0, 0.5, run.lakeDepth[i]));
         g->masks[i] = glm::vec4(float(flow), float(run.wear[i]), float(run.sediment[i]), float(water));
     }
@@ -214,6 +214,7 @@ std::shared_ptr<ErodedGrid> evolve(const std::vector<double>& input, const std::
     }
     g->slopeBound = dmath::hypot(steepX, steepZ) / g->cellSize;
     run.area.clear();
+    run.flowArea.clear();
     run.wear.clear();
     run.sediment.clear();
     run.lakeDepth.clear();

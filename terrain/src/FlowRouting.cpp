@@ -149,6 +149,48 @@ std::vector<double> drainageArea(const FlowRouting& routing, double cellSize)
     return area;
 }
 
+std::vector<double> multipleFlowArea(const FlowRouting& routing, double cellSize, int exponent)
+{
+    if (exponent < 1 || exponent > 8) {
+        throw Error(ErrorKind::BadInput, "multiple flow directions: exponent " + std::to_string(exponent) + " is not in 1..8");
+    }
+    const std::size_t n = routing.receiver.size();
+    const int width = routing.width, height = routing.height;
+    assert(routing.order.size() == n && routing.filled.size() == n);
+    std::vector<double> area(n, cellSize * cellSize);
+    // Interior cells from the highest to the lowest: every donor of a cell
+    // (strictly higher on `filled`) is done before it.
+    for (std::size_t i = n; i-- > 0;) {
+        const std::uint32_t c = routing.order[i];
+        if (routing.receiver[c] == c) continue; // an edge cell: the outlet
+        const int x = int(c % std::uint32_t(width)), z = int(c / std::uint32_t(width));
+        if (x < 1 || x >= width - 1 || z < 1 || z >= height - 1) continue;
+        double weight[8];
+        double total = 0.0;
+        for (int k = 0; k < 8; ++k) {
+            const std::size_t nb = std::size_t(z + NEIGHBOUR_DZ[k]) * std::size_t(width) + std::size_t(x + NEIGHBOUR_DX[k]);
+            double slope = routing.filled[c] - routing.filled[nb];
+            if (NEIGHBOUR_DX[k] != 0 && NEIGHBOUR_DZ[k] != 0) slope *= INV_SQRT2;
+            double w = 0.0;
+            if (slope > 0.0) {
+                w = 1.0;
+                for (int e = 0; e < exponent; ++e) w *= slope;
+                // A drop so small that its power underflows still drains.
+                if (!(w > 0.0)) w = std::numeric_limits<double>::min();
+            }
+            weight[k] = w;
+            total += w;
+        }
+        assert(total > 0.0 && "priority-flood + epsilon leaves every interior cell a lower neighbour");
+        for (int k = 0; k < 8; ++k) {
+            if (weight[k] == 0.0) continue;
+            const std::size_t nb = std::size_t(z + NEIGHBOUR_DZ[k]) * std::size_t(width) + std::size_t(x + NEIGHBOUR_DX[k]);
+            area[nb] += area[c] * (weight[k] / total);
+        }
+    }
+    return area;
+}
+
 double receiverDistance(const FlowRouting& routing, std::size_t cell, double cellSize)
 {
     const std::size_t to = routing.receiver[cell], w = std::size_t(routing.width);

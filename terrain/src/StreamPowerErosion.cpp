@@ -232,6 +232,7 @@ StreamPowerResult evolveLandscape(std::vector<double> heights, int width, int he
 
     routing = routeFlow(heights, width, height, dx);
     r.area = drainageArea(routing, dx);
+    r.flowArea = multipleFlowArea(routing, dx);
     for (std::size_t i = 0; i < count; ++i) r.lakeDepth[i] = routing.filled[i] - heights[i];
     r.heights = std::move(heights);
     return r;

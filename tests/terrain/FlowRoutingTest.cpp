@@ -339,3 +339,71 @@ TEST(FlowRouting, BadInputThrows)
 }
 
 } // namespace
+
+// Multiple flow directions (the erode node's flow and water masks, issue 38:
+// D8 drew rivers as 45° staircases). On a plane falling at 22.5° from the
+// grid's axes, D8 sends every cell's water one way or the other, so the
+// area across the flow jumps from cell to cell; multiple directions split
+// it by slope and the area varies smoothly. Nothing is lost: the edge
+// cells receive the grid's whole area. The same bits twice.
+TEST(FlowRouting, MultipleFlowDirectionsFollowTheTrueGradient)
+{
+    const int n = 64;
+    const double c = std::cos(0.3926990816987241), s = std::sin(0.3926990816987241);
+    std::vector<double> heights(std::size_t(n) * n);
+    for (int z = 0; z < n; ++z)
+        for (int x = 0; x < n; ++x) heights[at(n, x, z)] = 100.0 - (c * x + s * z) * 2.0;
+    const FlowRouting r = routeFlow(heights, n, n, 2.0);
+    const std::vector<double> d8 = drainageArea(r, 2.0);
+    const std::vector<double> mfd = multipleFlowArea(r, 2.0);
+    // Across the flow: the cells of column 48 between rows 12 and 40.
+    // The area there grows with z (longer flow paths from the upper edges):
+    // smoothly with multiple directions (one direction of change), in
+    // alternating jumps with D8.
+    double jumpsD8 = 0.0, jumpsMfd = 0.0;
+    int turnsD8 = 0, turnsMfd = 0;
+    for (int z = 12; z < 40; ++z) {
+        const double a = d8[at(n, 48, z + 1)] - d8[at(n, 48, z)], b = mfd[at(n, 48, z + 1)] - mfd[at(n, 48, z)];
+        jumpsD8 += std::abs(a);
+        jumpsMfd += std::abs(b);
+        if (z > 12) {
+            turnsD8 += (a > 0.0) != (d8[at(n, 48, z)] - d8[at(n, 48, z - 1)] > 0.0);
+            turnsMfd += (b > 0.0) != (mfd[at(n, 48, z)] - mfd[at(n, 48, z - 1)] > 0.0);
+        }
+    }
+    EXPECT_LT(jumpsMfd, 0.1 * jumpsD8) << "D8 " << jumpsD8 << ", multiple directions " << jumpsMfd;
+    EXPECT_LE(turnsMfd, 1);
+    EXPECT_GE(turnsD8, 8);
+    // Conservation: what leaves through the edge is the whole grid.
+    double outlets = 0.0;
+    for (std::size_t i = 0; i < mfd.size(); ++i)
+        if (isEdge(r, i)) outlets += mfd[i];
+    EXPECT_NEAR(outlets, 4.0 * n * n, 1e-9 * 4.0 * n * n);
+    EXPECT_EQ(multipleFlowArea(r, 2.0), mfd);
+    // A larger exponent concentrates the flow: the widest spread of one
+    // cell's water (exponent 1) carries less to the steepest neighbour.
+    const std::vector<double> diffuse = multipleFlowArea(r, 2.0, 1);
+    EXPECT_NE(diffuse, mfd);
+    EXPECT_THROW(multipleFlowArea(r, 2.0, 0), strata::Error);
+    EXPECT_THROW(multipleFlowArea(r, 2.0, 9), strata::Error);
+}
+
+// In a valley the channel gathers nearly what D8 gathers: the valley's
+// mouth (the edge cells around it) and the channel above it carry over 90 %
+// of what D8 sends to its one outlet (the rest leaves the first row of the
+// hillslopes straight over the edge, which D8's one direction never does).
+TEST(FlowRouting, MultipleFlowDirectionsGatherAValleyIntoItsChannel)
+{
+    const int n = 48;
+    std::vector<double> heights(std::size_t(n) * n);
+    // A V-shaped valley along x = 24, falling towards z = 0.
+    for (int z = 0; z < n; ++z)
+        for (int x = 0; x < n; ++x) heights[at(n, x, z)] = 0.5 * z + 2.0 * std::abs(x - 24) + 10.0;
+    const FlowRouting r = routeFlow(heights, n, n, 1.0);
+    const std::vector<double> d8 = drainageArea(r, 1.0), mfd = multipleFlowArea(r, 1.0);
+    double mouth = 0.0;
+    for (int x = 20; x <= 28; ++x) mouth += mfd[at(n, x, 0)];
+    EXPECT_GT(mouth, 0.9 * d8[at(n, 24, 0)]);
+    EXPECT_LE(mouth, d8[at(n, 24, 0)] * (1.0 + 1e-12));
+    EXPECT_GT(mfd[at(n, 24, 1)], 0.9 * d8[at(n, 24, 1)]);
+}

@@ -44,7 +44,11 @@ struct StreamPowerResult
 {
     int width = 0, height = 0;
     std::vector<double> heights;     ///< metres
-    std::vector<double> area;        ///< drainage area at the end, m²
+    std::vector<double> area;        ///< drainage area at the end, m² (D8: what the law eroded with)
+    /// The same water routed in multiple flow directions (multipleFlowArea,
+    /// exponent 4), m²: the flow and water masks, which D8 would draw as 45°
+    /// staircases.
+    std::vector<double> flowArea;
     std::vector<double> wear;        ///< total depth eroded, metres (>= 0)
     std::vector<double> sediment;    ///< sediment lying on the cell at the end, metres (>= 0)
     std::vector<double> lakeDepth;   ///< depth of the filled lake at the end, metres (>= 0)
