@@ -7,7 +7,7 @@
 #include <strata/scene/TerrainExport.h>
 
 #include "BakeManifest.h"
-#include "TileSelection.h"
+#include "TileGrid.h"
 
 #include <strata/Error.h>
 #include <strata/IntegerMath.h>
@@ -22,7 +22,6 @@ namespace strata::scene {
 
 namespace {
 
-constexpr std::int64_t MAX_TILE_VOXELS = 1024;
 constexpr std::int64_t MAX_HEIGHT_VOXELS = 4096;
 constexpr int UNREAL_QUADS[] = {7, 15, 31, 63, 127, 255};
 constexpr int UNREAL_MAX_SECTIONS = 64; // 32 components of 2 × 2 sections per side
@@ -123,23 +122,11 @@ TerrainExportPlan planTerrainExport(const Scene& scene, const TerrainExportOptio
     plan.seed = seed.value_or(scene.terrain.seed);
     const double v = scene.voxelSize;
     const std::string shownSize = formatNumber(tileSize);
-    if (!std::isfinite(tileSize) || tileSize <= 0.0) badFlag("--tile-size", shownSize, "must be a positive number of metres");
-    const double voxels = tileSize / v;
-    plan.tileVoxels = roundToInt<std::int64_t>(voxels);
-    if (plan.tileVoxels < 1 || std::abs(voxels - double(plan.tileVoxels)) > 1e-6 * voxels)
-        badFlag("--tile-size", shownSize, "is not a multiple of the voxel size " + formatNumber(v) + " m");
-    if (plan.tileVoxels > MAX_TILE_VOXELS)
-        badFlag("--tile-size", shownSize,
-                "holds " + std::to_string(plan.tileVoxels) + " voxels; at most " + std::to_string(MAX_TILE_VOXELS));
-    plan.tileSize = double(plan.tileVoxels) * v;
-    const std::int64_t coarse = std::int64_t(1) << (lods - 1);
-    std::array<std::int64_t, 3> maxVoxel{};
-    for (int a = 0; a < 3; ++a) {
-        const std::int64_t lo = floorToInt<std::int64_t>(scene.region.min[a] / v);
-        const std::int64_t hi = ceilToInt<std::int64_t>(scene.region.max[a] / v);
-        plan.minVoxel[a] = floorDiv(lo, coarse) * coarse;
-        maxVoxel[a] = -floorDiv(-hi, coarse) * coarse;
-    }
+    const detail::TileGrid grid = detail::planTileGrid(scene, tileSize, lods);
+    plan.tileVoxels = grid.tileVoxels;
+    plan.tileSize = grid.tileSize;
+    plan.minVoxel = grid.minVoxel;
+    const std::array<std::int64_t, 3> maxVoxel = grid.maxVoxel;
     plan.heightVoxels = std::max<std::int64_t>(maxVoxel[1] - plan.minVoxel[1], 1);
     if (plan.heightVoxels > MAX_HEIGHT_VOXELS)
         throw Error(ErrorKind::BadInput,
