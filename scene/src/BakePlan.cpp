@@ -34,12 +34,17 @@ namespace detail {
 std::string sceneHash(const Scene& scene)
 {
     // The scene text and the contents of every file its terrain reads, so a
-    // changed heightmap is another bake.
+    // changed heightmap is another bake. Each file is named as the scene
+    // names it (relative to the scene's folder): the same scene read through
+    // another path (a cluster node that mounts the share elsewhere, another
+    // working directory) is the same bake.
     std::string identity = scene.text;
+    const std::filesystem::path folder = std::filesystem::path(scene.source).parent_path();
     for (const std::filesystem::path& file : scene.inputFiles) {
+        const std::filesystem::path named = file.lexically_relative(folder);
         // Appended piece by piece: g++ 12 warns falsely (-Wrestrict) on "\n" + string.
         identity += '\n';
-        identity += file.string();
+        identity += (named.empty() ? file : named).generic_string();
         identity += ' ';
         identity += sha256File(file);
     }

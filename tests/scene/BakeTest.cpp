@@ -654,6 +654,36 @@ TEST(Bake, TheCliBakesResumesAndRendersTheWorld)
     EXPECT_NE(mixed.output.find("--seed cannot be used"), std::string::npos) << mixed.output;
 }
 
+// The same scene and heightmap read through another path (a cluster node
+// that mounts the shared folder elsewhere, another working directory) is
+// the same bake: the scene hash names input files as the scene does
+// (issue 43; it hashed the path as given, so a worker refused the folder as
+// "another scene").
+TEST(Bake, TheSameSceneThroughAnotherPathIsTheSameBake)
+{
+    const fs::path dir = test::freshTestDir();
+    fs::create_directories(dir / "share");
+    std::vector<float> pixels(16 * 16, 0.25f);
+    std::unique_ptr<OIIO::ImageOutput> out = OIIO::ImageOutput::create((dir / "share" / "height.tif").string());
+    ASSERT_TRUE(out);
+    ASSERT_TRUE(out->open((dir / "share" / "height.tif").string(), OIIO::ImageSpec(16, 16, 1, OIIO::TypeDesc::FLOAT)));
+    ASSERT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, pixels.data()));
+    out->close();
+    std::ofstream(dir / "share" / "scene.toml") << "[terrain]\nroot = \"land\"\n[terrain.nodes.land]\n"
+                                                   "type = \"image_heightfield\"\nfile = \"height.tif\"\n"
+                                                   "[region]\nmin = [-16.0, -4.0, -16.0]\nmax = [16.0, 12.0, 16.0]\n";
+    fs::create_directory_symlink(dir / "share", dir / "mounted-elsewhere");
+    BakeOptions options = smallBake();
+    const std::string direct = planBake(loadScene(dir / "share" / "scene.toml"), options).sceneHash;
+    const std::string other = planBake(loadScene(dir / "mounted-elsewhere" / "scene.toml"), options).sceneHash;
+    const fs::path before = fs::current_path();
+    fs::current_path(dir / "share");
+    const std::string relative = planBake(loadScene("scene.toml"), options).sceneHash;
+    fs::current_path(before);
+    EXPECT_EQ(other, direct);
+    EXPECT_EQ(relative, direct);
+}
+
 TEST(Bake, AChangedHeightmapIsAnotherBake)
 {
     // The scene hash covers the heightmap's contents, not only the scene
