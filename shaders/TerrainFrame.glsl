@@ -16,7 +16,7 @@ layout(std140, binding = 0) uniform FrameBlock
     float mapScale;       // texture repeats per metre
     int debugView;        // DEBUG_VIEW_* (TriplanarMaterial.h); 0 = shaded
     int wireframePass;    // 1 while drawing the wireframe overlay
-    int reserved;
+    int explicitLod;      // 1: maps sampled at the level of detail computed as the CPU reference does (terrain.frag)
     vec4 detailOffset;    // xyz: fract(floor(origin · mapScale) · detailScale), computed in double
     vec4 tileOffset;      // xyz: floor(origin · mapScale) modulo 256 (anti-tiling's lattice)
 } uFrame;

@@ -59,20 +59,39 @@ float shadowMapDepth(int x, int y)
 
 layout(location = 0) out vec4 fragColor;
 
+// The level of detail of a map of `size` texels sampled with the explicit
+// gradients below, as the GL specification defines it and the CPU reference
+// computes it (render/src/Texture.cpp, textureLod): the larger footprint
+// in texels, lambda = log2 of it. Computed here and sampled with textureLod
+// (uFrame.explicitLod), the GPU's own approximation of lambda (each vendor
+// has one) no longer picks the mip level.
+float mapLod(ivec3 size, vec2 dUVdx, vec2 dUVdy)
+{
+    vec2 x = dUVdx * vec2(size.xy), y = dUVdy * vec2(size.xy);
+    float rho2 = max(dot(x, x), dot(y, y));
+    if (!(rho2 > 0.0)) return -1000.0; // zero or NaN: the finest level
+    if (isinf(rho2)) return 1000.0;
+    return 0.5 * log2(rho2);
+}
+
 // Explicit gradients: the material samples inside branches (skipped
 // projections, top maps), where implicit derivatives are undefined.
+#define STRATA_SAMPLE_MAP(i)                                                                                   \
+    (uFrame.explicitLod != 0                                                                                   \
+         ? textureLod(uMaps[i], vec3(uv, MAP_LAYER), mapLod(textureSize(uMaps[i], 0), dUVdx, dUVdy))          \
+         : textureGrad(uMaps[i], vec3(uv, MAP_LAYER), dUVdx, dUVdy))
 vec4 sampleMap(int map, vec2 uv, vec2 dUVdx, vec2 dUVdy)
 {
     switch (map) {
-    case 0: return textureGrad(uMaps[0], vec3(uv, MAP_LAYER), dUVdx, dUVdy);
-    case 1: return textureGrad(uMaps[1], vec3(uv, MAP_LAYER), dUVdx, dUVdy);
-    case 2: return textureGrad(uMaps[2], vec3(uv, MAP_LAYER), dUVdx, dUVdy);
-    case 3: return textureGrad(uMaps[3], vec3(uv, MAP_LAYER), dUVdx, dUVdy);
-    case 4: return textureGrad(uMaps[4], vec3(uv, MAP_LAYER), dUVdx, dUVdy);
-    case 5: return textureGrad(uMaps[5], vec3(uv, MAP_LAYER), dUVdx, dUVdy);
-    case 6: return textureGrad(uMaps[6], vec3(uv, MAP_LAYER), dUVdx, dUVdy);
-    case 7: return textureGrad(uMaps[7], vec3(uv, MAP_LAYER), dUVdx, dUVdy);
-    default: return textureGrad(uMaps[8], vec3(uv, MAP_LAYER), dUVdx, dUVdy);
+    case 0: return STRATA_SAMPLE_MAP(0);
+    case 1: return STRATA_SAMPLE_MAP(1);
+    case 2: return STRATA_SAMPLE_MAP(2);
+    case 3: return STRATA_SAMPLE_MAP(3);
+    case 4: return STRATA_SAMPLE_MAP(4);
+    case 5: return STRATA_SAMPLE_MAP(5);
+    case 6: return STRATA_SAMPLE_MAP(6);
+    case 7: return STRATA_SAMPLE_MAP(7);
+    default: return STRATA_SAMPLE_MAP(8);
     }
 }
 

@@ -643,6 +643,11 @@ void GlRenderer::draw(const Camera& camera, const Lighting& lighting, unsigned f
     frame.mapScale = r.material.mapScale;
     frame.debugView = int(options.debugView);
     frame.wireframePass = 0;
+    // Without anisotropic filtering the shader picks each map's mip level
+    // itself, with the CPU reference's formula, so a GPU's own approximation
+    // of the level of detail (NVIDIA's differs from llvmpipe's) no longer
+    // decides it; anisotropic filtering needs the GPU's gradient path.
+    frame.explicitLod = r.anisotropy > 1.0f ? 0 : 1;
     glNamedBufferSubData(r.frameBuffer.id(), 0, sizeof(frame), &frame);
     const detail::LightingBlock lightingBlock = detail::toBlock(detail::toShading(lighting));
     glNamedBufferSubData(r.lightingBuffer.id(), 0, sizeof(lightingBlock), &lightingBlock);

@@ -39,7 +39,7 @@ struct FrameBlock
     float mapScale;            // 112
     std::int32_t debugView;    // 116
     std::int32_t wireframePass; // 120
-    std::int32_t reserved;     // 124
+    std::int32_t explicitLod;  // 124: 1 = terrain.frag's own level of detail (textureLod), 0 = the GPU's (textureGrad)
     glm::vec4 detailOffset;    // 128, xyz
     glm::vec4 tileOffset;      // 144, xyz
 };

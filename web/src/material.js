@@ -123,7 +123,7 @@ export function makeUniforms( config, textures ) {
 	const values = {
 		uFrame: {
 			viewProjection: new THREE.Matrix4(), cameraPosition: new THREE.Vector4(), textureOffset: [ 0, 0, 0, 0 ],
-			wireColor: [ 0, 0, 0, 1 ], mapScale: 1, debugView: 0, wireframePass: 0, reserved: 0,
+			wireColor: [ 0, 0, 0, 1 ], mapScale: 1, debugView: 0, wireframePass: 0, explicitLod: 0,
 			detailOffset: [ 0, 0, 0, 0 ], tileOffset: [ 0, 0, 0, 0 ],
 		},
 		uAtmosphere: {
