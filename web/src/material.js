@@ -123,7 +123,10 @@ export function makeUniforms( config, textures ) {
 	const values = {
 		uFrame: {
 			viewProjection: new THREE.Matrix4(), cameraPosition: new THREE.Vector4(), textureOffset: [ 0, 0, 0, 0 ],
-			wireColor: [ 0, 0, 0, 1 ], mapScale: 1, debugView: 0, wireframePass: 0, explicitLod: 0,
+			wireColor: [ 0, 0, 0, 1 ], mapScale: 1, debugView: 0, wireframePass: 0,
+			// The level of detail computed in the shader as the CPU reference does
+			// (terrain.frag mapLod) unless anisotropic filtering needs the GPU's own.
+			explicitLod: ( config.anisotropy || 1 ) > 1 ? 0 : 1,
 			detailOffset: [ 0, 0, 0, 0 ], tileOffset: [ 0, 0, 0, 0 ],
 		},
 		uAtmosphere: {
