@@ -15,6 +15,8 @@
 #include <sys/resource.h>
 
 #include <charconv>
+#include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <iomanip>
@@ -101,6 +103,20 @@ void printLandformPasses(const Scene& scene)
     }
 }
 
+/// "  globe     36.5896° N, 84.2458° W, 600 m (the scene's DEM)", when the
+/// tileset is placed on the Earth.
+void printGeoreference(const Scene& scene, const BakePlan& plan)
+{
+    if (!plan.georeference) return;
+    const Georeference& g = *plan.georeference;
+    char text[160];
+    std::snprintf(text, sizeof(text), "  globe     %.6f° %c, %.6f° %c, %s m (%s)\n", std::abs(g.latitude),
+                  g.latitude < 0.0 ? 'S' : 'N', std::abs(g.longitude), g.longitude < 0.0 ? 'W' : 'E',
+                  formatNumber(g.height).c_str(),
+                  scene.georeference && *scene.georeference == g ? "the scene's DEM" : "--georeference");
+    std::cout << text;
+}
+
 int printPlan(const Scene& scene, const BakeOptions& options, const BakePlan& plan, int perWorker)
 {
     const int tiles = plan.tileCount();
@@ -110,6 +126,7 @@ int printPlan(const Scene& scene, const BakeOptions& options, const BakePlan& pl
               << (plan.counts[1] > 1 ? " × " + std::to_string(plan.counts[1]) + " slabs" : std::string()) << ", "
               << plan.lods << " levels: " << tiles << " tiles\n  workers   " << workers << " (" << perWorker
               << " tiles each, --tiles-per-worker " << perWorker << ")" << std::endl;
+    printGeoreference(scene, plan);
     printLandformPasses(scene);
     const BakeSample sample = sampleBakeTile(scene, options, plan);
     const std::uint64_t peak = peakResidentBytes();
@@ -267,6 +284,7 @@ Command registerBakeCommand(CLI::App& app)
                               << " tiles of " << formatNumber(plan.tileSize) << " m, " << plan.lods << " levels, "
                               << plan.selected.size() << " selected, about "
                               << mebibytes(plan.tileMemoryBytes) << " per tile" << std::endl;
+                    printGeoreference(scene, plan);
                     printLandformPasses(scene);
                 }
                 const BakeSummary summary = scene::bake(scene, options, plan, &progress);

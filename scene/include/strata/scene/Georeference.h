@@ -23,6 +23,8 @@ struct Georeference
     double latitude = 0.0;  ///< degrees north, [−90, 90]
     double longitude = 0.0; ///< degrees east, [−180, 180]
     double height = 0.0;    ///< metres above the WGS84 ellipsoid, [−100 km, 10,000 km]
+
+    bool operator==(const Georeference&) const = default;
 };
 
 /// Parses "LAT,LON,HEIGHT" (three decimal numbers, commas, no spaces
