@@ -45,6 +45,31 @@ EditSnapshot::EditSnapshot()
 {
 }
 
+EditSnapshot::~EditSnapshot()
+{
+    // A snapshot holds a chunk's few leaves and dies inside a chunk task.
+    // Tree's own destructor frees nodes with a tbb::parallel_for, which
+    // there only spreads a handful of deletes over workers that are busy
+    // with other chunks, and leaves a TBB join node on this worker's stack
+    // written by another thread through libtbb's (uninstrumented)
+    // synchronisation: ThreadSanitizer then reports the next task's stack
+    // variables at that address (a CI run failed so). Freed here, in order.
+    mAccessor.reset();
+    if (!mTree) return;
+    using Leaf = openvdb::FloatTree::LeafNodeType;
+    using Lower = openvdb::FloatTree::RootNodeType::ChildNodeType::ChildNodeType;
+    using Upper = openvdb::FloatTree::RootNodeType::ChildNodeType;
+    std::vector<Leaf*> leaves;
+    mTree->stealNodes(leaves);
+    for (Leaf* leaf : leaves) delete leaf;
+    std::vector<Lower*> lower;
+    mTree->stealNodes(lower);
+    for (Lower* node : lower) delete node;
+    std::vector<Upper*> upper;
+    mTree->stealNodes(upper);
+    for (Upper* node : upper) delete node;
+}
+
 bool EditSnapshot::overlaps(const CoordBBox& box) const
 {
     for (const CoordBBox& leaf : mLeafBoxes)

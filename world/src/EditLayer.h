@@ -29,6 +29,9 @@ class EditSnapshot
 {
 public:
     EditSnapshot();
+    ~EditSnapshot();
+    EditSnapshot(const EditSnapshot&) = delete;
+    EditSnapshot& operator=(const EditSnapshot&) = delete;
     bool empty() const { return mLeafBoxes.empty(); }
     /// Does any copied leaf overlap `box` (voxel coordinates)?
     bool overlaps(const openvdb::CoordBBox& box) const;
