@@ -7,6 +7,7 @@
 #include <strata/Format.h>
 
 #include <algorithm>
+#include <bit>
 #include <cassert>
 #include <cmath>
 #include <limits>
@@ -38,6 +39,14 @@ struct PopsLater
     }
 };
 
+/// std::nextafter(x, +inf) for a finite x, from its bits (no call into libm).
+double nextUp(double x)
+{
+    if (x == 0.0) return std::numeric_limits<double>::denorm_min();
+    const std::uint64_t bits = std::bit_cast<std::uint64_t>(x);
+    return std::bit_cast<double>(x > 0.0 ? bits + 1 : bits - 1);
+}
+
 void checkInput(const std::vector<double>& heights, int width, int height, double cellSize)
 {
     if (width < 1 || height < 1)
@@ -64,13 +73,20 @@ void checkInput(const std::vector<double>& heights, int width, int height, doubl
 
 FlowRouting routeFlow(const std::vector<double>& heights, int width, int height, double cellSize)
 {
+    FlowRouting r;
+    routeFlow(heights, width, height, cellSize, r);
+    return r;
+}
+
+void routeFlow(const std::vector<double>& heights, int width, int height, double cellSize, FlowRouting& r)
+{
     checkInput(heights, width, height, cellSize);
     const std::size_t n = std::size_t(width) * std::size_t(height);
-    FlowRouting r;
     r.width = width;
     r.height = height;
-    r.filled = heights;
+    r.filled = heights; // into the existing buffers where they are large enough
     r.receiver.resize(n);
+    r.order.clear();
     r.order.reserve(n);
     for (std::size_t i = 0; i < n; ++i) r.receiver[i] = std::uint32_t(i);
 
@@ -87,7 +103,7 @@ FlowRouting routeFlow(const std::vector<double>& heights, int width, int height,
             seeds.push_back({heights[c], c});
         }
     }
-    if (width <= 2 || height <= 2) return r; // every cell is an edge cell
+    if (width <= 2 || height <= 2) return; // every cell is an edge cell
 
     // Priority-flood + epsilon (Barnes, Lehman and Mulla 2014). A cell is
     // pushed above its popped neighbour by at least one representable step,
@@ -99,7 +115,7 @@ FlowRouting routeFlow(const std::vector<double>& heights, int width, int height,
         open.pop();
         const int x = int(top.index % std::uint32_t(width)), z = int(top.index / std::uint32_t(width));
         if (x != 0 && x != width - 1 && z != 0 && z != height - 1) r.order.push_back(top.index);
-        const double raised = std::nextafter(top.filled, std::numeric_limits<double>::infinity());
+        const double raised = nextUp(top.filled);
         for (int k = 0; k < 8; ++k) {
             const int nx = x + NEIGHBOUR_DX[k], nz = z + NEIGHBOUR_DZ[k];
             if (nx < 0 || nx >= width || nz < 0 || nz >= height) continue;
@@ -134,19 +150,24 @@ FlowRouting routeFlow(const std::vector<double>& heights, int width, int height,
             r.receiver[c] = to;
         }
     }
-    return r;
 }
 
 std::vector<double> drainageArea(const FlowRouting& routing, double cellSize)
 {
+    std::vector<double> area;
+    drainageArea(routing, cellSize, area);
+    return area;
+}
+
+void drainageArea(const FlowRouting& routing, double cellSize, std::vector<double>& area)
+{
     const std::size_t n = routing.receiver.size();
     assert(routing.order.size() == n);
-    std::vector<double> area(n, cellSize * cellSize);
+    area.assign(n, cellSize * cellSize);
     for (std::size_t i = n; i-- > 0;) {
         const std::uint32_t c = routing.order[i], to = routing.receiver[c];
         if (to != c) area[to] += area[c];
     }
-    return area;
 }
 
 std::vector<double> multipleFlowArea(const FlowRouting& routing, double cellSize, int exponent)

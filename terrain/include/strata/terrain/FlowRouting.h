@@ -47,10 +47,16 @@ struct FlowRouting
 /// or a non-finite height (naming the cell).
 FlowRouting routeFlow(const std::vector<double>& heights, int width, int height, double cellSize);
 
+/// The same into `into`, reusing its buffers: for loops that route a grid
+/// of one size again and again (the landscape evolution routes every step).
+void routeFlow(const std::vector<double>& heights, int width, int height, double cellSize, FlowRouting& into);
+
 /// Drainage area in square metres per cell: its own cell (cellSize²) plus
 /// everything that drains through it. The edge cells' areas add up to the
 /// grid's area. O(n).
 std::vector<double> drainageArea(const FlowRouting& routing, double cellSize);
+/// The same into `area`, reusing its buffer.
+void drainageArea(const FlowRouting& routing, double cellSize, std::vector<double>& area);
 
 /// Drainage area in square metres per cell, routed in multiple flow
 /// directions (Freeman 1991; Holmgren 1994): each interior cell passes its
