@@ -423,7 +423,7 @@ namespace {
 /// The bucket of `p`; beyond ±2^62 buckets (BlockEvaluation's 1e300 m
 /// column) the index saturates instead of overflowing the conversion
 /// (undefined behaviour, found by UBSan over terrain_tests).
-WormCaves::Key bucketKey(const glm::dvec3& p)
+std::array<std::int64_t, 3> bucketKey(const glm::dvec3& p) // a WormCaves::Key
 {
     return {detail::latticeIndex(std::floor(p.x / BUCKET_SIZE)), detail::latticeIndex(std::floor(p.y / BUCKET_SIZE)),
             detail::latticeIndex(std::floor(p.z / BUCKET_SIZE))};

@@ -10,6 +10,7 @@
 #include <strata/terrain/Noise.h>
 
 #include "NoiseHash.h"
+#include "WormCavesInspector.h"
 
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
@@ -26,8 +27,9 @@ using namespace strata::terrain;
 
 namespace {
 
-using Segment = WormCaves::Segment;
-using Key = WormCaves::Key;
+using detail::WormCavesInspector;
+using Segment = WormCavesInspector::Segment;
+using Key = WormCavesInspector::Key;
 
 double reachOf(const WormOptions& o)
 {
@@ -55,7 +57,7 @@ std::vector<Segment> perBucketRule(const WormCaves& worms, const WormOptions& o,
     const auto cellOf = [&](double v) { return saturated(std::floor(v / o.cellSize)); };
     for (std::int64_t cx = cellOf(lo.x - margin); cx <= cellOf(hi.x + margin); ++cx)
         for (std::int64_t cz = cellOf(lo.z - margin); cz <= cellOf(hi.z + margin); ++cz)
-            for (const Segment& s : worms.wormsOfCell(cx, cz)) {
+            for (const Segment& s : WormCavesInspector::wormsOfCell(worms, cx, cz)) {
                 const double r = std::max(s.ra, s.rb);
                 const glm::dvec3 smin = glm::min(s.a, s.b) - r, smax = glm::max(s.a, s.b) + r;
                 const glm::dvec3 gap = glm::max(glm::max(smin - hi, lo - smax), 0.0);
@@ -111,7 +113,7 @@ void checkBuckets(const WormCaves& worms, const WormOptions& o, const Key& from,
             for (std::int64_t k = 0; k < size[2]; ++k) {
                 const Key key{from[0] + i, from[1] + j, from[2] + k};
                 const std::vector<Segment> expected = perBucketRule(worms, o, key);
-                const std::vector<Segment> got = worms.bucketSegments(key);
+                const std::vector<Segment> got = WormCavesInspector::bucketSegments(worms, key);
                 ++stats.buckets;
                 stats.nonEmpty += !expected.empty();
                 stats.segments += expected.size();
@@ -197,9 +199,9 @@ TEST(WormBuckets, TheSameBitsFromAnyRegionOrder)
         for (std::int64_t j = -4; j < 1; ++j)
             for (std::int64_t k = -9; k < 9; k += 3) keys.push_back({i, j, k});
     std::vector<std::vector<Segment>> first;
-    for (const Key& key : keys) first.push_back(forward.bucketSegments(key));
+    for (const Key& key : keys) first.push_back(WormCavesInspector::bucketSegments(forward, key));
     for (std::size_t n = keys.size(); n-- > 0;) {
-        const std::vector<Segment> got = backward.bucketSegments(keys[n]);
+        const std::vector<Segment> got = WormCavesInspector::bucketSegments(backward, keys[n]);
         ASSERT_EQ(got.size(), first[n].size());
         for (std::size_t m = 0; m < got.size(); ++m) ASSERT_TRUE(sameSegment(got[m], first[n][m]));
     }
@@ -220,7 +222,7 @@ TEST(WormBuckets, WormStartsDrawTheirCoordinatesInAFixedOrder)
     int checked = 0;
     for (const std::int64_t cx : {-3, 0, 5})
         for (const std::int64_t cz : {-1, 2}) {
-            const std::vector<WormCaves::Segment> segments = worms.wormsOfCell(cx, cz);
+            const std::vector<Segment> segments = WormCavesInspector::wormsOfCell(worms, cx, cz);
             ASSERT_EQ(segments.size(), std::size_t(options.segments)) << "one worm per cell";
             const std::uint64_t cell =
                 strata::terrain::detail::hashCombine(

@@ -7,9 +7,9 @@
 // world's bytes or a printed statistic: libm's differ between C libraries
 // and between glibc's builds for CPUs with and without FMA (issue 39).
 // Compiled with -ffp-contract=off (as the whole project), so the same bits
-// on every compiler and CPU. Accurate to a few ulps
-// (tests/common/DeterministicMathTest.cpp asserts the bounds against long
-// double): the point is the same bits everywhere, not the last ulp.
+// on every compiler and CPU. Accurate to a few ulps (the bounds below are
+// checked against long double): the point is the same bits everywhere,
+// not the last ulp.
 
 #include <strata/IntegerMath.h>
 

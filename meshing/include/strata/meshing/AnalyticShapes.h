@@ -5,7 +5,7 @@
 /// \file
 /// Analytic reference shapes with exact (or first-order) signed distances and
 /// gradients, and narrow-band level sets sampled from them: the ground truth
-/// for measuring meshers (SurfaceError.h), in tests and in `strata bench mesh`.
+/// for measuring meshers (SurfaceError.h), as `strata bench mesh` does.
 
 #include <strata/meshing/GridNormals.h>
 #include <strata/meshing/SurfaceError.h>

@@ -4,7 +4,7 @@
 #pragma once
 /// \file
 /// An OpenGL 4.5 core context with a window, through GLFW (X11 on Linux;
-/// under a headless test, `xvfb-run -a`).
+/// without a display, `xvfb-run -a`).
 
 #include <strata/render/GlContext.h>
 #include <strata/render/Image.h>

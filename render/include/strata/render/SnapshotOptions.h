@@ -75,8 +75,8 @@ struct SnapshotOptions
     /// (Texture.h): trilinear (default) or bilinear in the nearest mip level.
     TextureFilter filtering = TextureFilter::Trilinear;
     /// CPU renderer: the log2 of its level of detail, exact as the GL
-    /// specification defines it (default) or llvmpipe's approximation (the
-    /// tests that hold the CPU to llvmpipe bit for bit). GL ignores it.
+    /// specification defines it (default) or llvmpipe's approximation (to
+    /// hold the CPU to llvmpipe bit for bit). GL ignores it.
     LodLog2 cpuLodLog2 = LodLog2::Exact;
     Camera camera;
     Lighting lighting;

@@ -141,8 +141,7 @@ enum class LodLog2
     /// Mesa llvmpipe's approximation (lp_build_fast_log2): log2(m·2^e) ≈
     /// e + m − 1 for m in [1, 2), exact at powers of two, linear between, at
     /// most 0.086 below the true value. The GL spec allows it; matching the
-    /// CI's driver makes the trilinear blend the same on both renderers
-    /// (tests/render/ShadingProbeTest.cpp).
+    /// CI's driver makes the trilinear blend the same on both renderers.
     Llvmpipe,
 };
 

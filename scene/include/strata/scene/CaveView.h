@@ -24,7 +24,7 @@ struct CaveViewOptions
     double fovYDegrees = 75.0;
 };
 
-/// What findCaveView() found, for reports and tests.
+/// What findCaveView() found, for reports.
 struct CaveView
 {
     render::Camera camera;

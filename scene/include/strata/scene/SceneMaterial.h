@@ -86,7 +86,7 @@ struct LayerSettings
     std::string where; ///< "FILE:LINE: layer[N]"
 };
 
-/// The rule keys of a [[layer]] table, for documentation and tests.
+/// The rule keys of a [[layer]] table, for documentation and tools.
 inline constexpr const char* LAYER_RULE_KEYS[] = {
     "altitude_min",   "altitude_max",    "altitude_softness",   "slope_min",  "slope_max", "slope_softness",
     "cavity_min",     "cavity_max",      "cavity_softness",     "cover_min",  "cover_max", "cover_softness",

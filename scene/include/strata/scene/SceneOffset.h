@@ -3,8 +3,8 @@
 
 #pragma once
 /// \file
-/// `--offset X,Y,Z`: the whole scene moved in the world (large-world tests
-/// and far-out chunks): its density field, sampled region and camera.
+/// `--offset X,Y,Z`: the whole scene moved in the world (large-world
+/// checks and far-out chunks): its density field, sampled region and camera.
 
 #include <strata/scene/Scene.h>
 #include <strata/scene/Snapshot.h>

@@ -22,7 +22,7 @@
 /// file. A folder serves its index.html, or 404: there is no listing.
 ///
 /// Usage: construct (binds the port), print url(), run() on one thread,
-/// stop() from another (a signal watcher, a test).
+/// stop() from another (a signal watcher).
 
 #include <cstddef>
 #include <cstdint>
@@ -80,7 +80,7 @@ struct FileServerOptions
     std::size_t compressedCacheBytes = std::size_t(64) << 20;
 };
 
-/// What the server did since it was constructed (for tests and a log).
+/// What the server did since it was constructed (for a log or monitoring).
 struct FileServerStats
 {
     std::uint64_t compressions = 0;     ///< files read and gzipped (a GET that found no cached body)

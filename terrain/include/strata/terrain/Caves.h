@@ -101,6 +101,10 @@ private:
 /// eviction costs only a rebuild and results are the same on any thread
 /// count and in any order of evaluation. Any region can be evaluated; memory
 /// stays within those bytes however large it is.
+namespace detail {
+class WormCavesInspector;
+}
+
 struct WormOptions
 {
     double cellSize = 64.0;       ///< metres, > 0: one spawn cell
@@ -153,6 +157,12 @@ public:
     /// per shard). Locks the caches.
     std::uint64_t cacheBytes() const;
 
+private:
+    /// Reads the buckets and spawn cells below (terrain/src/WormCavesInspector.h,
+    /// not installed): the bucket layout is internal, checked against the
+    /// per-bucket rule from outside.
+    friend class detail::WormCavesInspector;
+
     struct Segment
     {
         glm::dvec3 a, b;
@@ -161,11 +171,9 @@ public:
     using Key = std::array<std::int64_t, 3>; ///< a bucket: floor(p / 8 m)
     /// The segments of all worms spawned in cell (cx, cz), in order.
     std::vector<Segment> wormsOfCell(std::int64_t cx, std::int64_t cz) const;
-    /// The segments of bucket `key`, in the order density() visits them
-    /// (for tests: they compare it with the per-bucket rule).
+    /// The segments of bucket `key`, in the order density() visits them.
     std::vector<Segment> bucketSegments(const Key& key) const;
 
-private:
     struct Cone ///< a segment with its bounding sphere, for quick rejection
     {
         Segment s;

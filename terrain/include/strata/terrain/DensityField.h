@@ -59,7 +59,7 @@ public:
     virtual double density(const glm::dvec3& p) const = 0;
 
     /// density() at every point of `points`, into out[0, count): the same
-    /// bits as density() point by point (tests check it node by node), in
+    /// bits as density() point by point (checked node by node), in
     /// one virtual call per node and block instead of one per point. Nodes
     /// override it to share work across the block: lattice hashes of noise
     /// cells, a heightfield's columns, a cave's segment list, a CSG child

@@ -48,7 +48,7 @@ public:
     /// The child's bounds widened by maxDepth.
     Interval heightBounds(const glm::dvec2& min, const glm::dvec2& max) const override;
 
-    /// Blocks computed so far by this node (for benchmarks and tests).
+    /// Blocks computed so far by this node (a diagnostic of its cache).
     std::size_t blocksComputed() const;
 
 private:

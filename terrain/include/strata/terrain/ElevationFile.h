@@ -62,7 +62,7 @@ ElevationGrid readElevationFile(const std::filesystem::path& path);
 
 /// Parses the bytes of a DEM file; `name` is the file named in error
 /// messages. What readElevationFile() does after reading the file (for
-/// tests and fuzzing). Throws like it.
+/// bytes from elsewhere, and fuzzing). Throws like it.
 ElevationGrid parseElevationFile(std::string_view bytes, const std::string& name);
 
 } // namespace strata::terrain

@@ -41,8 +41,8 @@ inline constexpr double VALUE_NOISE_LIPSCHITZ_2D = 5.3034;
 float simplexNoise(std::uint64_t seed, const glm::dvec3& p);
 float simplexNoise(std::uint64_t seed, const glm::dvec2& p);
 /// Upper bound of |∇ simplexNoise|, noise units: corners × the largest
-/// kernel gradient (computed once, analytically per corner; NoiseTest checks
-/// it numerically). Rigorous but about 5× the largest gradient measured.
+/// kernel gradient (computed once, analytically per corner; checked
+/// numerically). Rigorous but about 5× the largest gradient measured.
 double simplexNoiseLipschitz(int dimensions);
 
 /// Cellular (Worley) noise: one feature point per lattice cell, placed by

@@ -83,7 +83,7 @@ private:
 /// Upper bound of |∇ gradientNoise| (3D) in noise units. It is the exact
 /// supremum: at a cell centre, when all 8 corner gradients line up, the
 /// gradient is 8 · 30/16 · 1/4 = 3.75 (an exhaustive search over all gradient
-/// assignments finds no larger value; NoiseTest checks it numerically).
+/// assignments finds no larger value; checked numerically too).
 inline constexpr double GRADIENT_NOISE_LIPSCHITZ = 3.75;
 
 /// Upper bound of |∇ gradientNoise| (2D) in noise units (supremum 2.8323,

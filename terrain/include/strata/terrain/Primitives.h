@@ -3,7 +3,7 @@
 
 #pragma once
 /// \file
-/// Exact signed-distance primitives for edits and tests: sphere (in
+/// Exact signed-distance primitives for edits and reference shapes: sphere (in
 /// DensityField.h), box, capsule and half-space. All lengths in world metres;
 /// negative inside. Each is 1-Lipschitz and its density is its own distance
 /// bound.

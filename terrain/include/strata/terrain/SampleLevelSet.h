@@ -62,7 +62,7 @@ struct SampleOptions
 struct SampleStats
 {
     std::uint64_t evaluatedPoints = 0;  ///< density() calls + bounds() calls
-    std::uint64_t boundEvaluations = 0; ///< of those, bounds() calls (pruning tests)
+    std::uint64_t boundEvaluations = 0; ///< of those, bounds() calls (how hard pruning worked)
     std::uint64_t activeVoxels = 0;
     std::uint64_t tilesVisited = 0;    ///< 8³ leaf tiles overlapping the region
     std::uint64_t tilesSkipped = 0;    ///< of those, tiles pruned whole by their interval bound

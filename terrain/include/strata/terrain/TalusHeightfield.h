@@ -85,7 +85,7 @@ public:
     /// Lattice steps a cone pass reaches (R above); a block's window is
     /// block + 12R + 1 nodes a side.
     int reach() const { return mReach; }
-    /// Blocks computed so far (for benchmarks and tests).
+    /// Blocks computed so far (a diagnostic of its cache).
     std::size_t blocksComputed() const;
 
 private:

@@ -34,7 +34,7 @@ struct HeightfieldOptions
 /// keeps the density 1-Lipschitz but underestimates the distance to a tunnel
 /// about tenfold: the sampled narrow band around tunnels is wide, and
 /// sampling cost grows with the tunnel count (shorter wavelength, more
-/// octaves, larger squash all cost more; see TerrainFieldTest).
+/// octaves, larger squash all cost more).
 ///
 /// Defaults: with seed 1, the default scene's region (x, z in [−96, 96],
 /// y in [−44, 44]) holds dozens of openings to the surface.

@@ -101,8 +101,8 @@
 /// the world's partition thread); an edit costs the
 /// evaluation of its band of samples on the calling thread and the pool
 /// (measured on the default terrain: 0.4 ms for a 2 m sphere, 7.5 ms for a
-/// 10 m one); queries evaluate the field directly and never wait for meshes. waitIdle() is the one blocking call (for tests and
-/// tools). Only the destructor must not run concurrently with other calls;
+/// 10 m one); queries evaluate the field directly and never wait for meshes. waitIdle() is the one blocking call (for tools and
+/// batch jobs). Only the destructor must not run concurrently with other calls;
 /// it cancels queued tasks and waits for running ones.
 ///
 /// **Determinism.** A chunk mesh is a pure function of the field, the edits,
@@ -153,7 +153,7 @@ struct WorldOptions
     /// latency drops about tenfold. 0 = no cache; `levels` = all levels.
     int sampleCacheLevels = 1;
     /// 0: schedule chunks nearest first. Other values: in a pseudo-random
-    /// order drawn from this seed (a testing aid: results never depend on it).
+    /// order drawn from this seed (to exercise other orders: results never depend on it).
     std::uint64_t taskOrderSeed = 0;
     /// Last, so brace-initialised options written before it keep their
     /// meaning. Landform masks (an `erode` node: flow, wear, deposition, water) to
@@ -213,7 +213,7 @@ public:
     /// replacement waits to be handed out by poll().
     bool idle() const;
     /// Blocks until idle() (keeps scheduling meanwhile); the updates wait for
-    /// poll(). For tests, tools and benchmarks.
+    /// poll(). For tools, batch jobs and benchmarks.
     void waitIdle();
 
     /// Applies an edit (see the file comment). Throws strata::Error on an
