@@ -2,6 +2,7 @@
 // SPDX-License-Identifier: MIT
 
 #include <strata/AtomicFile.h>
+#include <strata/detail/Mix64.h>
 
 #include <atomic>
 #include <cerrno>
@@ -84,13 +85,8 @@ extern "C" void cleanupTemporariesOnSignal(int sig)
     ::raise(sig); // pending until the handler returns, then the default action
 }
 
-std::uint64_t mix(std::uint64_t x)
-{
-    x += 0x9e3779b97f4a7c15ull;
-    x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ull;
-    x = (x ^ (x >> 27)) * 0x94d049bb133111ebull;
-    return x ^ (x >> 31);
-}
+/// One splitmix64 output.
+std::uint64_t mix(std::uint64_t x) { return strata::detail::mix64(x + strata::detail::SPLITMIX64_STEP); }
 
 [[noreturn]] void throwIo(const fs::path& target, const std::string& what, int error)
 {

@@ -6,6 +6,8 @@
 /// Internal: the integer hashing and interpolation helpers shared by the noise
 /// sources (not installed).
 
+#include <strata/detail/Mix64.h>
+
 #include <cmath>
 #include <cstdint>
 
@@ -14,16 +16,7 @@
 
 namespace strata::terrain::detail {
 
-/// splitmix64's finaliser: a bijective 64-bit mixer with full avalanche.
-inline std::uint64_t mix64(std::uint64_t h)
-{
-    h ^= h >> 30;
-    h *= 0xbf58476d1ce4e5b9ULL;
-    h ^= h >> 27;
-    h *= 0x94d049bb133111ebULL;
-    h ^= h >> 31;
-    return h;
-}
+using strata::detail::mix64; // common/include/strata/detail/Mix64.h
 
 /// Folds one lattice coordinate into a running hash. Mixing after every
 /// coordinate (rather than summing multiples of the coordinates) leaves no

@@ -2,6 +2,7 @@
 // SPDX-License-Identifier: MIT
 
 #include "ChunkScheduler.h"
+#include <strata/detail/Mix64.h>
 #include <strata/detail/TsanHandOver.h>
 
 #include <algorithm>
@@ -14,15 +15,7 @@ using strata::detail::tsanUncheckedRead;
 
 namespace {
 
-std::uint64_t mix(std::uint64_t h)
-{
-    h ^= h >> 33;
-    h *= 0xff51afd7ed558ccdull;
-    h ^= h >> 33;
-    h *= 0xc4ceb9fe1a85ec53ull;
-    h ^= h >> 33;
-    return h;
-}
+using strata::detail::mix64;
 
 } // namespace
 
@@ -45,10 +38,11 @@ ChunkScheduler::ChunkScheduler(std::shared_ptr<const terrain::DensityField> fiel
 double ChunkScheduler::order(const ChunkKey& key, double distance) const
 {
     if (mParams.taskOrderSeed == 0) return distance;
-    const std::uint64_t h = mix(mParams.taskOrderSeed ^ mix(std::uint64_t(key.level) * 0x9e3779b97f4a7c15ull ^
-                                                        mix(std::uint64_t(std::uint32_t(key.x)) << 32 ^
-                                                            std::uint64_t(std::uint32_t(key.y))) ^
-                                                        std::uint64_t(std::uint32_t(key.z))));
+    const std::uint64_t h =
+        mix64(mParams.taskOrderSeed ^ mix64(std::uint64_t(key.level) * strata::detail::SPLITMIX64_STEP ^
+                                            mix64(std::uint64_t(std::uint32_t(key.x)) << 32 ^
+                                                  std::uint64_t(std::uint32_t(key.y))) ^
+                                            std::uint64_t(std::uint32_t(key.z))));
     return double(h >> 11);
 }
 
