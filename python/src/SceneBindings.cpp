@@ -89,9 +89,10 @@ py::dict buildMaps(const MaterialSettings& settings)
     return maps;
 }
 
-} // namespace
+using SceneClass = py::class_<Scene, std::shared_ptr<Scene>>;
 
-void bindScene(py::module_& m)
+/// strata.MaterialSettings: a material as the scene file gave it.
+void bindMaterialSettings(py::module_& m)
 {
     py::class_<MaterialSettings, std::shared_ptr<MaterialSettings>>(
         m, "MaterialSettings",
@@ -149,11 +150,12 @@ void bindScene(py::module_& m)
             return "<strata.MaterialSettings '" + s.name + "' side='" + s.side + "' top='" + s.top + "' layers=" +
                    std::to_string(s.layers.size()) + ">";
         });
+}
 
-    py::class_<Scene, std::shared_ptr<Scene>>(m, "Scene",
-                                              "A parsed scene file: the terrain's node tree, region, sampling, material,\n"
-                                              "lighting and camera. Read-only; sample(), bake() and World take it.")
-        .def_readonly("source", &Scene::source, "the file it was read from, or '<default scene>'")
+/// Scene's source, seed, sampling, region, input files and georeference.
+void bindSceneSource(SceneClass& cls)
+{
+    cls.def_readonly("source", &Scene::source, "the file it was read from, or '<default scene>'")
         .def_readonly("text", &Scene::text, "the TOML text")
         .def_property_readonly("seed", [](const Scene& s) { return s.terrain.seed; })
         .def_readonly("voxel_size", &Scene::voxelSize, "metres")
@@ -169,8 +171,13 @@ void bindScene(py::module_& m)
         .def_property_readonly("georeference", [](const Scene& s) -> py::object {
             if (!s.georeference) return py::none();
             return py::make_tuple(s.georeference->latitude, s.georeference->longitude, s.georeference->height);
-        }, "(latitude, longitude, height) of the scene's origin from a georeferenced DEM (dem_heightfield), or None")
-        .def_property_readonly("camera", [](const Scene& s) {
+        }, "(latitude, longitude, height) of the scene's origin from a georeferenced DEM (dem_heightfield), or None");
+}
+
+/// Scene's camera, snapshot, lighting and quality tables, as dicts.
+void bindSceneViewSettings(SceneClass& cls)
+{
+    cls.def_property_readonly("camera", [](const Scene& s) {
             py::dict d;
             d["azimuth"] = s.camera.azimuth;
             d["elevation"] = s.camera.elevation;
@@ -205,8 +212,13 @@ void bindScene(py::module_& m)
             d["preset"] = s.quality.preset ? py::object(py::str(*s.quality.preset)) : py::none();
             d["knobs"] = s.quality.knobs;
             return d;
-        }, "the scene's [quality] table: its preset (or None) and knob overrides")
-        .def_property_readonly("material", [](const Scene& s) { return std::make_shared<MaterialSettings>(s.material); })
+        }, "the scene's [quality] table: its preset (or None) and knob overrides");
+}
+
+/// Scene's material, density field and the erode/beds passes behind it.
+void bindSceneTerrain(SceneClass& cls)
+{
+    cls.def_property_readonly("material", [](const Scene& s) { return std::make_shared<MaterialSettings>(s.material); })
         .def_property_readonly("field", [](const Scene& s) { return std::const_pointer_cast<terrain::DensityField>(s.field); },
                                "the terrain's root density field (for the scene's seed)")
         .def("field_for_seed", [](const Scene& s, std::uint64_t seed) {
@@ -229,8 +241,19 @@ void bindScene(py::module_& m)
                 passes.append(d);
             }
             return passes;
-        })
-        .def("resolve_quality", [](const Scene& s, std::optional<std::string> preset, const py::object& quality) {
+        });
+}
+
+/// strata.Scene: a parsed scene file, read-only.
+void bindSceneClass(py::module_& m)
+{
+    SceneClass cls(m, "Scene",
+                   "A parsed scene file: the terrain's node tree, region, sampling, material,\n"
+                   "lighting and camera. Read-only; sample(), bake() and World take it.");
+    bindSceneSource(cls);
+    bindSceneViewSettings(cls);
+    bindSceneTerrain(cls);
+    cls.def("resolve_quality", [](const Scene& s, std::optional<std::string> preset, const py::object& quality) {
             const scene::QualitySettings q = scene::resolveQuality(s, preset, qualityOverrides({}, quality));
             py::dict d;
             d["preset"] = q.preset;
@@ -256,7 +279,11 @@ void bindScene(py::module_& m)
             return "<strata.Scene '" + s.source + "' seed=" + std::to_string(s.terrain.seed) +
                    " voxel_size=" + std::to_string(s.voxelSize) + ">";
         });
+}
 
+/// default_scene, default_scene_text, load_scene and parse_scene.
+void bindSceneLoading(py::module_& m)
+{
     m.def("default_scene", [] { return std::make_shared<Scene>(scene::defaultScene()); },
           "The scene built into Strata (the one `strata generate` uses without a scene file).");
     m.def("default_scene_text", [] { return std::string(scene::defaultSceneText()); }, "The default scene's TOML text.");
@@ -283,6 +310,15 @@ void bindScene(py::module_& m)
     }, py::arg("text"), py::arg("source") = "<string>", py::arg("max_memory") = 0, py::arg("progress") = py::none(),
           "Parses scene text (TOML); `source` names it in errors. Relative paths resolve against the working folder.\n"
           "progress: as for load_scene.");
+}
+
+} // namespace
+
+void bindScene(py::module_& m)
+{
+    bindMaterialSettings(m);
+    bindSceneClass(m);
+    bindSceneLoading(m);
 }
 
 } // namespace strata::python

@@ -76,9 +76,8 @@ void addMask(NodeRegistry& registry, const char* name, MaskSource source, const 
     registry.add(std::move(t));
 }
 
-} // namespace
-
-void registerHeightGraphNodes(NodeRegistry& registry)
+/// height_constant and the nodes that combine heights: add, subtract, multiply, min, max, blend.
+void registerArithmeticNodes(NodeRegistry& registry)
 {
     NodeType constant{"height_constant", "h = value: a flat height", {}, {}};
     constant.keys = {numberKey("value", 0.0, -HUGE_LENGTH, HUGE_LENGTH, "m", "the height")};
@@ -98,7 +97,11 @@ void registerHeightGraphNodes(NodeRegistry& registry)
         return std::make_shared<HeightBlend>(heightChild(a, "a"), heightChild(a, "b"), heightChild(a, "mask"));
     };
     registry.add(std::move(blend));
+}
 
+/// The nodes that reshape one height: curve, scale, clamp, warp, terrace.
+void registerShapingNodes(NodeRegistry& registry)
+{
     NodeType curve{"height_curve", "h = curve(child): remaps heights through points (monotone cubic, no overshoot)",
                    {}, {}};
     curve.keys = {childKey("child", "the height node remapped"),
@@ -157,7 +160,11 @@ void registerHeightGraphNodes(NodeRegistry& registry)
         return std::make_shared<HeightTerrace>(heightChild(a, "child"), a.number("step"), a.number("sharpness"));
     };
     registry.add(std::move(terrace));
+}
 
+/// The masks: 1 where a height, slope or curvature is within a band.
+void registerMaskNodes(NodeRegistry& registry)
+{
     addMask(registry, "mask_height", MaskSource::Height, "1 where the child's height is within [min, max], else 0",
             "m", 0.0, 100.0, 10.0);
     addMask(registry, "mask_slope", MaskSource::Slope, "1 where the child's slope (rise/run) is within [min, max]",
@@ -165,7 +172,11 @@ void registerHeightGraphNodes(NodeRegistry& registry)
     addMask(registry, "mask_curvature", MaskSource::Curvature,
             "1 where the child's curvature -laplacian(h) is within [min, max] (> 0 ridges, < 0 valleys)", "1/m",
             0.0, 1.0, 0.01);
+}
 
+/// erode: landscape evolution over a fixed domain (ErodedHeightfield.h).
+void registerErodeNode(NodeRegistry& registry)
+{
     const ErodeOptions e;
     NodeType erode{"erode",
                    "landscape evolution of a height node over a fixed domain: uplift, stream-power rivers with lakes, "
@@ -214,7 +225,12 @@ void registerHeightGraphNodes(NodeRegistry& registry)
                                                    a.context().progress);
     };
     registry.add(std::move(erode));
+}
 
+/// erode_detail: voxel-scale droplet and talus erosion in fixed world blocks
+/// (DetailErodedHeightfield.h).
+void registerDetailErodeNode(NodeRegistry& registry)
+{
     const DetailErodeOptions d;
     const DetailErosionOptions& de = d.erosion;
     NodeType detail{"erode_detail",
@@ -257,7 +273,11 @@ void registerHeightGraphNodes(NodeRegistry& registry)
         return std::make_shared<DetailErodedHeightfield>(heightChild(a, "height"), a.seed(), o);
     };
     registry.add(std::move(detail));
+}
 
+/// talus (scree cones on a height node) and scree (the cones laid over 3D rock).
+void registerTalusNodes(NodeRegistry& registry)
+{
     const TalusOptions t;
     NodeType talus{"talus",
                    "scree cones and aprons at the foot of steep faces, at the angle of repose: debris from a "
@@ -298,6 +318,18 @@ void registerHeightGraphNodes(NodeRegistry& registry)
         return std::make_shared<ScreeField>(a.child("child"), talus, a.number("depth"));
     };
     registry.add(std::move(scree));
+}
+
+} // namespace
+
+void registerHeightGraphNodes(NodeRegistry& registry)
+{
+    registerArithmeticNodes(registry);
+    registerShapingNodes(registry);
+    registerMaskNodes(registry);
+    registerErodeNode(registry);
+    registerDetailErodeNode(registry);
+    registerTalusNodes(registry);
 }
 
 } // namespace strata::terrain
