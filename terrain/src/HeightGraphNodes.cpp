@@ -4,7 +4,9 @@
 // The height graph's node types (HeightGraph.h, ErodedHeightfield.h) as a
 // scene names them.
 
+#include <strata/terrain/CrestHeightfield.h>
 #include <strata/terrain/DetailErodedHeightfield.h>
+#include <strata/terrain/DifferentialErosion.h>
 #include <strata/terrain/ErodedHeightfield.h>
 #include <strata/terrain/HeightGraph.h>
 #include <strata/terrain/NodeRegistry.h>
@@ -320,6 +322,40 @@ void registerTalusNodes(NodeRegistry& registry)
     registry.add(std::move(scree));
 }
 
+/// crests: rounded ridges sharpened to the edge where their flanks meet.
+void registerCrestNode(NodeRegistry& registry)
+{
+    const CrestOptions c;
+    NodeType crests{"crests",
+                    "sharp crests where a height node's ridges came out rounded (an erode grid's spline rounds them "
+                    "over about two cells): both flanks extended to where they meet, only upward; planes and valleys "
+                    "stay as they are, soft rock stays rounded when `beds` is given",
+                    {}, {}};
+    crests.keys = {
+        childKey("height", "the height node whose ridges are sharpened, e.g. an erode node"),
+        numberKey("reach", c.reach, 1e-3, 1e6, "m",
+                  "how far out the flanks are read (and twice that): more than the rounding's half width"),
+        numberKey("amount", c.amount, 0.0, 1.0, "", "share of the way up to where the flanks meet"),
+        numberKey("max_lift", c.maxLift, 0.0, 1e4, "m", "the most a crest is raised"),
+        optionalChildKey("mask", "a height node read as 0..1 (clamped) that scales the lift, e.g. a mask_* node"),
+        optionalChildKey("beds", "a `beds` node: the lift is scaled by the hardness of its rock at the ground"),
+    };
+    crests.build = [](const NodeArgs& a) -> DensityFieldPtr {
+        CrestOptions o;
+        o.reach = a.number("reach");
+        o.amount = a.number("amount");
+        o.maxLift = a.number("max_lift");
+        std::shared_ptr<const Lithology> lithology;
+        if (const DensityFieldPtr beds = a.child("beds")) {
+            const auto field = std::dynamic_pointer_cast<const DifferentialErosionField>(beds);
+            if (!field) a.fail("beds", "must name a `beds` node");
+            lithology = field->lithologyPtr();
+        }
+        return std::make_shared<CrestHeightfield>(heightChild(a, "height"), o, heightChild(a, "mask"), lithology);
+    };
+    registry.add(std::move(crests));
+}
+
 } // namespace
 
 void registerHeightGraphNodes(NodeRegistry& registry)
@@ -330,6 +366,7 @@ void registerHeightGraphNodes(NodeRegistry& registry)
     registerErodeNode(registry);
     registerDetailErodeNode(registry);
     registerTalusNodes(registry);
+    registerCrestNode(registry);
 }
 
 } // namespace strata::terrain

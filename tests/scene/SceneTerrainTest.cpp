@@ -102,7 +102,12 @@ root = "all"
 masks = "scree"
 [terrain.nodes.all]
 type = "union"
-children = ["cut", "shapes", "stepped", "moved", "image", "graph", "layered", "rubble", "real"]
+children = ["cut", "shapes", "stepped", "moved", "image", "graph", "layered", "rubble", "real", "crested"]
+[terrain.nodes.crested]
+type = "crests"
+height = "lowest"
+mask = "band"
+beds = "layered"
 [terrain.nodes.rubble]
 type = "scree"
 child = "moved"

@@ -14,6 +14,7 @@
 
 #include <strata/Error.h>
 #include <strata/terrain/DemHeightfield.h>
+#include <strata/terrain/DifferentialErosion.h>
 #include <strata/terrain/FractalNoise.h>
 #include <strata/terrain/Heightfield.h>
 #include <strata/terrain/NodeRegistry.h>
@@ -385,6 +386,10 @@ TEST(BlockEvaluation, EveryNodeTypeGivesTheScalarBits)
                 if (type->name == "scree" && key.name == "talus") {
                     args.set(key.name, DensityFieldPtr(std::make_shared<TalusHeightfield>(
                                           std::dynamic_pointer_cast<const HeightfieldBase>(hills), smallTalus)));
+                } else if (type->name == "crests" && key.name == "beds") { // crests reads a beds node's rock
+                    args.set(key.name, DensityFieldPtr(std::make_shared<DifferentialErosionField>(
+                                          hills, std::make_shared<Lithology>(3, LithologyOptions{}),
+                                          DifferentialErosionOptions{})));
                 } else {
                     args.set(key.name, hills);
                 }

@@ -69,6 +69,8 @@ public:
     Interval bounds(const WorldBox& box) const override;
 
     const Lithology& lithology() const { return *mLithology; }
+    /// The same, shared (for nodes that read the rock too).
+    std::shared_ptr<const Lithology> lithologyPtr() const { return mLithology; }
     /// The lithology's hardness and bed (RockMasks), at world points as
     /// this node sees them (a transform above it is not undone).
     void rockMasks(const double* x, const double* y, const double* z, std::size_t n, glm::vec2* out) const override;
