@@ -29,3 +29,26 @@ awk '
   --view top --backend cpu
 "$strata" render "$work/preview.toml" --mesh "$work/out/terrain.glb" -o "$out/mountains4k-flow.png" --size 640x640 \
   --view top --debug-view flow --backend cpu
+
+# The crests node (docs/geology.md, "Crests"): the eroded land alone, on a
+# 512 m crop at 2 m voxels, as the erode grid's spline leaves its ridges
+# (rounded) and through a crests node (sharp).
+for variant in rounded sharp; do
+  awk '
+    /^\[terrain\.nodes\.(world|caves|detailed|rough|outcrops|grain)\]/ || /^\[camera\]/ { skip = 1; next }
+    /^\[/ { skip = 0 }
+    !skip' examples/worlds/mountains4k.toml |
+    sed -e "s|\"\\.\\./\\.\\./docs/|\"$PWD/docs/|" \
+        -e 's/^min = \[-2048.0, -40.0, -2048.0\]/min = [-512.0, -40.0, 0.0]/' \
+        -e 's/^max = \[2048.0, 880.0, 2048.0\]/max = [0.0, 880.0, 512.0]/' > "$work/$variant.toml"
+  if [[ $variant == sharp ]]; then
+    sed -i 's/^root = "world"/root = "crested"/' "$work/$variant.toml"
+    printf '\n[terrain.nodes.crested]\ntype = "crests"\nheight = "eroded"\nreach = 16.0\nmax_lift = 15.0\n' >> "$work/$variant.toml"
+  else
+    sed -i 's/^root = "world"/root = "eroded"/' "$work/$variant.toml"
+  fi
+  printf '\n[camera]\nposition = [-420.0, 520.0, 420.0]\ntarget = [-200.0, 330.0, 150.0]\nfov = 45.0\n' >> "$work/$variant.toml"
+  "$strata" generate "$work/$variant.toml" -o "$work/$variant" --quality voxel_size=2 --no-snapshot -q
+  "$strata" render "$work/$variant.toml" --mesh "$work/$variant/terrain.glb" -o "$out/crests-$variant.png" \
+    --size 640x360 --backend cpu
+done
