@@ -158,92 +158,266 @@ STRATA_FEATURE_FUNCTION vec4 sampleTiled(STRATA_MAPS_PARAM int map, vec2 uv, vec
 
 #define SAMPLE_TILED(map, uv, dUVdx, dUVdy, taps) sampleTiled STRATA_FEATURE_ARGS(STRATA_MAPS_ARG map, uv, dUVdx, dUVdy, taps)
 
-/// Samples and combines every enabled map of the material at one fragment.
-STRATA_FEATURE_FUNCTION SurfaceOutput evaluateSurface(STRATA_MAPS_PARAM SurfaceInput s, MaterialParams m)
+/// One fragment's projections, shared by evaluateSurface()'s steps: the
+/// base maps' UVs, their derivatives and anti-tiling taps, which maps the Y
+/// projection uses, and the detail maps' UVs and derivatives.
+struct SurfaceProjections
+{
+    TriplanarUV uv;
+    TriplanarUV ddx;
+    TriplanarUV ddy;
+    StochasticTaps tapsX; ///< a single tap without FEATURE_ANTI_TILING
+    StochasticTaps tapsY;
+    StochasticTaps tapsZ;
+    bool useTop;          ///< the Y projection takes the top maps (FEATURE_TOP_MAPS, n.y > 0)
+    TriplanarUV detailUV; ///< the base UVs without FEATURE_DETAIL or FEATURE_DETAIL_NORMAL
+    TriplanarUV detailDdx;
+    TriplanarUV detailDdy;
+};
+
+/// One map's samples at the three projections.
+struct TriplanarSamples
+{
+    vec4 x;
+    vec4 y;
+    vec4 z;
+};
+
+/// The projections of fragment `s`; `need` are the weights before height
+/// blending (the projections with weight 0 get no anti-tiling taps).
+STRATA_FEATURE_FUNCTION SurfaceProjections projectSurface(STRATA_MAPS_PARAM SurfaceInput s, MaterialParams m,
+                                                          vec3 need)
 {
     vec3 n = s.n;
-    TriplanarUV uv = triplanarUV(s.p, n);
-    TriplanarUV ddx = triplanarUVDerivative(s.dpdx, n);
-    TriplanarUV ddy = triplanarUVDerivative(s.dpdy, n);
-    // Projections with weight 0 here keep weight 0 with any heights: skip them.
-    float offset = biplanarOffset(n, m.blendOffset, m.biplanar);
-    vec3 need = triplanarWeights(n, offset, m.blendExponent);
-    bool useTop = false;
+    SurfaceProjections pr;
+    pr.uv = triplanarUV(s.p, n);
+    pr.ddx = triplanarUVDerivative(s.dpdx, n);
+    pr.ddy = triplanarUVDerivative(s.dpdy, n);
+    pr.useTop = false;
     STRATA_IF_FEATURE(FEATURE_TOP_MAPS)
     {
-        useTop = n.y > 0.0f;
+        pr.useTop = n.y > 0.0f;
     }
-    StochasticTaps tapsX = singleTap();
-    StochasticTaps tapsY = singleTap();
-    StochasticTaps tapsZ = singleTap();
+    pr.tapsX = singleTap();
+    pr.tapsY = singleTap();
+    pr.tapsZ = singleTap();
     STRATA_IF_FEATURE(FEATURE_ANTI_TILING)
     {
         TriplanarUV shift = triplanarUVDerivative(s.tileOffset, n);
         if (need.x > 0.0f) {
-            tapsX = stochasticTaps(uv.x, shift.x, m.antiTilingSharpness);
+            pr.tapsX = stochasticTaps(pr.uv.x, shift.x, m.antiTilingSharpness);
         }
         if (need.y > 0.0f) {
-            tapsY = stochasticTaps(uv.y, shift.y, m.antiTilingSharpness);
+            pr.tapsY = stochasticTaps(pr.uv.y, shift.y, m.antiTilingSharpness);
         }
         if (need.z > 0.0f) {
-            tapsZ = stochasticTaps(uv.z, shift.z, m.antiTilingSharpness);
+            pr.tapsZ = stochasticTaps(pr.uv.z, shift.z, m.antiTilingSharpness);
         }
     }
-    // The Y projection's maps are chosen per fragment (top or side) with a
-    // branch around two constant-slot fetches rather than one fetch from a
-    // computed slot: a GLSL compiler then keeps two texture fetches instead
-    // of the sampler's whole slot switch (much less code on llvmpipe).
+    pr.detailUV = pr.uv;
+    pr.detailDdx = pr.ddx;
+    pr.detailDdy = pr.ddy;
+    STRATA_IF_FEATURE(FEATURE_DETAIL | FEATURE_DETAIL_NORMAL)
+    {
+        pr.detailUV = triplanarUV(s.p * m.detailScale + s.detailOffset, n);
+        pr.detailDdx = triplanarUVDerivative(s.dpdx * m.detailScale, n);
+        pr.detailDdy = triplanarUVDerivative(s.dpdy * m.detailScale, n);
+    }
+    return pr;
+}
 
+// The Y projection's maps are chosen per fragment (top or side) with a
+// branch around two constant-slot fetches rather than one fetch from a
+// computed slot: a GLSL compiler then keeps two texture fetches instead
+// of the sampler's whole slot switch (much less code on llvmpipe).
+
+/// The albedo map (or the top one) at the projections with weight > 0; 1 elsewhere.
+STRATA_FEATURE_FUNCTION TriplanarSamples sampleAlbedos(STRATA_MAPS_PARAM SurfaceProjections pr, vec3 need)
+{
     vec4 one = vec4(1.0f);
-    vec4 albedoX = one;
-    vec4 albedoY = one;
-    vec4 albedoZ = one;
+    TriplanarSamples a;
+    a.x = one;
+    a.y = one;
+    a.z = one;
     if (need.x > 0.0f) {
-        albedoX = SAMPLE_TILED(MAP_ALBEDO, uv.x, ddx.x, ddy.x, tapsX);
+        a.x = SAMPLE_TILED(MAP_ALBEDO, pr.uv.x, pr.ddx.x, pr.ddy.x, pr.tapsX);
     }
     if (need.y > 0.0f) {
-        if (useTop) {
-            albedoY = SAMPLE_TILED(MAP_TOP_ALBEDO, uv.y, ddx.y, ddy.y, tapsY);
+        if (pr.useTop) {
+            a.y = SAMPLE_TILED(MAP_TOP_ALBEDO, pr.uv.y, pr.ddx.y, pr.ddy.y, pr.tapsY);
         } else {
-            albedoY = SAMPLE_TILED(MAP_ALBEDO, uv.y, ddx.y, ddy.y, tapsY);
+            a.y = SAMPLE_TILED(MAP_ALBEDO, pr.uv.y, pr.ddx.y, pr.ddy.y, pr.tapsY);
         }
     }
     if (need.z > 0.0f) {
-        albedoZ = SAMPLE_TILED(MAP_ALBEDO, uv.z, ddx.z, ddy.z, tapsZ);
+        a.z = SAMPLE_TILED(MAP_ALBEDO, pr.uv.z, pr.ddx.z, pr.ddy.z, pr.tapsZ);
     }
+    return a;
+}
 
-    vec4 maskX = one;
-    vec4 maskY = one;
-    vec4 maskZ = one;
+/// The mask map (or the top one) at the projections with weight > 0; 1
+/// elsewhere and without FEATURE_MASK_MAP.
+STRATA_FEATURE_FUNCTION TriplanarSamples sampleMasks(STRATA_MAPS_PARAM SurfaceProjections pr, vec3 need)
+{
+    vec4 one = vec4(1.0f);
+    TriplanarSamples k;
+    k.x = one;
+    k.y = one;
+    k.z = one;
     STRATA_IF_FEATURE(FEATURE_MASK_MAP)
     {
         if (need.x > 0.0f) {
-            maskX = SAMPLE_TILED(MAP_MASK, uv.x, ddx.x, ddy.x, tapsX);
+            k.x = SAMPLE_TILED(MAP_MASK, pr.uv.x, pr.ddx.x, pr.ddy.x, pr.tapsX);
         }
         if (need.y > 0.0f) {
-            if (useTop) {
-                maskY = SAMPLE_TILED(MAP_TOP_MASK, uv.y, ddx.y, ddy.y, tapsY);
+            if (pr.useTop) {
+                k.y = SAMPLE_TILED(MAP_TOP_MASK, pr.uv.y, pr.ddx.y, pr.ddy.y, pr.tapsY);
             } else {
-                maskY = SAMPLE_TILED(MAP_MASK, uv.y, ddx.y, ddy.y, tapsY);
+                k.y = SAMPLE_TILED(MAP_MASK, pr.uv.y, pr.ddx.y, pr.ddy.y, pr.tapsY);
             }
         }
         if (need.z > 0.0f) {
-            maskZ = SAMPLE_TILED(MAP_MASK, uv.z, ddx.z, ddy.z, tapsZ);
+            k.z = SAMPLE_TILED(MAP_MASK, pr.uv.z, pr.ddx.z, pr.ddy.z, pr.tapsZ);
         }
     }
+    return k;
+}
+
+/// FEATURE_DETAIL: modulates o's albedo and smoothness by the blended
+/// detail map (× detailMask).
+STRATA_FEATURE_FUNCTION void applyDetailMap(STRATA_MAPS_PARAM SurfaceProjections pr, MaterialParams m, vec3 w,
+                                            float detailMask, INOUT(SurfaceOutput) o)
+{
+    STRATA_IF_FEATURE(FEATURE_DETAIL)
+    {
+        vec4 grey = vec4(0.5f);
+        vec4 detailX = grey;
+        vec4 detailY = grey;
+        vec4 detailZ = grey;
+        if (w.x > 0.0f) {
+            detailX = SAMPLE_MAP(MAP_DETAIL, pr.detailUV.x, pr.detailDdx.x, pr.detailDdy.x);
+        }
+        if (w.y > 0.0f) {
+            detailY = SAMPLE_MAP(MAP_DETAIL, pr.detailUV.y, pr.detailDdx.y, pr.detailDdy.y);
+        }
+        if (w.z > 0.0f) {
+            detailZ = SAMPLE_MAP(MAP_DETAIL, pr.detailUV.z, pr.detailDdx.z, pr.detailDdy.z);
+        }
+        vec4 detail = triplanarBlend4(detailX, detailY, detailZ, w);
+        o.albedo = applyDetailAlbedo(o.albedo, detail.x, m.detailAlbedo, detailMask);
+        o.smoothness = applyDetailSmoothness(o.smoothness, detail.z, m.detailSmoothness, detailMask);
+    }
+}
+
+/// The world normal with the normal maps and detail normal maps blended in
+/// (`masks`' B is the detail mask with FEATURE_MODS); n without either.
+STRATA_FEATURE_FUNCTION vec3 mappedNormal(STRATA_MAPS_PARAM SurfaceProjections pr, MaterialParams m, vec3 n, vec3 w,
+                                          TriplanarSamples masks)
+{
+    STRATA_IF_FEATURE(FEATURE_NORMAL_MAP | FEATURE_DETAIL_NORMAL)
+    {
+        int mode = normalBlendMode(STRATA_FEATURE_BITS);
+        vec3 flatNormal = vec3(0.0f, 0.0f, 1.0f);
+        vec3 tangentX = flatNormal;
+        vec3 tangentY = flatNormal;
+        vec3 tangentZ = flatNormal;
+        STRATA_IF_FEATURE(FEATURE_NORMAL_MAP)
+        {
+            if (w.x > 0.0f) {
+                tangentX = decodeNormal(SAMPLE_TILED(MAP_NORMAL, pr.uv.x, pr.ddx.x, pr.ddy.x, pr.tapsX),
+                                        m.normalStrength);
+            }
+            if (w.y > 0.0f) {
+                if (pr.useTop) {
+                    tangentY = decodeNormal(SAMPLE_TILED(MAP_TOP_NORMAL, pr.uv.y, pr.ddx.y, pr.ddy.y, pr.tapsY),
+                                            m.normalStrength);
+                } else {
+                    tangentY = decodeNormal(SAMPLE_TILED(MAP_NORMAL, pr.uv.y, pr.ddx.y, pr.ddy.y, pr.tapsY),
+                                            m.normalStrength);
+                }
+            }
+            if (w.z > 0.0f) {
+                tangentZ = decodeNormal(SAMPLE_TILED(MAP_NORMAL, pr.uv.z, pr.ddx.z, pr.ddy.z, pr.tapsZ),
+                                        m.normalStrength);
+            }
+        }
+        STRATA_IF_FEATURE(FEATURE_DETAIL_NORMAL)
+        {
+            float maskX1 = 1.0f;
+            float maskY1 = 1.0f;
+            float maskZ1 = 1.0f;
+            STRATA_IF_FEATURE(FEATURE_MODS)
+            {
+                maskX1 = masks.x.z;
+                maskY1 = masks.y.z;
+                maskZ1 = masks.z.z;
+            }
+            if (w.x > 0.0f) {
+                vec4 t = SAMPLE_MAP(MAP_DETAIL_NORMAL, pr.detailUV.x, pr.detailDdx.x, pr.detailDdy.x);
+                tangentX = blendNormalRnm(tangentX, decodeNormal(t, m.detailNormalStrength * maskX1));
+            }
+            if (w.y > 0.0f) {
+                vec4 t = SAMPLE_MAP(MAP_DETAIL_NORMAL, pr.detailUV.y, pr.detailDdx.y, pr.detailDdy.y);
+                tangentY = blendNormalRnm(tangentY, decodeNormal(t, m.detailNormalStrength * maskY1));
+            }
+            if (w.z > 0.0f) {
+                vec4 t = SAMPLE_MAP(MAP_DETAIL_NORMAL, pr.detailUV.z, pr.detailDdx.z, pr.detailDdy.z);
+                tangentZ = blendNormalRnm(tangentZ, decodeNormal(t, m.detailNormalStrength * maskZ1));
+            }
+        }
+        vec3 sum = worldNormalX(tangentX, n, mode) * w.x + worldNormalY(tangentY, n, mode) * w.y +
+                   worldNormalZ(tangentZ, n, mode) * w.z;
+        return safeNormalize(sum, n);
+    }
+    return n;
+}
+
+/// The blended emission map × emissionColor; black without FEATURE_EMISSION.
+STRATA_FEATURE_FUNCTION vec3 sampleEmission(STRATA_MAPS_PARAM SurfaceProjections pr, MaterialParams m, vec3 w)
+{
+    STRATA_IF_FEATURE(FEATURE_EMISSION)
+    {
+        vec4 eX = vec4(0.0f);
+        vec4 eY = vec4(0.0f);
+        vec4 eZ = vec4(0.0f);
+        if (w.x > 0.0f) {
+            eX = SAMPLE_MAP(MAP_EMISSION, pr.uv.x, pr.ddx.x, pr.ddy.x);
+        }
+        if (w.y > 0.0f) {
+            eY = SAMPLE_MAP(MAP_EMISSION, pr.uv.y, pr.ddx.y, pr.ddy.y);
+        }
+        if (w.z > 0.0f) {
+            eZ = SAMPLE_MAP(MAP_EMISSION, pr.uv.z, pr.ddx.z, pr.ddy.z);
+        }
+        vec4 e = triplanarBlend4(eX, eY, eZ, w);
+        return vec3(e.x, e.y, e.z) * m.emissionColor;
+    }
+    return vec3(0.0f);
+}
+
+/// Samples and combines every enabled map of the material at one fragment.
+STRATA_FEATURE_FUNCTION SurfaceOutput evaluateSurface(STRATA_MAPS_PARAM SurfaceInput s, MaterialParams m)
+{
+    vec3 n = s.n;
+    // Projections with weight 0 here keep weight 0 with any heights: skip them.
+    float offset = biplanarOffset(n, m.blendOffset, m.biplanar);
+    vec3 need = triplanarWeights(n, offset, m.blendExponent);
+    SurfaceProjections pr = projectSurface STRATA_FEATURE_ARGS(STRATA_MAPS_ARG s, m, need);
+    TriplanarSamples albedos = sampleAlbedos STRATA_FEATURE_ARGS(STRATA_MAPS_ARG pr, need);
+    TriplanarSamples masks = sampleMasks STRATA_FEATURE_ARGS(STRATA_MAPS_ARG pr, need);
 
     vec3 w = need;
     STRATA_IF_FEATURE(FEATURE_HEIGHT_BLEND)
     {
-        w = triplanarWeightsHeight(n, offset, m.blendExponent, vec3(maskX.z, maskY.z, maskZ.z),
+        w = triplanarWeightsHeight(n, offset, m.blendExponent, vec3(masks.x.z, masks.y.z, masks.z.z),
                                    m.heightStrength);
     }
 
     SurfaceOutput o;
     o.weights = w;
-    vec4 albedo = triplanarBlend4(albedoX, albedoY, albedoZ, w);
+    vec4 albedo = triplanarBlend4(albedos.x, albedos.y, albedos.z, w);
     o.albedo = vec3(albedo.x, albedo.y, albedo.z) * m.albedoTint;
-    vec4 mask = triplanarBlend4(maskX, maskY, maskZ, w);
+    vec4 mask = triplanarBlend4(masks.x, masks.y, masks.z, w);
     o.metallic = saturate(mask.x * m.metallic);
     o.occlusion = mix(1.0f, mask.y, m.occlusionStrength);
     o.smoothness = saturate(mask.w * m.smoothness);
@@ -255,108 +429,9 @@ STRATA_FEATURE_FUNCTION SurfaceOutput evaluateSurface(STRATA_MAPS_PARAM SurfaceI
     {
         detailMask = mask.z;
     }
-
-    TriplanarUV detailUV = uv;
-    TriplanarUV detailDdx = ddx;
-    TriplanarUV detailDdy = ddy;
-    STRATA_IF_FEATURE(FEATURE_DETAIL | FEATURE_DETAIL_NORMAL)
-    {
-        detailUV = triplanarUV(s.p * m.detailScale + s.detailOffset, n);
-        detailDdx = triplanarUVDerivative(s.dpdx * m.detailScale, n);
-        detailDdy = triplanarUVDerivative(s.dpdy * m.detailScale, n);
-    }
-
-    STRATA_IF_FEATURE(FEATURE_DETAIL)
-    {
-        vec4 grey = vec4(0.5f);
-        vec4 detailX = grey;
-        vec4 detailY = grey;
-        vec4 detailZ = grey;
-        if (w.x > 0.0f) {
-            detailX = SAMPLE_MAP(MAP_DETAIL, detailUV.x, detailDdx.x, detailDdy.x);
-        }
-        if (w.y > 0.0f) {
-            detailY = SAMPLE_MAP(MAP_DETAIL, detailUV.y, detailDdx.y, detailDdy.y);
-        }
-        if (w.z > 0.0f) {
-            detailZ = SAMPLE_MAP(MAP_DETAIL, detailUV.z, detailDdx.z, detailDdy.z);
-        }
-        vec4 detail = triplanarBlend4(detailX, detailY, detailZ, w);
-        o.albedo = applyDetailAlbedo(o.albedo, detail.x, m.detailAlbedo, detailMask);
-        o.smoothness = applyDetailSmoothness(o.smoothness, detail.z, m.detailSmoothness, detailMask);
-    }
-
-    o.normal = n;
-    STRATA_IF_FEATURE(FEATURE_NORMAL_MAP | FEATURE_DETAIL_NORMAL)
-    {
-        int mode = normalBlendMode(STRATA_FEATURE_BITS);
-        vec3 flatNormal = vec3(0.0f, 0.0f, 1.0f);
-        vec3 tangentX = flatNormal;
-        vec3 tangentY = flatNormal;
-        vec3 tangentZ = flatNormal;
-        STRATA_IF_FEATURE(FEATURE_NORMAL_MAP)
-        {
-            if (w.x > 0.0f) {
-                tangentX = decodeNormal(SAMPLE_TILED(MAP_NORMAL, uv.x, ddx.x, ddy.x, tapsX), m.normalStrength);
-            }
-            if (w.y > 0.0f) {
-                if (useTop) {
-                    tangentY = decodeNormal(SAMPLE_TILED(MAP_TOP_NORMAL, uv.y, ddx.y, ddy.y, tapsY), m.normalStrength);
-                } else {
-                    tangentY = decodeNormal(SAMPLE_TILED(MAP_NORMAL, uv.y, ddx.y, ddy.y, tapsY), m.normalStrength);
-                }
-            }
-            if (w.z > 0.0f) {
-                tangentZ = decodeNormal(SAMPLE_TILED(MAP_NORMAL, uv.z, ddx.z, ddy.z, tapsZ), m.normalStrength);
-            }
-        }
-        STRATA_IF_FEATURE(FEATURE_DETAIL_NORMAL)
-        {
-            float maskX1 = 1.0f;
-            float maskY1 = 1.0f;
-            float maskZ1 = 1.0f;
-            STRATA_IF_FEATURE(FEATURE_MODS)
-            {
-                maskX1 = maskX.z;
-                maskY1 = maskY.z;
-                maskZ1 = maskZ.z;
-            }
-            if (w.x > 0.0f) {
-                vec4 t = SAMPLE_MAP(MAP_DETAIL_NORMAL, detailUV.x, detailDdx.x, detailDdy.x);
-                tangentX = blendNormalRnm(tangentX, decodeNormal(t, m.detailNormalStrength * maskX1));
-            }
-            if (w.y > 0.0f) {
-                vec4 t = SAMPLE_MAP(MAP_DETAIL_NORMAL, detailUV.y, detailDdx.y, detailDdy.y);
-                tangentY = blendNormalRnm(tangentY, decodeNormal(t, m.detailNormalStrength * maskY1));
-            }
-            if (w.z > 0.0f) {
-                vec4 t = SAMPLE_MAP(MAP_DETAIL_NORMAL, detailUV.z, detailDdx.z, detailDdy.z);
-                tangentZ = blendNormalRnm(tangentZ, decodeNormal(t, m.detailNormalStrength * maskZ1));
-            }
-        }
-        vec3 sum = worldNormalX(tangentX, n, mode) * w.x + worldNormalY(tangentY, n, mode) * w.y +
-                   worldNormalZ(tangentZ, n, mode) * w.z;
-        o.normal = safeNormalize(sum, n);
-    }
-
-    o.emission = vec3(0.0f);
-    STRATA_IF_FEATURE(FEATURE_EMISSION)
-    {
-        vec4 eX = vec4(0.0f);
-        vec4 eY = vec4(0.0f);
-        vec4 eZ = vec4(0.0f);
-        if (w.x > 0.0f) {
-            eX = SAMPLE_MAP(MAP_EMISSION, uv.x, ddx.x, ddy.x);
-        }
-        if (w.y > 0.0f) {
-            eY = SAMPLE_MAP(MAP_EMISSION, uv.y, ddx.y, ddy.y);
-        }
-        if (w.z > 0.0f) {
-            eZ = SAMPLE_MAP(MAP_EMISSION, uv.z, ddx.z, ddy.z);
-        }
-        vec4 e = triplanarBlend4(eX, eY, eZ, w);
-        o.emission = vec3(e.x, e.y, e.z) * m.emissionColor;
-    }
+    applyDetailMap STRATA_FEATURE_ARGS(STRATA_MAPS_ARG pr, m, w, detailMask, o);
+    o.normal = mappedNormal STRATA_FEATURE_ARGS(STRATA_MAPS_ARG pr, m, n, w, masks);
+    o.emission = sampleEmission STRATA_FEATURE_ARGS(STRATA_MAPS_ARG pr, m, w);
     return o;
 }
 
