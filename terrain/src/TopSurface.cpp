@@ -40,34 +40,10 @@ double columnsAlong(double extent, double cellSize)
     return std::floor(extent / cellSize + 1e-9) + 1.0;
 }
 
-/// The top surface height of the column at (x, z) between y0 and y1 (see the header).
-double columnHeight(const DensityField& field, double x, double z, double y0, double y1)
+/// Bisection on the density from density(above) > 0 >= density(below) down
+/// to TOP_SURFACE_TOLERANCE: the bracket's midpoint. `p` gives x and z.
+double bisectSurface(const DensityField& field, glm::dvec3 p, double above, double below)
 {
-    glm::dvec3 p(x, y1, z);
-    if (checked(field.density(p), p) <= 0.0) return y1; // rock (or the surface) at the top
-
-    // Sphere trace down: no surface lies within distanceBound of an air
-    // point, so a step of that size cannot cross one (steps of at least the
-    // tolerance can cross a thinner layer, as documented).
-    double above = y1; // air
-    double below = y0; // rock once found
-    double bound = checked(field.distanceBound(p), p);
-    for (;;) {
-        // At least the tolerance, and a few doubles' spacing so that far
-        // from the origin (|y| beyond about 1e11 m) every step still moves.
-        const double least = std::max(TOP_SURFACE_TOLERANCE, 4.0 * std::abs(above) * DBL_EPSILON);
-        const double next = std::max(y0, above - std::max(bound, least));
-        p.y = next;
-        bound = checked(field.distanceBound(p), p);
-        if (bound <= 0.0) {
-            below = next;
-            break;
-        }
-        if (next <= y0) return y0; // air all the way down: no rock in the column
-        above = next;
-    }
-
-    // Bisection on the density: density(above) > 0 >= density(below).
     while (above - below > TOP_SURFACE_TOLERANCE) {
         const double middle = 0.5 * (above + below);
         if (!(middle > below && middle < above)) break; // adjacent doubles: cannot halve further
@@ -79,6 +55,77 @@ double columnHeight(const DensityField& field, double x, double z, double y0, do
         }
     }
     return 0.5 * (above + below);
+}
+
+/// Where the column's sphere trace may start: the top of the highest
+/// stretch of [y0, y1] that bounds() cannot prove to be air, halving
+/// stretches down to PROVEN_AIR_LEAF metres (y0 when all is proven air).
+/// A field's distance bound can be tiny far above its surface (a steep
+/// heightfield's is (y − h)/√(1 + S²) for its largest slope S), while its
+/// interval bound over a column is the column's own height range: this
+/// skips the air in a few dozen bounds() calls instead of hundreds of
+/// density evaluations. Nothing proven air can hold rock, so the trace
+/// finds the same surface.
+constexpr double PROVEN_AIR_LEAF = 0.5;
+
+double firstUnprovenAir(const DensityField& field, double x, double z, double y0, double y1)
+{
+    double top = y1; // everything above is proven air
+    while (top > y0) {
+        double bottom = y0;
+        // The highest stretch below `top` not proven air, by halving.
+        for (;;) {
+            const WorldBox box{{x, bottom, z}, {x, top, z}};
+            if (field.bounds(box).lo > 0.0) { // air from bottom to top
+                top = bottom;
+                break;
+            }
+            if (top - bottom <= PROVEN_AIR_LEAF) return top;
+            const double middle = 0.5 * (top + bottom);
+            if (!(middle > bottom && middle < top)) return top;
+            bottom = middle; // try the upper half first
+        }
+    }
+    return y0;
+}
+
+/// The top surface height of the column at (x, z) between y0 and y1 (see the header).
+double columnHeight(const DensityField& field, double x, double z, double y0, double y1)
+{
+    glm::dvec3 p(x, y1, z);
+    if (checked(field.density(p), p) <= 0.0) return y1; // rock (or the surface) at the top
+    const double start = firstUnprovenAir(field, x, z, y0, y1);
+    if (start <= y0) return y0; // air all the way down: no rock in the column
+    if (start < y1) {
+        p.y = start;
+        // Proven air ends at `start`, so it is air; were a field's bounds
+        // and density to disagree there, bisect from the checked top.
+        if (checked(field.density(p), p) <= 0.0) return bisectSurface(field, p, y1, start);
+    }
+
+    // Sphere trace down: no surface lies within distanceBound of an air
+    // point, so a step of that size cannot cross one (steps of at least
+    // TOP_SURFACE_MIN_STEP can cross a thinner layer, as documented).
+    p.y = start;
+    double above = start; // air
+    double below = y0; // rock once found
+    double bound = checked(field.distanceBound(p), p);
+    for (;;) {
+        // At least the minimum step, and a few doubles' spacing so that far
+        // from the origin (|y| beyond about 1e13 m) every step still moves.
+        const double least = std::max(TOP_SURFACE_MIN_STEP, 4.0 * std::abs(above) * DBL_EPSILON);
+        const double next = std::max(y0, above - std::max(bound, least));
+        p.y = next;
+        bound = checked(field.distanceBound(p), p);
+        if (bound <= 0.0) {
+            below = next;
+            break;
+        }
+        if (next <= y0) return y0; // air all the way down: no rock in the column
+        above = next;
+    }
+
+    return bisectSurface(field, p, above, below);
 }
 
 } // namespace

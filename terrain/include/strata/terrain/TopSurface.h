@@ -38,6 +38,13 @@ struct TopSurfaceGrid
 /// Vertical distance (metres) within which sampleTopSurface() places each
 /// height: the bisection stops once its bracket is this narrow.
 inline constexpr double TOP_SURFACE_TOLERANCE = 1e-4;
+/// The shortest step of sampleTopSurface()'s trace down a column, metres:
+/// rock thinner than this may be stepped over. Where a field's distance
+/// bound is far below the true distance (rock beds cut by differential
+/// erosion: their Lipschitz constant is large), steps of the tolerance took
+/// tens of thousands of evaluations per column; a centimetre is far below
+/// any cell the statistics use.
+inline constexpr double TOP_SURFACE_MIN_STEP = 0.01;
 
 /// Samples the top surface of `field` over `region`.
 ///
@@ -48,9 +55,10 @@ inline constexpr double TOP_SURFACE_TOLERANCE = 1e-4;
 /// Each column's height is the highest y in [region.min.y, region.max.y]
 /// where density() changes from air (> 0) above to rock or surface (<= 0)
 /// below, going down from region.max.y: found by sphere tracing down
-/// with field.distanceBound() (steps of at least TOP_SURFACE_TOLERANCE, or a
-/// few doubles' spacing beyond about 1e11 m from the origin, so a rock layer
-/// thinner than that may be stepped over), then bisection on
+/// with field.distanceBound() (steps of at least TOP_SURFACE_MIN_STEP, or a
+/// few doubles' spacing beyond about 1e13 m from the origin, so a rock layer
+/// thinner than that may be stepped over; stretches of the column that
+/// field.bounds() proves to be air are skipped first), then bisection on
 /// density() until the bracket is at most TOP_SURFACE_TOLERANCE high; the
 /// height is the bracket's midpoint. Special columns:
 ///  - no rock anywhere in [min.y, max.y] (a column over a hole, or a box
