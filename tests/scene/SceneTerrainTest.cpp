@@ -427,7 +427,7 @@ TEST(SceneTerrain, TunnelsReachTheSurfaceInTheDefaultScene)
 TEST(SceneTerrain, BadNodesNameFileLineKeyAndValue)
 {
     EXPECT_EQ(parseError(oneNode("blob", "")),
-              "test.toml:4: terrain.nodes.a.type = 'blob' is not a node type (one of beds, box, capsule, cheese, dem_heightfield, erode, "
+              "test.toml:4: terrain.nodes.a.type = 'blob' is not a node type (one of beds, box, capsule, cheese, crests, dem_heightfield, erode, "
               "erode_detail, height_add, height_blend, height_clamp, height_constant, height_curve, height_max, "
               "height_min, height_multiply, height_scale, height_subtract, height_terrace, height_warp, heightfield, "
               "image_heightfield, intersect, mask_curvature, mask_height, mask_slope, plane, scree, spaghetti, "
