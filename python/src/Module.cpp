@@ -6,6 +6,8 @@
 
 #include "Bindings.h"
 
+#include <strata/CacheMemory.h>
+
 PYBIND11_MODULE(strata, m)
 {
     m.doc() = R"(Strata: procedural terrain and caves, sampled into sparse OpenVDB level sets,
@@ -31,4 +33,12 @@ RuntimeError), MemoryError.)";
     strata::python::bindRender(m);
     strata::python::bindWorld(m);
     strata::python::bindBake(m);
+
+    // The process-wide limit of the caches (CacheMemory.h): what the CLI's
+    // --max-memory sets. Dropped entries are recomputed bit for bit.
+    m.def("set_cache_memory_limit", [](std::uint64_t bytes) { strata::setCacheMemoryLimit(bytes); }, pybind11::arg("bytes"),
+          "Bytes the caches (erosion grids, detail and talus blocks, worm caves) may hold together; 0 restores the "
+          "default, a quarter of the machine's memory. A lower limit costs time, never changes results.");
+    m.def("cache_memory_limit", [] { return strata::cacheMemoryLimit(); }, "The caches' limit now, bytes.");
+    m.def("cache_memory_used", [] { return strata::cacheMemoryUsed(); }, "What the caches hold now, bytes.");
 }

@@ -118,3 +118,30 @@ def test_an_erode_pass_reports_progress_and_stops_on_false():
 
 def test_the_default_scene_has_no_place_on_the_earth():
     assert strata.default_scene().georeference is None
+
+
+def test_the_cache_limit_is_settable_and_results_do_not_depend_on_it():
+    scene = strata.parse_scene("""
+[region]
+min = [-64, -20, -64]
+max = [64, 40, 64]
+[terrain]
+root = "caves"
+[terrain.nodes.caves]
+type = "worms"
+cell_size = 32
+""")
+    points = [[x * 3.1, 1.0, -x * 2.3] for x in range(-15, 15)]
+    default = strata.cache_memory_limit()
+    assert default > 0
+    try:
+        strata.set_cache_memory_limit(1 << 20)
+        assert strata.cache_memory_limit() == 1 << 20
+        small = scene.field.evaluate(points)
+        assert strata.cache_memory_used() >= 0
+        strata.set_cache_memory_limit(0)
+        assert strata.cache_memory_limit() == default
+        large = scene.field.evaluate(points)
+        assert (small == large).all()
+    finally:
+        strata.set_cache_memory_limit(0)
