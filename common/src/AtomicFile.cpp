@@ -2,7 +2,7 @@
 // SPDX-License-Identifier: MIT
 
 #include <strata/AtomicFile.h>
-#include <strata/detail/Mix64.h>
+#include <strata/detail/IntegerHash.h>
 
 #include <atomic>
 #include <cerrno>

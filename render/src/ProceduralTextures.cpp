@@ -4,6 +4,7 @@
 #include <strata/render/ProceduralTextures.h>
 
 #include <strata/Error.h>
+#include <strata/detail/IntegerHash.h>
 
 #include <tbb/parallel_for.h>
 
@@ -50,20 +51,11 @@ float smoothstep(float edge0, float edge1, float x)
     return t * t * (3.0f - 2.0f * t);
 }
 
-/// Chris Wellons' lowbias32 integer hash.
-std::uint32_t hash(std::uint32_t x)
-{
-    x ^= x >> 16;
-    x *= 0x7feb352dU;
-    x ^= x >> 15;
-    x *= 0x846ca68bU;
-    x ^= x >> 16;
-    return x;
-}
+using strata::detail::lowbias32;
 
 std::uint32_t hash(std::int32_t x, std::int32_t y, std::uint32_t seed)
 {
-    return hash(std::uint32_t(x) ^ hash(std::uint32_t(y) ^ hash(seed)));
+    return lowbias32(std::uint32_t(x) ^ lowbias32(std::uint32_t(y) ^ lowbias32(seed)));
 }
 
 /// Uniform in [0, 1), 24 bits.
@@ -124,7 +116,7 @@ float fbm(float u, float v, int periodX, int periodY, int octaves, float gain, s
     float amplitude = 1.0f;
     float norm = 0.0f;
     for (int o = 0; o < octaves; ++o) {
-        sum += amplitude * gradientNoise(u, v, periodX, periodY, hash(seed + std::uint32_t(o) * 0x9e3779b9U));
+        sum += amplitude * gradientNoise(u, v, periodX, periodY, lowbias32(seed + std::uint32_t(o) * 0x9e3779b9U));
         norm += amplitude;
         amplitude *= gain;
         periodX *= 2;
@@ -157,7 +149,7 @@ Cells cellular(float u, float v, int periodX, int periodY, std::uint32_t seed)
             const int cy = iy + dy;
             const std::uint32_t h = hash(wrap(cx, periodX), wrap(cy, periodY), seed);
             const float px = float(cx) + 0.1f + 0.8f * unitFloat(h);
-            const float py = float(cy) + 0.1f + 0.8f * unitFloat(hash(h));
+            const float py = float(cy) + 0.1f + 0.8f * unitFloat(lowbias32(h));
             const float ddx = px - x;
             const float ddy = py - y;
             const float d2 = ddx * ddx + ddy * ddy;
@@ -217,7 +209,7 @@ template <typename Shader> Image makeImage(int size, Shader&& shader)
 Image makeRockAlbedo(int size, std::uint32_t seed)
 {
     checkSize(size, "rock");
-    const std::uint32_t s = hash(seed ^ 0x524f434bU); // "ROCK"
+    const std::uint32_t s = lowbias32(seed ^ 0x524f434bU); // "ROCK"
 
     // Sediment layers from dark to light grey-brown (sRGB).
     constexpr Rgb PALETTE[] = {
@@ -270,7 +262,7 @@ Image makeRockAlbedo(int size, std::uint32_t seed)
 Image makeGrassAlbedo(int size, std::uint32_t seed)
 {
     checkSize(size, "grass");
-    const std::uint32_t s = hash(seed ^ 0x47525353U); // "GRSS"
+    const std::uint32_t s = lowbias32(seed ^ 0x47525353U); // "GRSS"
 
     constexpr Rgb DARK_GREEN{38.0f, 56.0f, 30.0f};
     constexpr Rgb GREEN{58.0f, 80.0f, 40.0f};
@@ -517,7 +509,7 @@ std::optional<BuiltinSet> builtinSetFromName(const std::string& name)
 TextureSetImages makeBuiltinSet(BuiltinSet set, int size, std::uint32_t seed)
 {
     checkSize(size, builtinSetName(set));
-    const std::uint32_t s = hash(seed ^ (0x5e7U + std::uint32_t(set) * 0x9e3779b9U));
+    const std::uint32_t s = lowbias32(seed ^ (0x5e7U + std::uint32_t(set) * 0x9e3779b9U));
     TextureSetImages maps;
     std::vector<float> height;
     float bump = 4.0f;

@@ -6,7 +6,7 @@
 /// Internal: the integer hashing and interpolation helpers shared by the noise
 /// sources (not installed).
 
-#include <strata/detail/Mix64.h>
+#include <strata/detail/IntegerHash.h>
 
 #include <cmath>
 #include <cstdint>
@@ -16,7 +16,7 @@
 
 namespace strata::terrain::detail {
 
-using strata::detail::mix64; // common/include/strata/detail/Mix64.h
+using strata::detail::mix64; // common/include/strata/detail/IntegerHash.h
 
 /// Folds one lattice coordinate into a running hash. Mixing after every
 /// coordinate (rather than summing multiples of the coordinates) leaves no

@@ -10,6 +10,7 @@
 // surface nets and dual contouring paths must keep these bytes; a change of
 // the meshes on purpose updates the hashes (the failure prints the new ones).
 
+#include <strata/detail/IntegerHash.h>
 #include <strata/meshing/DualContouring.h>
 #include <strata/meshing/SurfaceNets.h>
 
@@ -40,19 +41,11 @@ struct Hasher : strata::test::ByteHash
     }
 };
 
-std::uint32_t mix(std::uint32_t x)
-{
-    x ^= x >> 16;
-    x *= 0x7feb352du;
-    x ^= x >> 15;
-    x *= 0x846ca68bu;
-    x ^= x >> 16;
-    return x;
-}
+using strata::detail::lowbias32;
 
 float noise(int x, int y, int z)
 {
-    const std::uint32_t k = mix(std::uint32_t(x) * 73856093u ^ mix(std::uint32_t(y) * 19349663u ^ mix(std::uint32_t(z) * 83492791u)));
+    const std::uint32_t k = lowbias32(std::uint32_t(x) * 73856093u ^ lowbias32(std::uint32_t(y) * 19349663u ^ lowbias32(std::uint32_t(z) * 83492791u)));
     return float(k & 0xffff) / 32768.0f - 1.0f; // [-1, 1), multiples of 2^-15
 }
 

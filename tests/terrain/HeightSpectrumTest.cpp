@@ -10,6 +10,7 @@
 // NaN; the cell size scales the band's wavelengths only; the same bits on
 // one thread; bad input.
 
+#include <strata/detail/IntegerHash.h>
 #include <strata/Error.h>
 #include <strata/terrain/HeightSpectrum.h>
 
@@ -32,18 +33,10 @@ using namespace strata::terrain;
 using strata::test::errorOf;
 using strata::test::tiltedPlane;
 
-std::uint32_t hash(std::uint32_t x)
-{
-    x ^= x >> 16;
-    x *= 0x7feb352du;
-    x ^= x >> 15;
-    x *= 0x846ca68bu;
-    x ^= x >> 16;
-    return x;
-}
+using strata::detail::lowbias32;
 
 /// An N × N periodic surface with |F(k)|² ∝ k^−β (k in cycles per cell),
-/// random phases from hash(), RMS scaled to `rms` metres: the real part of
+/// random phases from lowbias32(), RMS scaled to `rms` metres: the real part of
 /// the inverse DFT, computed row by row and then column by column (O(N³)).
 std::vector<double> synthesize(int n, double beta, std::uint32_t seed, double rms)
 {
@@ -62,7 +55,7 @@ std::vector<double> synthesize(int n, double beta, std::uint32_t seed, double rm
             const double kx = (i <= N / 2 ? double(i) : double(i) - double(n)) / double(n);
             const double amplitude = std::pow(std::hypot(kx, kz), -0.5 * beta);
             const double phase =
-                2.0 * std::numbers::pi * double(hash(std::uint32_t(i + N * j) ^ (seed * 0x9e3779b9u))) / 4294967296.0;
+                2.0 * std::numbers::pi * double(lowbias32(std::uint32_t(i + N * j) ^ (seed * 0x9e3779b9u))) / 4294967296.0;
             fr[j * N + i] = amplitude * std::cos(phase);
             fi[j * N + i] = amplitude * std::sin(phase);
         }

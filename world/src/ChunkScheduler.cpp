@@ -2,7 +2,7 @@
 // SPDX-License-Identifier: MIT
 
 #include "ChunkScheduler.h"
-#include <strata/detail/Mix64.h>
+#include <strata/detail/IntegerHash.h>
 #include <strata/detail/TsanHandOver.h>
 
 #include <algorithm>

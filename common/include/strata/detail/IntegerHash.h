@@ -2,8 +2,9 @@
 // SPDX-License-Identifier: MIT
 
 #pragma once
-// Internal (for Strata's libraries): the one 64-bit integer mixer, for
-// noise lattices, spawn cells, task orders and unique file names alike.
+// Internal (for Strata's libraries and tests): the integer hashes, one of
+// each: the 64-bit mixer for noise lattices, spawn cells, task orders and
+// unique file names, and the 32-bit one for the procedural textures.
 
 #include <cstdint>
 
@@ -19,6 +20,18 @@ constexpr std::uint64_t mix64(std::uint64_t h)
     h *= 0x94d049bb133111ebULL;
     h ^= h >> 31;
     return h;
+}
+
+/// Chris Wellons' lowbias32: a 32-bit integer hash with low bias. Part of the
+/// built-in textures' bits: never change it.
+constexpr std::uint32_t lowbias32(std::uint32_t x)
+{
+    x ^= x >> 16;
+    x *= 0x7feb352dU;
+    x ^= x >> 15;
+    x *= 0x846ca68bU;
+    x ^= x >> 16;
+    return x;
 }
 
 /// splitmix64's golden-ratio increment, the step between its outputs.
