@@ -32,7 +32,7 @@ common="-G Ninja -DSTRATA_BUILD_APPS=OFF -DSTRATA_BUILD_PYTHON=OFF -DSTRATA_BUIL
 ARM64_PACKAGES=libopenvdb-dev,libtbb-dev,libhwy-dev,libglm-dev,zlib1g-dev,libssl-dev,libopenmesh-dev,\
 libtinygltf-dev,libmeshoptimizer-dev,libpng-dev,libopenimageio-dev,openimageio-tools,libegl-dev,libgl-dev,\
 libepoxy-dev,libglfw3-dev,libtomlplusplus-dev,nlohmann-json3-dev,libgtest-dev,libbenchmark-dev,\
-libboost-iostreams-dev,libcpp-httplib-dev,libstdc++-12-dev,libc6-dev
+libboost-iostreams-dev,libcpp-httplib-dev,libcli11-dev,libstdc++-12-dev,libc6-dev
 
 arm64_sysroot() {
   sysroot=$1
@@ -82,7 +82,7 @@ for b in $builds; do
     sysroot=${STRATA_ARM64_SYSROOT:-$dir/sysroot}
     arm64_sysroot "$sysroot"
     [ -f "$dir/CMakeCache.txt" ] || STRATA_ARM64_SYSROOT="$sysroot" cmake -S "$root" -B "$dir" $common \
-      -DCMAKE_BUILD_TYPE=Release -DSTRATA_ARM64_SYSROOT="$sysroot" \
+      -DCMAKE_BUILD_TYPE=Release -DSTRATA_ARM64_SYSROOT="$sysroot" -DSTRATA_BUILD_APPS=ON \
       -DCMAKE_TOOLCHAIN_FILE="$root/cmake/toolchain-aarch64-linux-gnu.cmake" >/dev/null
     ;;
   *)

@@ -159,9 +159,13 @@ void printSummary(const BakeSummary& summary, bool worker = false)
                   << withThousands(summary.trianglesPerLevel[l]) << " triangles  error "
                   << formatNumber(summary.errorPerLevel[l]) << " m\n";
     }
+    for (const BakeHostTiles& host : summary.bakedBy)
+        std::cout << "  baked by  " << host.host << " (" << host.arch << "): " << host.tiles.size() << " tiles: "
+                  << indexRanges(host.tiles, ", ") << "\n";
     const double perMinute = summary.seconds > 0.0 ? 60.0 * summary.baked / summary.seconds : 0.0;
-    std::cout << "  total     " << std::fixed << std::setprecision(3) << std::setw(8) << summary.seconds << " s   "
-              << std::setprecision(1) << perMinute << " tiles/min" << std::defaultfloat << std::endl;
+    std::cout << "  total     " << std::fixed << std::setprecision(3) << std::setw(8) << summary.seconds << " s";
+    if (summary.baked > 0) std::cout << "   " << std::setprecision(1) << perMinute << " tiles/min";
+    std::cout << std::defaultfloat << std::endl;
 }
 
 } // namespace

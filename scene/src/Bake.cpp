@@ -7,6 +7,7 @@
 #include <strata/scene/Pipeline.h>
 
 #include "BakeManifest.h"
+#include "BakeProvenance.h"
 #include "LayerMaskSources.h"
 #include "TileWorkers.h"
 
@@ -257,6 +258,7 @@ void removeOldBake(const fs::path& dir, const BakeManifest& old)
         }
         fs::remove(detail::recordPath(dir, index), ec);
     }
+    fs::remove_all(dir / detail::PROVENANCE_FOLDER, ec);
     fs::remove(dir / "manifest.json", ec);
     fs::remove(dir / "tileset.json", ec);
 }
@@ -298,7 +300,8 @@ void writeViewer(const fs::path& dir, const Scene& scene, PipelineObserver* obse
                          (dir / "viewer").string() + " was not written");
 }
 
-/// "3, 7-9, 12": ascending indices as ranges.
+} // namespace
+
 std::string indexRanges(const std::vector<int>& indices, const char* separator)
 {
     std::string out;
@@ -312,8 +315,6 @@ std::string indexRanges(const std::vector<int>& indices, const char* separator)
     }
     return out;
 }
-
-} // namespace
 
 const char* tileFormatName(TileFormat format)
 {
@@ -388,8 +389,10 @@ BakeSummary bake(const Scene& scene, const BakeOptions& options, const BakePlan&
     const detail::TileWorkResult run = detail::runTileWorkers(todo, options.threads, observer, [&](int index) {
         const BakeTile tile = plan.tile(index);
         try {
+            const Stopwatch tileClock;
             TileRecord record =
                 bakeTile(*field, scene, plan, options.grids, options.maxMemoryBytes, tile, &dir, masks);
+            if (options.worker) detail::writeTileProvenance(dir, index, tileClock.seconds());
             std::lock_guard<std::mutex> hold(mutex);
             made.emplace(index, std::move(record));
         } catch (const std::exception& e) {
@@ -473,6 +476,7 @@ BakeSummary finalizeBake(const fs::path& dir, PipelineObserver* observer)
     writeViewer(dir, loadBakedScene(dir), observer);
     BakeSummary summary;
     summarise(manifest, summary);
+    summary.bakedBy = detail::readProvenance(dir, count);
     summary.kept = count;
     summary.seconds = clock.seconds();
     if (observer) observer->endStage("finalize", summary.seconds, std::to_string(count) + " tiles verified");

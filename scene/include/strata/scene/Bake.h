@@ -33,6 +33,9 @@
 ///   SHA-256, triangles, bounds, measured error), written after its files.
 /// - `bake.json`: the bake's identity (scene hash, seed, settings), and
 ///   `scene.toml`, the scene; the same bytes from every run and worker.
+/// - `provenance/I.json` (workers only): the host, CPU architecture and
+///   scheduler task that baked tile I. A log beside the bake, not part of
+///   it: finalizeBake() reports it and checks nothing by it.
 /// - `manifest.json`: bake.json plus every tile's record and the per-level
 ///   geometric errors; `tileset.json`: 3D Tiles 1.1 (Tileset.cpp). Written
 ///   by a single bake, or by finalizeBake() after workers.
@@ -74,6 +77,10 @@ enum class TileFormat
 
 /// "plain" or "meshopt".
 const char* tileFormatName(TileFormat format);
+
+/// Ascending tile indices as ranges: {3, 7, 8, 9, 12} → "3, 7-9, 12" with
+/// separator ", " (the form --tiles takes with ",").
+std::string indexRanges(const std::vector<int>& indices, const char* separator);
 
 struct BakeOptions
 {
@@ -143,6 +150,14 @@ struct BakePlan
 /// `options.tiles` is parsed against the tile count.
 BakePlan planBake(const Scene& scene, const BakeOptions& options);
 
+/// Tiles one machine baked (from the workers' provenance files).
+struct BakeHostTiles
+{
+    std::string host; ///< the machine's host name
+    std::string arch; ///< the CPU architecture of the strata build: "x86_64", "aarch64", ...
+    std::vector<int> tiles;
+};
+
 /// What a bake did.
 struct BakeSummary
 {
@@ -153,6 +168,10 @@ struct BakeSummary
     std::vector<std::uint64_t> trianglesPerLevel;
     std::vector<std::uint64_t> filesPerLevel, bytesPerLevel;
     std::vector<double> errorPerLevel; ///< the tileset's geometric error per level (metres)
+    /// finalizeBake(): which machine baked which tile, from the files
+    /// workers write to provenance/ (a log beside the bake, not part of
+    /// it: tiles are the same bytes whoever baked them).
+    std::vector<BakeHostTiles> bakedBy;
     double seconds = 0.0;
 };
 
