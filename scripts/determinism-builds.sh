@@ -20,7 +20,9 @@
 #            (cmake/toolchain-aarch64-linux-gnu.cmake). Installs qemu-user,
 #            g++-aarch64-linux-gnu and mmdebstrap when missing (root).
 # No programs, Python module, web viewer or GDAL (DEMs) in these builds: the
-# table needs none of them (and the arm64 sysroot holds no GDAL).
+# table needs none of them (and the arm64 sysroot holds no GDAL); but the
+# aarch64 build makes strata too, for the cluster tests' ARM node
+# (tests/apps/slurm_cluster_test.sh, ctest -L cluster).
 set -eu
 root=$(cd "$(dirname "$0")/.." && pwd)
 jobs=${JOBS:-2}
@@ -91,7 +93,10 @@ for b in $builds; do
     ;;
   esac
   echo "== $b ($dir)"
-  nice -n 10 cmake --build "$dir" -j "$jobs" --target determinism_tests
+  # The aarch64 build's strata also runs on the cluster tests' ARM node.
+  targets=determinism_tests
+  [ "$b" = aarch64 ] && targets="determinism_tests strata"
+  nice -n 10 cmake --build "$dir" -j "$jobs" --target $targets
   echo "   built in $(($(now) - start)) s"
   start=$(now)
   if ! ctest --test-dir "$dir" --output-on-failure -j "$jobs" -L '^determinism_tests$'; then

@@ -180,6 +180,12 @@ for _ in $(seq 60); do
   sleep 1
 done
 [[ $idle -eq 3 ]] || fail "the nodes did not come up: $(on_ctl sinfo -N 2>&1 | tail -4; tail -3 "$work"/log/slurm*.log 2>/dev/null)"
+# CLUSTER_HOLD=SECONDS keeps the cluster up that long before the case
+# (to look around: nsenter --net=/run/netns/NAME squeue, with SLURM_CONF).
+if [[ -n ${CLUSTER_HOLD:-} ]]; then
+  note "holding the cluster for $CLUSTER_HOLD s: SLURM_CONF=$SLURM_CONF nsenter --net=/run/netns/$ns_ctl squeue"
+  sleep "$CLUSTER_HOLD"
+fi
 note "cluster up: ctl ${addr_of[ctl]}; n1 ${addr_of[n1]}, n2 ${addr_of[n2]} (x86_64); n3 ${addr_of[n3]} (aarch64 under qemu-user)"
 
 # The world: a 64 m crop of mountains4k at 1 m voxels (eroded land,
@@ -224,34 +230,75 @@ submit() { # the README's way: examples/slurm/submit.sh; prints "ARRAY FINAL"
     "$scene" "$bake" "$per_worker" 8 -- "${flags[@]}")
 }
 submit_tasks() { # submit_tasks ARRAY_SPEC: bake tasks again (a rerun), waits, prints the job
-  (cd "$work/jobs" && on_ctl sbatch --parsable --wait --array="$1" --mem=1024M \
-    --export=ALL,STRATA="$STRATA_ON_NODES" "$source/examples/slurm/bake.sbatch" "$scene" "$bake" "$per_worker" "${flags[@]}")
-}
-running_on() { # running_on JOB HOST: the index of a task of JOB running on HOST, after its strata started
-  local index pid
-  for _ in $(seq 600); do
-    index=$(on_ctl squeue -h -r -j "$1" -t RUNNING -w "$2" -o '%K' 2>/dev/null | head -1)
-    if [[ -n $index ]]; then
-      pid=$(strata_pid "$2")
-      [[ -n $pid ]] && { echo "$index"; return 0; }
-    fi
-    sleep 0.1
-  done
-  fail "no task of $1 ran on $2 within 60 s: $(task_states "$1" | tr '\n' ';')"
+  (cd "$work/jobs" && on_ctl env STRATA="$STRATA_ON_NODES" sbatch --parsable --wait --array="$1" --mem=1024M \
+    "$source/examples/slurm/bake.sbatch" "$scene" "$bake" "$per_worker" "${flags[@]}")
 }
 strata_pid() { # the strata worker running in HOST's namespace (qemu's on n3)
   local pid
   for pid in $(ip netns pids "${ns_of[$1]}" 2>/dev/null); do
-    if tr '\0' ' ' < "/proc/$pid/cmdline" 2>/dev/null | grep -qE 'strata bake .*--worker'; then
+    if { tr '\0' ' ' < "/proc/$pid/cmdline"; } 2>/dev/null | grep -qE 'strata bake .*--worker'; then
       echo "$pid"; return 0
     fi
   done
 }
-records() { find "$bake/records" -name '*.json' 2>/dev/null | wc -l; }
+# A requeued batch task waits about two minutes (Slurm sets its begin
+# time); an operator (here the test) may start it at once.
+release_requeued() { # release_requeued JOB: fails if none is held
+  local held
+  for _ in $(seq 60); do
+    held=$(on_ctl squeue -h -r -j "$1" -t PENDING -o '%i %r' | awk '$2 == "BeginTime" {print $1}')
+    [[ -n $held ]] && break
+    sleep 0.5
+  done
+  [[ -n $held ]] || return 1
+  for task in $held; do on_ctl scontrol update JobId="$task" StartTime=now; done
+}
+# Signals the worker busy on HOST once tiles are recorded and the worker is
+# past its start-up (it catches SIGTERM: /proc/PID/status SigCgt), with
+# SIGKILL to the process or TERM through scancel (Slurm's way: SIGTERM,
+# SIGKILL after KillWait). Retries when the task ends first. Prints
+# "INDEX PID".
+signal_worker() { # signal_worker HOST KILL|TERM
+  local pid index again caught
+  for _ in $(seq 3000); do
+    pid=$(strata_pid "$1")
+    caught=$(sed -n 's/^SigCgt:\s*//p' "/proc/$pid/status" 2>/dev/null || true)
+    if [[ -n $pid && -n $caught && $(records) -ge 2 ]] && (((0x$caught >> 14) & 1)); then
+      index=$(on_ctl squeue -h -r -j "$array_job" -t RUNNING -w "$1" -o '%K' | head -1)
+      again=$(strata_pid "$1")
+      # The same worker before and after: it is the task squeue saw.
+      if [[ -n $index && $again == "$pid" ]]; then
+        if [[ $2 == KILL ]]; then
+          kill -KILL "$pid" 2>/dev/null && { echo "$index $pid"; return 0; }
+        else
+          on_ctl scancel "${array_job}_$index" 2>/dev/null && kill -0 "$pid" 2>/dev/null &&
+            { echo "$index $pid"; return 0; }
+        fi
+      fi
+    fi
+    sleep 0.02
+  done
+  fail "no worker on $1 could be signalled ($2)"
+}
+# No partial file under a final name: every .glb present is as long as
+# its header says (a write cut short is shorter).
+whole_tiles() { # whole_tiles WHEN
+  local cut
+  cut=$(python3 - "$bake/tiles" <<'PY'
+import pathlib, struct, sys
+for f in sorted(pathlib.Path(sys.argv[1]).rglob("*.glb")):
+    b = f.read_bytes()
+    if len(b) < 12 or b[:4] != b"glTF" or struct.unpack_from("<I", b, 8)[0] != len(b):
+        print(f)
+PY
+)
+  [[ -z $cut ]] || fail "partial tiles under their final names $1: $cut"
+}
+records() { { find "$bake/records" -name '*.json' 2>/dev/null || true; } | wc -l; }
 
 finalize() { # a finalize job (afterok cannot be met after a failed task: submitted anew)
   local job state
-  job=$(cd "$work/jobs" && on_ctl sbatch --parsable --export=ALL,STRATA="$STRATA_ON_NODES" \
+  job=$(cd "$work/jobs" && on_ctl env STRATA="$STRATA_ON_NODES" sbatch --parsable \
     "$source/examples/slurm/finalize.sbatch" "$bake")
   state=$(wait_job "$job" 300)
   [[ $state == COMPLETED ]] || fail "finalize job $job ended ${state:-unknown}: $(tail -5 "$work/jobs/strata-finalize-$job.out" 2>/dev/null)"
@@ -306,40 +353,44 @@ bake)
   ;;
 node-lost)
   submit_and_wait
-  index=$(running_on "$array_job" n2)
-  sleep 1
+  # Mid-array: tiles recorded, and a worker running on n2.
+  for _ in $(seq 600); do
+    [[ $(records) -ge 2 && -n $(strata_pid n2) ]] && break
+    sleep 0.1
+  done
+  [[ -n $(strata_pid n2) ]] || fail "no worker ran on n2"
   # The node dies: its slurmd, slurmstepd and the worker, all at once.
   ip netns pids "${ns_of[n2]}" | xargs -r kill -KILL
-  note "n2 lost while it ran task $index ($(records) of $tiles tiles recorded)"
+  note "n2 lost mid-task ($(records) of $tiles tiles recorded)"
+  # Slurm notices within SlurmdTimeout and requeues the task.
+  release_requeued "$array_job" || fail "Slurm requeued no task of the lost node: $(task_states "$array_job" | tr '\n' ';')"
   wait_array_done "$array_job" 600
   expect_completed
-  restarts=$(on_ctl scontrol show job "${array_job}_$index" | sed -n 's/.*Restarts=\([0-9]*\).*/\1/p')
-  [[ ${restarts:-0} -ge 1 ]] || fail "task $index was not requeued after n2 was lost (Restarts=${restarts:-none})"
-  node=$(task_states "$array_job" | awk -v i="$index" '$1 == i {print $3}')
-  [[ $node != n2 ]] || fail "task $index finished on the lost node"
-  note "task $index requeued by Slurm, finished on $node; n2 is $(on_ctl sinfo -h -n n2 -o '%T')"
+  # The task n2 was running: requeued by Slurm (Restarts), ended elsewhere.
+  requeued=$(on_ctl scontrol -o show job "$array_job" |
+    sed -n 's/.*ArrayTaskId=\([0-9]*\) .*Restarts=\([1-9][0-9]*\) .*NodeList=\([^ ]*\) .*/\1 \3/p')
+  [[ -n $requeued ]] || fail "no task was requeued after n2 was lost"
+  while read -r index node; do
+    [[ $node != n2 ]] || fail "task $index was requeued but finished on the lost node"
+    note "task $index requeued by Slurm, finished on $node"
+  done <<<"$requeued"
+  note "n2 is $(on_ctl sinfo -h -n n2 -o '%T')"
   state=$(wait_job "$final_job" 300)
-  if [[ $state == COMPLETED ]]; then finalize_out=$work/jobs/strata-finalize-$final_job.out; else finalize; fi
+  [[ $state == COMPLETED ]] || fail "finalize job $final_job ended ${state:-unknown} after the requeue"
+  finalize_out=$work/jobs/strata-finalize-$final_job.out
   report
   compare
   ;;
 kill-tile)
   submit_and_wait
-  index=$(running_on "$array_job" n1)
-  before=$(records)
-  for _ in $(seq 600); do [[ $(records) -gt $before ]] && break; sleep 0.1; done
-  pid=$(strata_pid n1)
-  [[ -n $pid ]] || fail "the worker of task $index on n1 ended before it could be killed"
-  kill -KILL "$pid"
-  note "SIGKILLed the worker of task $index on n1 mid-tile ($(records) of $tiles tiles recorded)"
+  read -r index pid < <(signal_worker n1 KILL)
+  note "SIGKILLed the worker of task $index on n1 ($(records) of $tiles tiles recorded)"
   wait_array_done "$array_job" 600
   state=$(task_states "$array_job" | awk -v i="$index" '$1 == i {print $2}')
   [[ $state == FAILED ]] || fail "the killed task $index ended $state, not FAILED"
-  # No partial file under a final name: every tile file present reads.
-  for f in $(find "$bake/tiles" -name '*.glb'); do
-    "$strata" info "$f" >/dev/null 2>&1 || fail "a partial tile under its final name after SIGKILL: $f"
-  done
+  whole_tiles "after SIGKILL"
   on_ctl scontrol requeue "${array_job}_$index"
+  release_requeued "$array_job" || true
   wait_array_done "$array_job" 600
   expect_completed
   note "task $index requeued by hand (scontrol requeue), completed"
@@ -349,33 +400,39 @@ kill-tile)
   ;;
 scancel)
   submit_and_wait
-  index=$(running_on "$array_job" n1)
-  before=$(records)
-  for _ in $(seq 600); do [[ $(records) -gt $before ]] && break; sleep 0.1; done
-  pid=$(strata_pid n1)
-  [[ -n $pid ]] || fail "the worker of task $index on n1 ended before it could be cancelled"
+  read -r index pid < <(signal_worker n1 TERM)
   cancelled=$(now)
-  on_ctl scancel "${array_job}_$index"
   while kill -0 "$pid" 2>/dev/null; do sleep 0.05; done
   took=$(since "$cancelled")
   python3 -c "import sys; sys.exit(float(sys.argv[1]) >= 9.0)" "$took" ||
     fail "the worker took $took s to stop after SIGTERM (Slurm's SIGKILL comes at 10 s)"
-  out=$work/jobs/strata-bake-${array_job}_$index.out
-  grep -q 'interrupted' "$out" || fail "the cancelled worker did not report an interruption: $(tail -3 "$out")"
-  note "task $index cancelled: the worker stopped in $took s ($(tail -1 "$out"))"
-  # The folder lock is free: finalize (which takes it) would otherwise wait.
-  flock -n "$bake/.strata.lock" true 2>/dev/null || [[ ! -e $bake/.strata.lock ]] || fail "the folder lock is held after scancel"
   wait_array_done "$array_job" 600
+  state=$(task_states "$array_job" | awk -v i="$index" '$1 == i {print $2}')
+  [[ $state == CANCELLED ]] || fail "the cancelled task $index ended $state"
+  out=$work/jobs/strata-bake-${array_job}_$index.out
+  # It stops at its next check and says so, or it was already exiting
+  # (its tiles all recorded: SIGTERM then ends it at once).
+  said=$(grep -m1 'interrupted' "$out" || true)
+  if [[ -z $said ]]; then
+    for ((t = index * per_worker; t < (index + 1) * per_worker; ++t)); do
+      [[ -f $bake/records/$t.json ]] || fail "the cancelled worker neither reported an interruption nor finished tile $t: $(tail -3 "$out")"
+    done
+    said="its tiles were all recorded (it was exiting)"
+  fi
+  whole_tiles "after SIGTERM"
+  note "task $index cancelled: the worker stopped in $took s: $said"
+  # No worker holds the folder lock (finalize takes it).
+  [[ ! -e $bake/.strata.lock ]] || flock -n "$bake/.strata.lock" true || fail "the folder lock is held after scancel"
   job=$(submit_tasks "$index")
-  note "task $index submitted again (job $job): $(job_state "$job")"
   [[ $(job_state "${job}_$index") == COMPLETED ]] || fail "the resubmitted task $index ended $(job_state "${job}_$index")"
+  note "task $index submitted again (job $job): completed"
   finalize
   report
   compare
   ;;
 controller)
   submit_and_wait
-  running_on "$array_job" n1 >/dev/null
+  for _ in $(seq 600); do [[ $(records) -ge 12 ]] && break; sleep 0.1; done
   on_ctl scontrol shutdown slurmctld >/dev/null 2>&1 || true
   for _ in $(seq 100); do pgrep -x slurmctld >/dev/null || break; sleep 0.1; done
   pgrep -x slurmctld >/dev/null && fail "slurmctld did not stop"
@@ -400,9 +457,7 @@ disk-full)
   grep -q 'No space left on device' "$out" || fail "task $first did not name the cause: $(tail -3 "$out")"
   grep -qE "tile [0-9]+ \(" "$out" || fail "task $first did not name the tile: $(tail -3 "$out")"
   note "the folder filled: tasks $failed failed ($(head -c 300 "$out"))"
-  for f in $(find "$bake/tiles" -name '*.glb'); do
-    "$strata" info "$f" >/dev/null 2>&1 || fail "a partial tile under its final name on a full disk: $f"
-  done
+  whole_tiles "on a full disk"
   litter=$(find "$bake" -name '.*partial-*' | head -3)
   [[ -z $litter ]] || fail "temporary files left on the full disk: $litter"
   mount -o remount,size=256m "$work/shared"
@@ -422,8 +477,8 @@ measure)
     rm -rf "$bake"
     exclude=$(comm -23 <(printf '%s\n' n1 n2 n3) <(tr , '\n' <<<"$use" | sort) | paste -sd,)
     start=$(now)
-    job=$(cd "$work/jobs" && on_ctl sbatch --parsable --wait --array=0-$((workers - 1)) --mem=1024M \
-      ${exclude:+--exclude=$exclude} --export=ALL,STRATA="$STRATA_ON_NODES" \
+    job=$(cd "$work/jobs" && on_ctl env STRATA="$STRATA_ON_NODES" sbatch --parsable --wait \
+      --array=0-$((workers - 1)) --mem=1024M ${exclude:+--exclude=$exclude} \
       "$source/examples/slurm/bake.sbatch" "$scene" "$bake" "$per_worker" "${flags[@]}")
     took=$(since "$start")
     note "nodes $use: $tiles tiles in $took s = $(python3 -c "print(f'{60 * $tiles / $took:.0f}')") tiles/min"
