@@ -19,7 +19,7 @@ PACKAGES=(
   libgdal-dev
   clang libclang-rt-dev llvm
   slurm-wlm munge python3 python3-yaml
-  iproute2 qemu-user g++-aarch64-linux-gnu mmdebstrap
+  iproute2 qemu-user
   python3-dev python3-pybind11 pybind11-dev python3-numpy python3-pytest blender
   python-matplotlib-data
   xvfb xauth
@@ -35,9 +35,9 @@ PACKAGES=(
 # draws the bake's web viewer on software WebGL in tests/web (WebViewer.*).
 # libgdal-dev: GDAL reads digital elevation models (GeoTIFF and other rasters)
 # for the dem_heightfield node (scene/src/DemFile.cpp).
-# iproute2 (network namespaces), qemu-user, g++-aarch64-linux-gnu and
-# mmdebstrap: the aarch64 build (scripts/determinism-builds.sh aarch64) and
-# the cluster tests, whose ARM node runs it (tests/apps/slurm_cluster_test.sh).
+# iproute2 (network namespaces) and qemu-user: the cluster tests, whose ARM
+# node runs the aarch64 build (tests/apps/slurm_cluster_test.sh;
+# scripts/determinism-builds.sh aarch64 installs the cross compiler).
 # reuse runs `reuse lint` (ctest's ReuseLint): every file states its licence.
 # python-matplotlib-data ships a real DEM (sample_data/jacksboro_fault_dem.npz)
 # that tests/apps/BenchLandformsCommandTest.cpp measures (docs/landform-statistics.md).
