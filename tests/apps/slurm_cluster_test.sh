@@ -492,11 +492,14 @@ for f in pathlib.Path(sys.argv[1]).glob("*.json"):
     p = json.loads(f.read_text())
     by.setdefault(f"{p['host']} ({p['arch']})", []).append(p["seconds"])
 for host, s in sorted(by.items()):
-    print(f"slurm_cluster_test[measure]: {host}: {len(s)} tiles, median {statistics.median(s):.3f} s a tile")
+    print(f"slurm_cluster_test[measure]: {host}: {len(s)} tiles, {sum(s):.2f} s in all, "
+          f"mean {statistics.mean(s):.3f} s, median {statistics.median(s):.3f} s a tile")
 PY
   start=$(now)
   job=$(cd "$work/jobs" && on_ctl sbatch --parsable --wait --array=0-29 --mem=64M --wrap true)
-  note "scheduler overhead: 30 empty tasks on 3 nodes in $(since "$start") s"
+  took=$(since "$start")
+  note "scheduler overhead: 30 empty tasks on 3 nodes (one at a time each) in $took s:" \
+    "$(python3 -c "print(f'{$took / 10:.2f}')") s a task"
   ;;
 esac
 note "OK"
