@@ -141,6 +141,9 @@ SelectType=select/cons_tres
 SelectTypeParameters=CR_Core_Memory
 MpiDefault=none
 SchedulerType=sched/backfill
+# Batch tasks start at most every batch_sched_delay seconds (Slurm's
+# default, 3 s, is most of a small task's cost here; measure: both).
+SchedulerParameters=batch_sched_delay=${CLUSTER_BATCH_SCHED_DELAY:-0}
 ReturnToService=2
 # A lost node is noticed within seconds (a real cluster: minutes) and its
 # batch tasks requeued (the bake's workers are idempotent).
@@ -209,19 +212,19 @@ task_states() {
 }
 wait_array_done() { # wait_array_done JOB SECONDS: until no task is pending or running
   local job=$1 limit=$2 left
-  for _ in $(seq "$limit"); do
+  for _ in $(seq $((limit * 4))); do
     left=$(on_ctl squeue -h -r -j "$job" -t PENDING,RUNNING,CONFIGURING,COMPLETING,REQUEUED 2>/dev/null | wc -l)
     [[ $left -eq 0 ]] && return 0
-    sleep 1
+    sleep 0.25
   done
   fail "array $job still has $left tasks after $limit s: $(task_states "$job" | tr '\n' ';')"
 }
 wait_job() { # wait_job JOB SECONDS: prints its final state
   local state
-  for _ in $(seq "$2"); do
+  for _ in $(seq $(($2 * 4))); do
     state=$(job_state "$1")
     case $state in COMPLETED | FAILED | CANCELLED | TIMEOUT | NODE_FAIL | OUT_OF_MEMORY) break ;; esac
-    sleep 1
+    sleep 0.25
   done
   echo "$state"
 }
@@ -229,9 +232,13 @@ submit() { # the README's way: examples/slurm/submit.sh; prints "ARRAY FINAL"
   (cd "$work/jobs" && on_ctl env STRATA="$STRATA_ON_NODES" "$source/examples/slurm/submit.sh" \
     "$scene" "$bake" "$per_worker" 8 -- "${flags[@]}")
 }
-submit_tasks() { # submit_tasks ARRAY_SPEC: bake tasks again (a rerun), waits, prints the job
-  (cd "$work/jobs" && on_ctl env STRATA="$STRATA_ON_NODES" sbatch --parsable --wait --array="$1" --mem=1024M \
-    "$source/examples/slurm/bake.sbatch" "$scene" "$bake" "$per_worker" "${flags[@]}")
+submit_tasks() { # submit_tasks ARRAY_SPEC [SBATCH FLAGS]: bake tasks (again), waits, prints the job
+  local job
+  job=$(cd "$work/jobs" && on_ctl env STRATA="$STRATA_ON_NODES" sbatch --parsable --array="$1" --mem=1024M \
+    "${@:2}" "$source/examples/slurm/bake.sbatch" "$scene" "$bake" "$per_worker" "${flags[@]}")
+  # sbatch --wait polls at growing intervals (seconds late): poll here.
+  wait_array_done "$job" 600 >&2
+  echo "$job"
 }
 strata_pid() { # the strata worker running in HOST's namespace (qemu's on n3)
   local pid
@@ -477,9 +484,7 @@ measure)
     rm -rf "$bake"
     exclude=$(comm -23 <(printf '%s\n' n1 n2 n3) <(tr , '\n' <<<"$use" | sort) | paste -sd,)
     start=$(now)
-    job=$(cd "$work/jobs" && on_ctl env STRATA="$STRATA_ON_NODES" sbatch --parsable --wait \
-      --array=0-$((workers - 1)) --mem=1024M ${exclude:+--exclude=$exclude} \
-      "$source/examples/slurm/bake.sbatch" "$scene" "$bake" "$per_worker" "${flags[@]}")
+    submit_tasks "0-$((workers - 1))" ${exclude:+--exclude=$exclude} >/dev/null
     took=$(since "$start")
     note "nodes $use: $tiles tiles in $took s = $(python3 -c "print(f'{60 * $tiles / $took:.0f}')") tiles/min"
   done
@@ -496,7 +501,8 @@ for host, s in sorted(by.items()):
           f"mean {statistics.mean(s):.3f} s, median {statistics.median(s):.3f} s a tile")
 PY
   start=$(now)
-  job=$(cd "$work/jobs" && on_ctl sbatch --parsable --wait --array=0-29 --mem=64M --wrap true)
+  job=$(cd "$work/jobs" && on_ctl sbatch --parsable --array=0-29 --mem=64M --wrap true)
+  wait_array_done "$job" 600
   took=$(since "$start")
   note "scheduler overhead: 30 empty tasks on 3 nodes (one at a time each) in $took s:" \
     "$(python3 -c "print(f'{$took / 10:.2f}')") s a task"

@@ -22,7 +22,10 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <unistd.h>
+
 #include <array>
+#include <cstdlib>
 #include <fstream>
 #include <iterator>
 #include <map>
@@ -734,4 +737,62 @@ voxel_size = 0.5
         EXPECT_NE(std::string(e.what()).find("another scene"), std::string::npos) << e.what();
     }
     EXPECT_THROW(loadBakedScene(dir / "out"), Error) << "the folder's scene no longer matches its heightmap";
+}
+
+// Workers record which machine baked each tile (provenance/I.json: host,
+// architecture, scheduler task); finalize reports it, and the tiles,
+// records and manifest are the bytes of a single process, which writes no
+// provenance. A bake forced over the folder removes the old provenance.
+TEST(Bake, WorkersRecordWhichHostBakedEachTileAndFinalizeReportsIt)
+{
+    const Scene scene = parseScene(HILL_SCENE, "<hills>");
+    const fs::path dir = test::freshTestDir();
+    BakeOptions options = smallBake(1);
+    options.lods = 1;
+    const BakeSummary single = bakeInto(scene, dir / "single", options);
+    EXPECT_FALSE(fs::exists(dir / "single" / "provenance"));
+    EXPECT_TRUE(single.bakedBy.empty());
+
+    options.worker = true;
+    ::setenv("SLURM_ARRAY_JOB_ID", "77", 1);
+    ::setenv("SLURM_ARRAY_TASK_ID", "1", 1);
+    options.tiles = "0-1";
+    bakeInto(scene, dir / "workers", options);
+    options.tiles = "2-3";
+    bakeInto(scene, dir / "workers", options);
+    ::unsetenv("SLURM_ARRAY_JOB_ID");
+    ::unsetenv("SLURM_ARRAY_TASK_ID");
+    const BakeSummary summary = finalizeBake(dir / "workers");
+
+    char host[256] = {};
+    ASSERT_EQ(::gethostname(host, sizeof host - 1), 0);
+    ASSERT_EQ(summary.bakedBy.size(), 1u);
+    EXPECT_EQ(summary.bakedBy[0].host, host);
+#if defined(__x86_64__)
+    EXPECT_EQ(summary.bakedBy[0].arch, "x86_64");
+#elif defined(__aarch64__)
+    EXPECT_EQ(summary.bakedBy[0].arch, "aarch64");
+#endif
+    EXPECT_EQ(summary.bakedBy[0].tiles, (std::vector<int>{0, 1, 2, 3}));
+    const nlohmann::json record = readJson(dir / "workers" / "provenance" / "2.json");
+    EXPECT_EQ(record.at("tile"), 2);
+    EXPECT_EQ(record.at("job"), "77_1");
+    EXPECT_GE(record.at("seconds").get<double>(), 0.0);
+    EXPECT_EQ(indexRanges(summary.bakedBy[0].tiles, ", "), "0-3");
+
+    // Everything but the provenance is the single process's bytes.
+    std::map<std::string, std::string> workers = filesUnder(dir / "workers");
+    std::erase_if(workers, [](const auto& file) { return file.first.starts_with("provenance/"); });
+    EXPECT_EQ(workers, filesUnder(dir / "single"));
+
+    // A damaged provenance file is left out of the report, nothing more.
+    std::ofstream(dir / "workers" / "provenance" / "3.json") << "{not json";
+    EXPECT_EQ(finalizeBake(dir / "workers").bakedBy.at(0).tiles, (std::vector<int>{0, 1, 2}));
+
+    // A bake of another scene forced over the folder removes the old log.
+    options.worker = false;
+    options.tiles = "all";
+    options.force = true;
+    bakeInto(parseScene(std::string(HILL_SCENE) + "\n# another\n", "<other>"), dir / "workers", options);
+    EXPECT_FALSE(fs::exists(dir / "workers" / "provenance"));
 }
