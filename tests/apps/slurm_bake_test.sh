@@ -162,9 +162,9 @@ elapsed=$(python3 -c "import time; print(f'{time.time() - $start:.2f}')")
 tasks=$(scontrol show job "$bake_job" 2>/dev/null | grep -c 'JobState=COMPLETED' || true)
 note "slurm bake: $tasks array tasks completed; ${elapsed} s wall (single process, one thread: ${single} s)"
 
-compare() { # compare DIR_A DIR_B: the bake's files, byte for byte
-  (cd "$1" && find . -type f ! -name '.strata.lock' ! -name '.*.partial-*' | sort) > "$work/a.list"
-  (cd "$2" && find . -type f ! -name '.strata.lock' ! -name '.*.partial-*' | sort) > "$work/b.list"
+compare() { # compare DIR_A DIR_B: the bake's files, byte for byte (workers' provenance is a log beside it)
+  (cd "$1" && find . -type f ! -name '.strata.lock' ! -name '.*.partial-*' ! -path './provenance/*' | sort) > "$work/a.list"
+  (cd "$2" && find . -type f ! -name '.strata.lock' ! -name '.*.partial-*' ! -path './provenance/*' | sort) > "$work/b.list"
   diff -q "$work/a.list" "$work/b.list" >/dev/null || fail "$2 holds other files than $1: $(diff "$work/a.list" "$work/b.list" | head -5)"
   while read -r f; do cmp -s "$1/$f" "$2/$f" || fail "$2/$f differs from $1/$f"; done < "$work/a.list"
 }
