@@ -13,6 +13,7 @@
 #include "OpenBeneath.h"
 
 #include <strata/Error.h>
+#include <strata/detail/IntegerHash.h>
 #include <strata/serve/MimeType.h>
 #include <strata/serve/RequestPath.h>
 
@@ -151,16 +152,37 @@ bool matchesAny(const std::string& header, std::initializer_list<std::string> ta
     return false;
 }
 
-std::string readWhole(int fd, std::uint64_t size)
+/// Bytes [offset, offset + length) of the file.
+std::string readRange(int fd, std::uint64_t offset, std::uint64_t length)
 {
-    std::string data(size, '\0');
+    std::string data(length, '\0');
     std::uint64_t done = 0;
-    while (done < size) {
-        const ssize_t n = ::pread(fd, data.data() + done, size - done, off_t(done));
+    while (done < length) {
+        const ssize_t n = ::pread(fd, data.data() + done, length - done, off_t(offset + done));
         if (n <= 0) throw Error(ErrorKind::Io, std::string("read failed: ") + (n < 0 ? std::strerror(errno) : "file shrank"));
         done += std::uint64_t(n);
     }
     return data;
+}
+
+std::string readWhole(int fd, std::uint64_t size) { return readRange(fd, 0, size); }
+
+/// A multipart/byteranges body (RFC 9110 14.6) of `ranges` of the file,
+/// reading only those bytes. cpp-httplib 0.11 would write each part's
+/// Content-Range total from the body's size (0 for a streamed file), so
+/// the parts are made here and httplib is given no ranges.
+std::string multipartBody(int fd, std::uint64_t size, const std::vector<detail::ByteRange>& ranges,
+                          const std::string& mimeType, const std::string& boundary)
+{
+    std::string body;
+    for (const auto& [first, last] : ranges) {
+        body += "--" + boundary + "\r\nContent-Type: " + mimeType + "\r\nContent-Range: bytes " +
+                std::to_string(first) + "-" + std::to_string(last) + "/" + std::to_string(size) + "\r\n\r\n";
+        body += readRange(fd, std::uint64_t(first), std::uint64_t(last - first + 1));
+        body += "\r\n";
+    }
+    body += "--" + boundary + "--\r\n";
+    return body;
 }
 
 } // namespace
@@ -261,15 +283,26 @@ void FileServer::Impl::handle(const httplib::Request& request, httplib::Response
         }
         ranges.assign(satisfiable.begin(), satisfiable.end());
         if (ranges.size() > 1) {
-            // cpp-httplib 0.11 writes each part's Content-Range total from the
-            // body's size, which is 0 for a content provider: hand it the
-            // bytes instead, or, for a file too large to hold, ignore the
-            // Range and send it whole (RFC 9110 allows both).
-            if (size <= options.maxCompressedFileBytes) {
-                response.set_content(readWhole(file->fd, size), mimeType);
+            // Several ranges: a multipart body of just those bytes. Ranges
+            // that add up past the file (overlaps) or past the in-memory
+            // cap are answered with the whole file, streamed, as RFC 9110
+            // allows: a small request must not cost a large answer.
+            std::uint64_t bytes = 0;
+            for (const auto& [first, last] : satisfiable) bytes += std::uint64_t(last - first + 1);
+            ranges.clear(); // httplib must not slice what is sent
+            if (bytes <= size && bytes <= options.maxCompressedFileBytes) {
+                // A boundary no part can hold by chance: 128 bits from this
+                // version of the file.
+                const std::uint64_t a = strata::detail::mix64(std::uint64_t(info.st_ino) ^ (size << 1));
+                const std::uint64_t b = strata::detail::mix64(std::uint64_t(modifiedNs(info.st_mtim)) + a);
+                char boundary[48];
+                std::snprintf(boundary, sizeof boundary, "strata-%016llx%016llx", static_cast<unsigned long long>(a),
+                              static_cast<unsigned long long>(b));
+                response.status = 206;
+                response.set_content(multipartBody(file->fd, size, satisfiable, mimeType, boundary),
+                                     "multipart/byteranges; boundary=" + std::string(boundary));
                 return;
             }
-            ranges.clear();
         }
     } else if (size == 0) {
         response.set_content("", mimeType);

@@ -75,12 +75,14 @@ protected:
     void TearDown() override { stopServer(); }
 
     void startServer(strata::serve::Compression compression = strata::serve::Compression::Text,
-                     std::size_t compressedCacheBytes = strata::serve::FileServerOptions{}.compressedCacheBytes)
+                     std::size_t compressedCacheBytes = strata::serve::FileServerOptions{}.compressedCacheBytes,
+                     std::size_t maxInMemoryBytes = strata::serve::FileServerOptions{}.maxCompressedFileBytes)
     {
         strata::serve::FileServerOptions options;
         options.port = 0;
         options.compression = compression;
         options.compressedCacheBytes = compressedCacheBytes;
+        options.maxCompressedFileBytes = maxInMemoryBytes;
         server = std::make_unique<strata::serve::FileServer>(root, options);
         port = server->port();
         thread = std::thread([this] { server->run(); });
@@ -207,6 +209,41 @@ TEST_F(FileServerTest, SeveralRangesComeAsMultipart)
     EXPECT_NE(response->body.find(json.substr(0, 5)), std::string::npos);
     EXPECT_NE(response->body.find(json.substr(10, 5)), std::string::npos);
     EXPECT_NE(response->body.find("Content-Range: bytes 10-14/" + std::to_string(json.size())), std::string::npos);
+}
+
+// Several ranges are read on their own, whatever the file's size: a
+// multipart body of just those bytes, each part with its Content-Range
+// (the server read the whole file for them, and a file over the in-memory
+// cap was sent whole). Overlaps that add up past the file get it whole.
+TEST_F(FileServerTest, SeveralRangesReadOnlyThoseBytesEvenOfAFileOverTheCap)
+{
+    stopServer();
+    startServer(strata::serve::Compression::Text, strata::serve::FileServerOptions{}.compressedCacheBytes, 4096);
+    const std::string bytes = readFile(root / "tiles/0/0_0_0.glb");
+    ASSERT_GT(bytes.size(), 4096u);
+    auto c = client();
+    const auto response = c.Get("/tiles/0/0_0_0.glb", {{"Range", "bytes=0-9,50000-50009,-5"}});
+    ASSERT_TRUE(response);
+    EXPECT_EQ(response->status, 206);
+    const std::string type = response->get_header_value("Content-Type");
+    ASSERT_TRUE(type.starts_with("multipart/byteranges; boundary=")) << type;
+    const std::string boundary = type.substr(type.find('=') + 1);
+    const std::string total = "/" + std::to_string(bytes.size());
+    std::string expected;
+    for (const auto& [first, last] : {std::pair<std::size_t, std::size_t>{0, 9}, {50000, 50009},
+                                      {bytes.size() - 5, bytes.size() - 1}}) {
+        expected += "--" + boundary + "\r\nContent-Type: model/gltf-binary\r\nContent-Range: bytes " +
+                    std::to_string(first) + "-" + std::to_string(last) + total + "\r\n\r\n" +
+                    bytes.substr(first, last - first + 1) + "\r\n";
+    }
+    expected += "--" + boundary + "--\r\n";
+    EXPECT_EQ(response->body, expected);
+    EXPECT_EQ(response->get_header_value("Content-Length"), std::to_string(expected.size()));
+
+    const auto overlapping = c.Get("/tiles/0/0_0_0.glb", {{"Range", "bytes=0-99999,0-99999"}});
+    ASSERT_TRUE(overlapping);
+    EXPECT_EQ(overlapping->status, 200);
+    EXPECT_EQ(overlapping->body, bytes);
 }
 
 TEST_F(FileServerTest, UnsatisfiableRangesAre416)
