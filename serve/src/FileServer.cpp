@@ -187,6 +187,17 @@ std::string multipartBody(int fd, std::uint64_t size, const std::vector<detail::
 
 } // namespace
 
+Compression compressionFor(Compression compression, std::string_view clientAddress)
+{
+    if (compression != Compression::Auto) return compression;
+    // On the loopback bandwidth is memory bandwidth (a 0.9 MB tile: 3400
+    // requests/s as it is, 58 gzipped), so only text is worth compressing.
+    std::string_view address = clientAddress;
+    if (address.starts_with("::ffff:")) address.remove_prefix(7); // an IPv4 client on an IPv6 socket
+    const bool loopback = address == "::1" || address.starts_with("127.");
+    return loopback ? Compression::Text : Compression::All;
+}
+
 struct FileServer::Impl
 {
     fs::path root;
@@ -245,8 +256,9 @@ void FileServer::Impl::handle(const httplib::Request& request, httplib::Response
     const auto size = std::uint64_t(info.st_size);
     const std::string mimeType(mimeTypeFor(resolved.file));
     const Compressibility kind = compressibilityFor(resolved.file);
-    const bool compressible = (kind == Compressibility::Text && options.compression != Compression::None) ||
-                              (kind == Compressibility::Binary && options.compression == Compression::All);
+    const Compression compression = compressionFor(options.compression, request.remote_addr);
+    const bool compressible = (kind == Compressibility::Text && compression != Compression::None) ||
+                              (kind == Compressibility::Binary && compression == Compression::All);
     response.set_header("Accept-Ranges", "bytes");
     response.set_header("Cache-Control", "no-cache"); // revalidate with the ETag: a re-bake replaces tiles in place
     response.set_header("X-Content-Type-Options", "nosniff");

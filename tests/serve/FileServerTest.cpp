@@ -246,6 +246,36 @@ TEST_F(FileServerTest, SeveralRangesReadOnlyThoseBytesEvenOfAFileOverTheCap)
     EXPECT_EQ(overlapping->body, bytes);
 }
 
+// `--compress auto` is decided per request by the client's address, not
+// by the address the server listens on (a server on 0.0.0.0 serves its own
+// machine too): text only for a loopback client, everything for others.
+TEST(FileServerCompression, AutoFollowsTheClientsAddress)
+{
+    using strata::serve::Compression;
+    using strata::serve::compressionFor;
+    for (const char* loopback : {"127.0.0.1", "127.12.0.9", "::1", "::ffff:127.0.0.1"})
+        EXPECT_EQ(compressionFor(Compression::Auto, loopback), Compression::Text) << loopback;
+    for (const char* remote : {"10.0.0.7", "192.168.1.20", "::ffff:10.1.2.3", "fe80::1", "2001:db8::1", "", "1.127.0.0"})
+        EXPECT_EQ(compressionFor(Compression::Auto, remote), Compression::All) << remote;
+    for (const Compression fixed : {Compression::None, Compression::Text, Compression::All}) {
+        EXPECT_EQ(compressionFor(fixed, "127.0.0.1"), fixed);
+        EXPECT_EQ(compressionFor(fixed, "10.0.0.7"), fixed);
+    }
+}
+
+TEST_F(FileServerTest, AutoCompressionGivesALoopbackClientText)
+{
+    stopServer();
+    startServer(strata::serve::Compression::Auto);
+    auto c = client();
+    const auto tile = c.Get("/tiles/0/0_0_0.glb", {{"Accept-Encoding", "gzip"}});
+    ASSERT_TRUE(tile);
+    EXPECT_FALSE(tile->has_header("Content-Encoding")); // a binary tile on the loopback: as it is
+    const auto json = c.Get("/tileset.json", {{"Accept-Encoding", "gzip"}});
+    ASSERT_TRUE(json);
+    EXPECT_EQ(json->get_header_value("Content-Encoding"), "gzip");
+}
+
 TEST_F(FileServerTest, UnsatisfiableRangesAre416)
 {
     const std::size_t size = readFile(root / "tiles/0/0_0_0.glb").size();

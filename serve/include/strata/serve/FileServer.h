@@ -30,6 +30,7 @@
 #include <filesystem>
 #include <memory>
 #include <string>
+#include <string_view>
 
 namespace strata::serve {
 
@@ -41,7 +42,14 @@ enum class Compression
           ///< sending a binary tile as it is costs less than compressing it
     All,  ///< also binary glTF, .bin and WebAssembly (Compressibility::Binary): for a network.
           ///< Never an unknown extension (compressibilityFor()), nor PNG/JPEG/KTX2
+    Auto, ///< per request, by the client's address: Text for a client on the loopback, All
+          ///< for any other (a server on 0.0.0.0 serves both)
 };
+
+/// What `compression` means for a request from `clientAddress` (the peer's
+/// numeric address): Auto becomes Text for a loopback client (127.0.0.0/8,
+/// ::1, ::ffff:127.x.y.z) and All for any other; the others stay.
+Compression compressionFor(Compression compression, std::string_view clientAddress);
 
 /// One answered request, for a log.
 struct RequestRecord
@@ -70,8 +78,8 @@ struct FileServerOptions
     /// (several at once: synchronise inside); null: no log.
     std::function<void(const RequestRecord&)> onRequest{};
     /// Files larger than this are never compressed (they would be held in
-    /// memory whole); they are streamed as they are. Also the largest file
-    /// whose several ranges are answered as multipart (read whole).
+    /// memory whole); they are streamed as they are. Also the most bytes
+    /// that several ranges of one file are answered with as multipart.
     std::size_t maxCompressedFileBytes = std::size_t(64) << 20;
     /// The gzipped bodies kept for the next request of the same version of
     /// the same file (device, inode, size, modification time), in bytes of
