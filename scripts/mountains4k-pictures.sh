@@ -30,6 +30,18 @@ awk '
 "$strata" render "$work/preview.toml" --mesh "$work/out/terrain.glb" -o "$out/mountains4k-flow.png" --size 640x640 \
   --view top --debug-view flow --backend cpu
 
+# From the ground: the whole scene (caves, 1 m droplet detail, talus) on
+# the 512 m crop x -512..0, z 0..512 at 1 m voxels, from a valley floor at
+# 1.7 m eye height (the ground at (-230, 480) is at 191.54 m) looking up
+# across the range. About 25 s here.
+sed -e "s|\"\\.\\./\\.\\./docs/|\"$PWD/docs/|" \
+    -e 's/^min = \[-2048.0, -40.0, -2048.0\]/min = [-512.0, -40.0, 0.0]/' \
+    -e 's/^max = \[2048.0, 880.0, 2048.0\]/max = [0.0, 880.0, 512.0]/' examples/worlds/mountains4k.toml > "$work/ground.toml"
+grep -q '^min = \[-512.0' "$work/ground.toml" # the region lines were found
+"$strata" generate "$work/ground.toml" -o "$work/ground" --backend cpu --size 1280x720 --fov 70 \
+  --camera-position=-230,193.24,480 --camera-target=-300,260,250 -q
+cp "$work/ground/snapshot.png" "$out/mountains4k-ground.png"
+
 # The crests node (docs/geology.md, "Crests"): the eroded land alone, on a
 # 512 m crop at 2 m voxels, as the erode grid's spline leaves its ridges
 # (rounded) and through a crests node (sharp).
