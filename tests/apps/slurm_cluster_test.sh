@@ -303,6 +303,13 @@ PY
 }
 records() { { find "$bake/records" -name '*.json' 2>/dev/null || true; } | wc -l; }
 
+await_final() { # await_final WHEN: submit.sh's finalize job completes; its log holds the report
+  local state
+  state=$(wait_job "$final_job" 300)
+  [[ $state == COMPLETED ]] ||
+    fail "finalize job $final_job ended ${state:-unknown} $1: $(tail -5 "$work/jobs/strata-finalize-$final_job.out" 2>/dev/null)"
+  finalize_out=$work/jobs/strata-finalize-$final_job.out
+}
 finalize() { # a finalize job (afterok cannot be met after a failed task: submitted anew)
   local job state
   job=$(cd "$work/jobs" && on_ctl env STRATA="$STRATA_ON_NODES" sbatch --parsable \
@@ -347,11 +354,9 @@ case $case_name in
 bake)
   start=$(now)
   submit_and_wait
-  state=$(wait_job "$final_job" 600)
-  [[ $state == COMPLETED ]] || fail "finalize job $final_job ended ${state:-unknown}: $(tail -5 "$work"/jobs/strata-*.out 2>/dev/null)"
+  await_final "without a fault"
   note "the array and finalize took $(since "$start") s"
   expect_completed
-  finalize_out=$work/jobs/strata-finalize-$final_job.out
   report
   for host in n1 n2 n3; do grep -q "baked by  $host (" "$finalize_out" || fail "$host baked no tile"; done
   grep -q 'baked by  n3 (aarch64)' "$finalize_out" || fail "n3's tiles were not baked by the aarch64 build"
@@ -382,9 +387,7 @@ node-lost)
     note "task $index requeued by Slurm, finished on $node"
   done <<<"$requeued"
   note "n2 is $(on_ctl sinfo -h -n n2 -o '%T')"
-  state=$(wait_job "$final_job" 300)
-  [[ $state == COMPLETED ]] || fail "finalize job $final_job ended ${state:-unknown} after the requeue"
-  finalize_out=$work/jobs/strata-finalize-$final_job.out
+  await_final "after the requeue"
   report
   compare
   ;;
@@ -448,9 +451,7 @@ controller)
   start_controller
   wait_array_done "$array_job" 600
   expect_completed
-  state=$(wait_job "$final_job" 300)
-  [[ $state == COMPLETED ]] || fail "finalize job $final_job ended ${state:-unknown} after the restart"
-  finalize_out=$work/jobs/strata-finalize-$final_job.out
+  await_final "after the restart"
   report
   compare
   ;;
