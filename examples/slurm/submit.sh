@@ -24,9 +24,9 @@ mem=$(sed -n 's/.*--mem=\([0-9]*M\).*/\1/p' <<<"$plan")
 mkdir -p "$dir"
 # Slurm's logs (strata-bake-JOB_TASK.out) go to the folder you submit from.
 # STRATA reaches the tasks through the submitting environment (sbatch's
-# default --export=ALL): "--export=ALL,STRATA=..." would make every task
-# load root's login environment on its node first (su -, slurmd's
-# SLURM_GET_USER_ENV), which costs seconds and can hang on a slow profile.
+# default --export=ALL): with "--export=ALL,STRATA=..." Slurm 22.05 loaded
+# the user's login environment on the node before each task (su -), which
+# costs seconds and can hang on a slow profile.
 export STRATA="$strata"
 bake_job=$(sbatch --parsable --array="$array%$throttle" --mem="$mem" \
   "$here/bake.sbatch" "$scene" "$dir" "$per_worker" "${extra[@]}")
