@@ -33,12 +33,6 @@ struct ServeFlags
     bool log = false;
 };
 
-// A loopback address to listen on: the folder stays on this machine.
-bool isLoopback(const std::string& host)
-{
-    return host == "localhost" || host == "::1" || host.starts_with("127.");
-}
-
 serve::Compression compressionFlag(const ServeFlags& flags)
 {
     if (flags.compress == "none") return serve::Compression::None;
@@ -87,7 +81,7 @@ int serve(const ServeFlags& flags)
     if (!std::filesystem::is_regular_file(server.root() / "tileset.json", ec)) {
         std::cout << "(no tileset.json in " << flags.dir << ": not a bake folder, served as it is)" << std::endl;
     }
-    if (!isLoopback(flags.host)) {
+    if (!serve::isLoopbackAddress(flags.host)) {
         std::cout << "Note: " << flags.host << " may be reachable from other machines; everything in "
                   << flags.dir << " can be read by them" << std::endl;
     }

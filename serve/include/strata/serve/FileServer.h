@@ -46,9 +46,14 @@ enum class Compression
           ///< for any other (a server on 0.0.0.0 serves both)
 };
 
+/// A loopback address: "localhost", 127.0.0.0/8, ::1, or an IPv4 one
+/// mapped into IPv6 (::ffff:127.x.y.z). For the address to listen on and
+/// the peer's alike.
+bool isLoopbackAddress(std::string_view address);
+
 /// What `compression` means for a request from `clientAddress` (the peer's
-/// numeric address): Auto becomes Text for a loopback client (127.0.0.0/8,
-/// ::1, ::ffff:127.x.y.z) and All for any other; the others stay.
+/// numeric address): Auto becomes Text for a loopback client
+/// (isLoopbackAddress()) and All for any other; the others stay.
 Compression compressionFor(Compression compression, std::string_view clientAddress);
 
 /// One answered request, for a log.
