@@ -21,6 +21,8 @@ namespace fs = std::filesystem;
 namespace strata::scene::detail {
 namespace {
 
+constexpr std::uintmax_t MAX_PROVENANCE_BYTES = 64 * 1024;
+
 std::string hostName()
 {
     char name[256] = {};
@@ -86,7 +88,13 @@ std::vector<BakeHostTiles> readProvenance(const fs::path& dir, int count)
 {
     std::map<std::pair<std::string, std::string>, std::vector<int>> byHost;
     for (int index = 0; index < count; ++index) {
-        std::ifstream in(dir / PROVENANCE_FOLDER / (std::to_string(index) + ".json"));
+        const fs::path file = dir / PROVENANCE_FOLDER / (std::to_string(index) + ".json");
+        // A worker writes a few hundred bytes; anything far larger is not
+        // one of ours and is not read (a log must not cost gigabytes).
+        std::error_code error;
+        const std::uintmax_t bytes = fs::file_size(file, error);
+        if (error || bytes > MAX_PROVENANCE_BYTES) continue;
+        std::ifstream in(file);
         if (!in) continue;
         const nlohmann::json json = nlohmann::json::parse(in, nullptr, /*allow_exceptions*/ false);
         if (!json.is_object() || !json.contains("host") || !json["host"].is_string() || !json.contains("arch") ||

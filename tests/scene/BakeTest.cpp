@@ -785,9 +785,11 @@ TEST(Bake, WorkersRecordWhichHostBakedEachTileAndFinalizeReportsIt)
     std::erase_if(workers, [](const auto& file) { return file.first.starts_with("provenance/"); });
     EXPECT_EQ(workers, filesUnder(dir / "single"));
 
-    // A damaged provenance file is left out of the report, nothing more.
+    // A damaged provenance file is left out of the report, nothing more,
+    // and so is one far larger than a worker writes (it is not read).
     std::ofstream(dir / "workers" / "provenance" / "3.json") << "{not json";
-    EXPECT_EQ(finalizeBake(dir / "workers").bakedBy.at(0).tiles, (std::vector<int>{0, 1, 2}));
+    fs::resize_file(dir / "workers" / "provenance" / "2.json", std::uintmax_t(1) << 32); // sparse: 4 GiB claimed
+    EXPECT_EQ(finalizeBake(dir / "workers").bakedBy.at(0).tiles, (std::vector<int>{0, 1}));
 
     // A bake of another scene forced over the folder removes the old log.
     options.worker = false;
