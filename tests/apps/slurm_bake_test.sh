@@ -185,7 +185,8 @@ done
 kill -KILL "$worker" 2>/dev/null || true
 wait "$worker" 2>/dev/null || true
 partial=0
-for f in $(find "$work/killed/tiles" -name '*.glb' 2>/dev/null); do
+# (Hidden .NAME.partial-* files are a killed write's temporaries, not final names.)
+for f in $(find "$work/killed/tiles" -name '*.glb' ! -name '.*' 2>/dev/null); do
   "$strata" info "$f" >/dev/null 2>&1 || { partial=$((partial + 1)); echo "partial: $f"; }
 done
 [[ $partial -eq 0 ]] || fail "$partial tile files under their final names are not complete after SIGKILL"

@@ -294,6 +294,8 @@ whole_tiles() { # whole_tiles WHEN
   cut=$(python3 - "$bake/tiles" <<'PY'
 import pathlib, struct, sys
 for f in sorted(pathlib.Path(sys.argv[1]).rglob("*.glb")):
+    if f.name.startswith("."):
+        continue  # a write's temporary (.NAME.partial-*), not a final name
     b = f.read_bytes()
     if len(b) < 12 or b[:4] != b"glTF" or struct.unpack_from("<I", b, 8)[0] != len(b):
         print(f)
