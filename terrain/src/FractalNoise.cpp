@@ -8,6 +8,7 @@
 #include <strata/Error.h>
 
 #include "NoiseKernels.h"
+#include "NoiseSimd.h"
 
 #include <glm/geometric.hpp>
 
@@ -158,6 +159,9 @@ FractalNoise::FractalNoise(std::uint64_t seed, const FractalOptions& options)
     if (!(std::isfinite(options.gain) && options.gain >= 0.0)) {
         throw Error(ErrorKind::BadInput, "gain = " + show(options.gain) + " must be a finite number >= 0");
     }
+    if (options.version < NOISE_VERSION_MIN || options.version > NOISE_VERSION_MAX) {
+        throw Error(ErrorKind::BadInput, "noise_version = " + std::to_string(options.version) + " must be 1 or 2");
+    }
     mCount = options.octaves;
     double norm = 0.0, amplitude = 1.0, frequency = 1.0;
     for (int i = 0; i < mCount; ++i) {
@@ -180,6 +184,11 @@ FractalNoise::FractalNoise(std::uint64_t seed, const FractalOptions& options)
 
 double FractalNoise::basis(std::uint64_t s, const glm::dvec3& p) const
 {
+    if (mOptions.version == 2) {
+        double value = 0.0;
+        basisVersion2(mOptions.noise, s, &p.x, &p.y, &p.z, 1, &value);
+        return value;
+    }
     switch (mOptions.noise) {
     case NoiseType::GRADIENT: return noise3(s, p);
     case NoiseType::SIMPLEX: return simplex3(s, p);
@@ -192,6 +201,11 @@ double FractalNoise::basis(std::uint64_t s, const glm::dvec3& p) const
 
 double FractalNoise::basis(std::uint64_t s, const glm::dvec2& p) const
 {
+    if (mOptions.version == 2) {
+        double value = 0.0;
+        basisVersion2(mOptions.noise, s, &p.x, &p.y, nullptr, 1, &value);
+        return value;
+    }
     switch (mOptions.noise) {
     case NoiseType::GRADIENT: return noise2(s, p);
     case NoiseType::SIMPLEX: return simplex2(s, p);
@@ -214,6 +228,11 @@ double FractalNoise::shape(double n) const
 
 double FractalNoise::operator()(const glm::dvec3& p) const
 {
+    if (mOptions.version == 2) {
+        double sum = 0.0;
+        evaluateVersion2(&p.x, &p.y, &p.z, 1, &sum);
+        return sum;
+    }
     double sum = 0.0;
     for (int i = 0; i < mCount; ++i) {
         const Octave& o = mOctaves[i];
@@ -225,6 +244,11 @@ double FractalNoise::operator()(const glm::dvec3& p) const
 
 double FractalNoise::operator()(const glm::dvec2& p) const
 {
+    if (mOptions.version == 2) {
+        double sum = 0.0;
+        evaluateVersion2(&p.x, &p.y, nullptr, 1, &sum);
+        return sum;
+    }
     double sum = 0.0;
     for (int i = 0; i < mCount; ++i) {
         const Octave& o = mOctaves[i];
@@ -265,6 +289,10 @@ namespace {
 /// lattice coordinates: below 1e-9 out to 1e6 noise units. Each octave's
 /// interval is widened by far more than that, so it stays rigorous.
 constexpr double BASIS_ROUNDING = 1e-6;
+/// Version 2 rounds the offset in the cell to float (2^-25 absolute, times
+/// the gradient bound) and does some thirty float operations on values of
+/// order one (each 2^-24 relative): below 1e-5 for every basis, so 1e-4.
+constexpr double BASIS_ROUNDING_V2 = 1e-4;
 
 /// The shape of a fractal sum applied to an interval of basis values: the
 /// identity (fBm), 1 − 2|n| (ridged) or 2|n| − 1 (billow), exactly.
@@ -286,12 +314,13 @@ Interval FractalNoise::bounds(const glm::dvec3& lo, const glm::dvec3& hi) const
     const Interval range = basisRange(mOptions.noise, 3);
     const glm::dvec3 centre = 0.5 * (lo + hi);
     const double radius = 0.5 * glm::length(hi - lo);
+    const double rounding = mOptions.version == 2 ? BASIS_ROUNDING_V2 : BASIS_ROUNDING;
     Interval sum{0.0, 0.0};
     for (int i = 0; i < mCount; ++i) {
         const Octave& o = mOctaves[i];
         const glm::dvec3 q = centre * o.frequency + glm::dvec3(o.offset[0], o.offset[1], o.offset[2]);
         // The octave sees a box of half diagonal f_i·radius around q.
-        const double n = basis(o.seed, q), reach = slope * o.frequency * radius + BASIS_ROUNDING;
+        const double n = basis(o.seed, q), reach = slope * o.frequency * radius + rounding;
         const Interval shaped =
             shapeInterval(mOptions.fractal, std::max(n - reach, range.lo), std::min(n + reach, range.hi));
         sum.lo += o.weight * shaped.lo;
@@ -312,7 +341,7 @@ Interval FractalNoise::bounds(const glm::dvec2& lo, const glm::dvec2& hi) const
         const glm::dvec2 offset(o.offset[0], o.offset[1]);
         const glm::dvec2 qlo = lo * o.frequency + offset, qhi = hi * o.frequency + offset;
         double n = 0.0, reach = slope * o.frequency * radius;
-        if (mOptions.noise == NoiseType::GRADIENT && std::floor(qlo.x) == std::floor(qhi.x) &&
+        if (mOptions.version == 1 && mOptions.noise == NoiseType::GRADIENT && std::floor(qlo.x) == std::floor(qhi.x) &&
             std::floor(qlo.y) == std::floor(qhi.y)) {
             // Inside one lattice cell: the mean value form, usually several
             // times tighter than the gradient bound (both are rigorous).
@@ -322,7 +351,7 @@ Interval FractalNoise::bounds(const glm::dvec2& lo, const glm::dvec2& hi) const
         } else {
             n = basis(o.seed, centre * o.frequency + offset);
         }
-        reach += BASIS_ROUNDING;
+        reach += mOptions.version == 2 ? BASIS_ROUNDING_V2 : BASIS_ROUNDING;
         const Interval shaped =
             shapeInterval(mOptions.fractal, std::max(n - reach, range.lo), std::min(n + reach, range.hi));
         sum.lo += o.weight * shaped.lo;

@@ -258,12 +258,25 @@ void fractalSum(FractalType fractal, NoiseType type, const Octave* octaves, int 
 
 void FractalNoise::evaluate(const double* x, const double* y, const double* z, std::size_t n, double* out) const
 {
+    if (mOptions.version == 2) return evaluateVersion2(x, y, z, n, out);
     fractalSum(mOptions.fractal, mOptions.noise, mOctaves, mCount, x, y, z, n, out);
 }
 
 void FractalNoise::evaluate(const double* x, const double* y, std::size_t n, double* out) const
 {
+    if (mOptions.version == 2) return evaluateVersion2(x, y, nullptr, n, out);
     fractalSum(mOptions.fractal, mOptions.noise, mOctaves, mCount, x, y, nullptr, n, out);
+}
+
+void FractalNoise::evaluateVersion2(const double* x, const double* y, const double* z, std::size_t n,
+                                    double* out) const
+{
+    OctaveLanes32 octaves[MAX_OCTAVES];
+    for (int i = 0; i < mCount; ++i) {
+        const Octave& o = mOctaves[i];
+        octaves[i] = {std::uint32_t(o.seed >> 32), float(o.weight), o.frequency, {o.offset[0], o.offset[1], o.offset[2]}};
+    }
+    fractalLanes32({mOptions.noise, mOptions.fractal, octaves, mCount}, x, y, z, n, out);
 }
 
 void Fbm::evaluate(const double* x, const double* y, const double* z, std::size_t n, float* out) const

@@ -761,6 +761,8 @@ hwy::ChosenTarget& chosenTarget()
 
 bool nativeLaneHashing() { return STRATA_DISPATCH(NativeLaneHashingImpl)(); }
 
+std::size_t noiseTargetIndex() { return std::size_t(chosenTarget().GetIndex()); }
+
 // Called from inside namespace detail: with a single target (aarch64 has
 // NEON alone) the dispatch names the function in the target's namespace.
 std::string targetInUse() { return STRATA_DISPATCH(TargetInUse)(); }

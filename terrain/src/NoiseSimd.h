@@ -18,6 +18,8 @@
 /// unfused (-ffp-contract=off; no MulAdd), and Floor and Sqrt are exact, so
 /// every target gives the scalar path's bits.
 
+#include <strata/terrain/FractalNoise.h>
+
 #include <cstddef>
 #include <cstdint>
 
@@ -99,5 +101,45 @@ void cellDataLanes(InCell kind, std::uint64_t seed, const double* cellX, const d
 /// Whether the target in use multiplies 64-bit lanes natively (AVX-512),
 /// which makes hashedLanes() the faster path where runs are short.
 bool nativeLaneHashing();
+
+/// The index of the target in use (useSimdTarget()) into the HWY_EXPORT
+/// tables, for the other files of SIMD noise to dispatch to the same target.
+std::size_t noiseTargetIndex();
+
+// ---- version 2 (NoiseLanes32.cpp) ----------------------------------------------
+
+/// One octave of a version-2 fractal sum: the point at p·frequency +
+/// offset, its basis hashed with `seed`, shaped, times `weight`.
+struct OctaveLanes32
+{
+    std::uint32_t seed;
+    float weight;
+    double frequency;
+    double offset[3];
+};
+
+struct FractalLanes32
+{
+    NoiseType type;
+    FractalType fractal;
+    const OctaveLanes32* octaves;
+    int count;
+};
+
+/// Version 2's fractal sum at n points (noise units before the octaves'
+/// frequencies; z == nullptr: 2D): per octave, each point split in double
+/// lanes into its cell (as the two 32-bit words of latticeIndex()'s int64)
+/// and its offset (rounded to float), the basis in float lanes with the cell
+/// hashed in 32-bit lanes, the shaped values summed in float. A point's
+/// value depends on it alone (not its lane or batch), and is the same bits
+/// on every target.
+void fractalLanes32(const FractalLanes32& sum, const double* x, const double* y, const double* z, std::size_t n,
+                    double* out);
+
+/// Version 2's basis (before a fractal shape) at n points in noise units,
+/// from a hashed seed (its high word is the 32-bit seed): fractalLanes32
+/// with one octave of frequency 1, offset 0 and weight 1.
+void basisVersion2(NoiseType type, std::uint64_t hashedSeed, const double* x, const double* y, const double* z,
+                   std::size_t n, double* out);
 
 } // namespace strata::terrain::detail

@@ -148,6 +148,20 @@ std::vector<NoiseThroughput> measureNoiseThroughput(const NoiseThroughputOptions
                         sink = sink + out[n / 2];
                 };
                 row.blockRate = rate(blockPath, n, options.seconds);
+                const FractalNoise version2(7, {basis.type, FractalType::FBM, octaves, 2.0, 0.5, 2});
+                const auto version2Over = [&](const Blocks& points) {
+                    return [&version2, &points, &out, &sink, n, dimensions] {
+                        for (std::size_t at = 0; at < n; at += Blocks::BLOCK) {
+                            if (dimensions == 3)
+                                version2.evaluate(&points.x[at], &points.y[at], &points.z[at], Blocks::BLOCK, &out[at]);
+                            else
+                                version2.evaluate(&points.x[at], &points.z[at], Blocks::BLOCK, &out[at]);
+                        }
+                        sink = sink + out[n / 2];
+                    };
+                };
+                row.version2Rate = rate(version2Over(blocks), n, options.seconds);
+                row.version2ScatteredRate = rate(version2Over(scattered), n, options.seconds);
                 useSimdTarget(targets.back());
                 row.blockScalarTargetRate = rate(blockPath, n, options.seconds);
                 restore();

@@ -121,7 +121,11 @@ TEST(FastNoiseLiteReference, TheThroughputMeasuresItBesideTheBlockPath)
     options.fastNoiseLite = writeFile(dir / "FastNoiseLite.h", STAND_IN).string();
     const std::vector<strata::terrain::NoiseThroughput> rows = strata::terrain::measureNoiseThroughput(options);
     ASSERT_EQ(rows.size(), 20u);
-    for (const auto& row : rows) EXPECT_GT(row.fastNoiseLiteRate, 0.0) << row.name << " " << row.dimensions << "D";
+    for (const auto& row : rows) {
+        EXPECT_GT(row.fastNoiseLiteRate, 0.0) << row.name << " " << row.dimensions << "D";
+        EXPECT_GT(row.version2Rate, 0.0) << row.name << " " << row.dimensions << "D";
+        EXPECT_GT(row.version2ScatteredRate, 0.0) << row.name << " " << row.dimensions << "D";
+    }
     options.fastNoiseLite.clear();
     for (const auto& row : strata::terrain::measureNoiseThroughput(options)) EXPECT_EQ(row.fastNoiseLiteRate, 0.0);
 }

@@ -91,7 +91,18 @@ struct FractalOptions
     int octaves = 5;         ///< 1..24
     double lacunarity = 2.0; ///< frequency ratio between octaves, > 0
     double gain = 0.5;       ///< amplitude ratio between octaves, >= 0
+    /// The noise version (a scene's `noise_version`):
+    ///   1: the lattice cell in 64-bit integers, the arithmetic in double,
+    ///      cells hashed once per run of points that share them;
+    ///   2: the cell split in 64-bit integers and hashed in 32-bit lanes, the
+    ///      offset in it and all arithmetic in float lanes, every point on its
+    ///      own (docs/noise.md). The same shapes, gradient sets and bounds;
+    ///      other values. Both give the same bits on every target.
+    int version = 1;
 };
+
+/// The noise versions FractalOptions::version takes.
+inline constexpr int NOISE_VERSION_MIN = 1, NOISE_VERSION_MAX = 2;
 
 /// A fractal sum of one basis, normalised by the sum of octave amplitudes so
 /// its range stays about [−1, 1]. Octaves use derived seeds and hashed input
@@ -101,8 +112,9 @@ class FractalNoise
 public:
     static constexpr int MAX_OCTAVES = 24;
 
-    /// Throws strata::Error naming "octaves", "lacunarity" or "gain" when out
-    /// of range (octaves 1..24, lacunarity finite > 0, gain finite >= 0).
+    /// Throws strata::Error naming "octaves", "lacunarity", "gain" or
+    /// "noise_version" when out of range (octaves 1..24, lacunarity finite
+    /// > 0, gain finite >= 0, version 1 or 2).
     FractalNoise(std::uint64_t seed, const FractalOptions& options);
 
     double operator()(const glm::dvec3& p) const;
@@ -123,7 +135,7 @@ public:
     /// (noise units, lo <= hi). Per octave i the basis lies within
     /// n_i(c_i) ± L_b·f_i·r (L_b the basis' gradient bound, f_i the
     /// octave's frequency, r the box's half diagonal) and within the basis'
-    /// rigorous range (basisRange); in 2D, for gradient noise, an octave
+    /// rigorous range (basisRange); in 2D, for version 1 gradient noise, an octave
     /// whose box lies in one lattice cell uses the mean value form instead
     /// when tighter (an interval enclosure of the gradient over the box,
     /// typically several times tighter on small boxes; proof in Noise.cpp).
@@ -140,6 +152,9 @@ private:
     double basis(std::uint64_t hashedSeed, const glm::dvec3& p) const;
     double basis(std::uint64_t hashedSeed, const glm::dvec2& p) const;
     double shape(double n) const;
+    /// Version 2's sums (NoiseLanes32.cpp), z == nullptr for 2D; the scalar
+    /// operator()s call it for one point, so block and scalar are one path.
+    void evaluateVersion2(const double* x, const double* y, const double* z, std::size_t n, double* out) const;
 
     struct Octave
     {

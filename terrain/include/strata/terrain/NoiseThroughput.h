@@ -6,8 +6,8 @@
 /// Measures the noise family's throughput on one core: each basis and its
 /// 5-octave fBm, 3D and 2D, through the scalar path (one call per point)
 /// and the block path (FractalNoise::evaluate on 8³ blocks of voxels) with
-/// and without SIMD, on the same points, and optionally FastNoiseLite on
-/// them too. Backs `strata bench noise`; numbers only, no verdict.
+/// and without SIMD, noise version 1 and 2, on the same points, and
+/// optionally FastNoiseLite on them too. Backs `strata bench noise`; numbers only, no verdict.
 
 #include <strata/terrain/FractalNoise.h>
 
@@ -40,6 +40,8 @@ struct NoiseThroughput
     double blockScalarTargetRate = 0; ///< the block path without SIMD (Highway's portable target)
     double scatteredRate = 0; ///< scalar path, points scattered over 64 cells
     double fastNoiseLiteRate = 0; ///< FastNoiseLite's matching basis (GetNoise per point); 0 without options.fastNoiseLite
+    double version2Rate = 0;          ///< noise version 2's block path, same points, SIMD target in use
+    double version2ScatteredRate = 0; ///< version 2's block path on the scattered points
 };
 
 /// Every basis alone and as 5-octave fBm, 3D then 2D. Runs on the calling
