@@ -9,6 +9,7 @@
 #include "SceneReaders.h"
 
 #include <strata/Error.h>
+#include <strata/terrain/FractalNoise.h>
 
 #include <toml++/toml.h>
 
@@ -59,16 +60,23 @@ void readTerrain(TableReader& root, Scene& scene, const SceneLoadOptions& load)
         }
         useTerrainTree(scene, readTerrainNodes(terrainNode->as_table(), scene.source,
                                                std::filesystem::path(scene.source).parent_path(), scene.terrain.seed,
-                                               &scene.inputFiles, load.maxMemoryBytes, load.progress));
+                                               &scene.inputFiles, load.maxMemoryBytes, load.progress,
+                                               scene.noiseVersion));
         return;
     }
     if (!terrainTable.has("height") && !terrainTable.has("caves")) {
         // No terrain given: the default scene's node tree.
         terrainTable.finish();
         const toml::table defaults = toml::parse(defaultSceneText(), std::string_view("<default scene>"));
-        useTerrainTree(scene,
-                       readTerrainNodes(defaults["terrain"].as_table(), "<default scene>", {}, scene.terrain.seed));
+        useTerrainTree(scene, readTerrainNodes(defaults["terrain"].as_table(), "<default scene>", {},
+                                               scene.terrain.seed, nullptr, 0, {}, scene.noiseVersion));
         return;
+    }
+    if (scene.noiseVersion != 1) {
+        root.fail(root.node("noise_version"), "noise_version",
+                  "= " + std::to_string(scene.noiseVersion) +
+                      " needs the node form of [terrain] (root and [terrain.nodes]): the [terrain.height] and "
+                      "[terrain.caves] shorthand has noise version 1 only");
     }
     TableReader height = terrainTable.table("height");
     terrain::HeightfieldOptions& h = scene.terrain.height;
@@ -128,6 +136,7 @@ Scene parseScene(std::string_view text, const std::string& source, const SceneLo
     scene.text = std::string(text);
     TableReader root(&document, "", source);
     scene.terrain.seed = std::uint64_t(root.integer("seed", 1, 0, std::numeric_limits<std::int64_t>::max()));
+    scene.noiseVersion = int(root.integer("noise_version", 1, terrain::NOISE_VERSION_MIN, terrain::NOISE_VERSION_MAX));
 
     TableReader region = root.table("region");
     const std::optional<glm::dvec3> lo = region.vec3("min", HUGE_LENGTH);

@@ -412,9 +412,9 @@ struct LastTree
 TerrainBuilder readTerrainNodes(const toml::table* terrainTable, const std::string& source,
                                 const std::filesystem::path& baseDirectory, std::uint64_t seed,
                                 std::vector<std::filesystem::path>* inputFiles, std::uint64_t maxMemoryBytes,
-                                const std::function<bool(double)>& progress)
+                                const std::function<bool(double)>& progress, int noiseVersion)
 {
-    NodeBuildContext context{maxMemoryBytes, progress};
+    NodeBuildContext context{maxMemoryBytes, progress, noiseVersion};
     auto images = std::make_shared<ImageCache>();
     // Built once now, from the parsed document, so errors carry its lines.
     auto last = std::make_shared<LastTree>();

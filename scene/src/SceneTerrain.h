@@ -88,9 +88,11 @@ const std::vector<std::string>& terrainNodeTypes();
 /// pass would need more (strata::Error BadInput at its cell_size key).
 /// `progress` (may be empty) gets the erode passes' progress during this
 /// first build only (SceneLoadOptions::progress); false stops it.
+/// `noiseVersion` is the scene's `noise_version`, given to every node's noise.
 TerrainBuilder readTerrainNodes(const toml::table* terrainTable, const std::string& source,
                                 const std::filesystem::path& baseDirectory, std::uint64_t seed,
                                 std::vector<std::filesystem::path>* inputFiles = nullptr,
-                                std::uint64_t maxMemoryBytes = 0, const std::function<bool(double)>& progress = {});
+                                std::uint64_t maxMemoryBytes = 0, const std::function<bool(double)>& progress = {},
+                                int noiseVersion = 1);
 
 } // namespace strata::scene

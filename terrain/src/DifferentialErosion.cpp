@@ -224,6 +224,7 @@ void registerGeologyNodes(NodeRegistry& registry)
         o.transition = a.number("transition");
         o.foldAmplitude = a.number("fold_amplitude");
         o.foldWavelength = a.number("fold_wavelength");
+        o.foldNoise.version = a.context().noiseVersion;
         o.faultThrow = a.number("fault_throw");
         o.faultPoint = a.vec3("fault_point");
         o.faultStrike = a.number("fault_strike");

@@ -334,6 +334,7 @@ FractalOptions fractalOptions(const NodeArgs& args)
     o.octaves = int(args.integer("octaves"));
     o.lacunarity = args.number("lacunarity");
     o.gain = args.number("gain");
+    o.version = args.context().noiseVersion;
     return o;
 }
 

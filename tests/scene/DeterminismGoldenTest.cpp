@@ -41,11 +41,13 @@ using namespace strata::scene;
 
 /// Every node kind that decides values in ways a compiler could change:
 /// landscape evolution, droplet erosion, terraces, rock beds with folds,
-/// worm caves, a smooth subtraction.
+/// worm caves, a smooth subtraction. The crop holds the ground (about 72 m
+/// up) and worms 5 to 15 m under it: before 2026-12-07 it lay 20 m below
+/// the ground, so only the worms reached its bytes.
 constexpr const char* GEOLOGY = R"toml(
 [region]
-min = [-20.0, -30.0, -20.0]
-max = [20.0, 50.0, 20.0]
+min = [-20.0, 40.0, -20.0]
+max = [20.0, 100.0, 20.0]
 
 [sampling]
 voxel_size = 0.5
@@ -99,14 +101,18 @@ wavelength = 120.0
 [terrain.nodes.caves]
 type = "worms"
 cell_size = 32.0
-min_y = -20.0
-max_y = 10.0
+min_y = 56.0
+max_y = 66.0
 )toml";
 
-/// The default scene cropped to a square of `side` metres about (x, z).
-Scene defaultCrop(double x, double z, double side)
+/// The default scene cropped to a square of `side` metres about (x, z), at
+/// noise version `noiseVersion`.
+Scene defaultCrop(double x, double z, double side, int noiseVersion = 1)
 {
-    Scene scene = defaultScene();
+    Scene scene = noiseVersion == 1 ? defaultScene()
+                                    : parseScene("noise_version = " + std::to_string(noiseVersion) + "\n" +
+                                                     std::string(defaultSceneText()),
+                                                 "<default scene>");
     scene.region.min = glm::dvec3(x - side / 2, scene.region.min.y, z - side / 2);
     scene.region.max = glm::dvec3(x + side / 2, scene.region.max.y, z + side / 2);
     return scene;
@@ -222,6 +228,11 @@ const Crop CROPS[] = {
      },
      16.0},
     {"world4k crop", [] { return exampleCrop("world4k.toml", {-16.0, -44.0, -16.0}, {16.0, 44.0, 16.0}); }, 16.0},
+    // Noise version 2 (float lanes, 32-bit hashing): the default scene at the
+    // origin and 1e6 m out, and every geology node on its noise.
+    {"default v2", [] { return defaultCrop(0.0, 0.0, 24.0, 2); }, 12.0},
+    {"default v2 far out (1e6 m)", [] { return defaultCrop(1e6, -1e6, 24.0, 2); }, 12.0},
+    {"geology v2", [] { return parseScene(std::string("noise_version = 2\n") + GEOLOGY, "<geology golden>"); }, 20.0},
 };
 
 // Recorded with gcc 12 Release on x86_64; every other build must agree.
@@ -236,10 +247,10 @@ const Golden GOLDEN[] = {
      "0103197acff02e80be69e67c75d9437e79872523688991650819f2a797851e30",
      "cc235e7ef28e3707aa522c4ab40d3c15732c99df9a48a5ca7db056e3ebd3a9ee",
      "1e7a8dcb02fa6c08e8300be5f2224a947d991091a695d5c681937460e8400f74"},
-    {"bb69987a2b3b2709881597e93fd79f519492739c604d19f2392fdd495ff16068",
-     "b28f0988584ef0ed535c025aadfc11511ef3d3ba6f0414371c04ee3651f2f2fc",
-     "1104fdfa12f883436fa295492297c9d9c02acdc358035fe53e782ab2042c92d2",
-     "1e174e5835525b4b80da7294e32ec0e01a5ca4501edfb38a71d61ae3086c6537"},
+    {"ffe2884cb71688ed76d2183ffbb6fd17d0f6562a1437fcd3c589d865e6db3dd9",
+     "c3ef5e0b059182c1035004043c003a33e2bbfb5e620c17dc84140dddb99fac4a",
+     "6dae068bb3135106e57ddff80f6d4834ba7f69868d5cf57af54905607a0df8c8",
+     "bb394932de2044b0d5306ec56c6e6dcb48e25736e733c9429874a8c6673b21c3"},
     {"124b6b01ef2644bb4391e57f0912df76bb846476c2c4c0413d8066f83c7c95d7",
      "d6bc826998fe1e31a77cfe67fbdcc4555a5b6d5d85957fca388265143c1c5f9f",
      "6bdfaf62794c011b677dceb85a2d6b0236cb9171e682fbe8eb757c8909e7e02f",
@@ -248,6 +259,18 @@ const Golden GOLDEN[] = {
      "7855f3abce5f75f2ed89cf7a2077351cbf00c7cb7bc1254cab3c93240cf78980",
      "c5e3eff0bef74d9eb0f2d2702237393a5dfdac4cdc93312408333ed993b59f6f",
      "50bcd89b7b36795da6093b0f356ed537f28bf529305d14b640604cb5b13e98e7"},
+    {"10568dea143f90b362a02859a1c01771b3a22bd551f881038b4c5c5a1265df11",
+     "69c71a56b7e7e7cd08adae0cea8b2feebf3622adda7b4de5cda2375fb8e4f553",
+     "4e42b3b25286a88849dff78df0fa4f5ca5198b9def34d397882837806ebf3fc4",
+     "9029cd4049824a933913ef8518b9de3022d870ce1a800af92a429b181713b18d"},
+    {"1160fe488e4a7a225d0020e9231add3540e8b7d3291fecb6b32d24bb9ccdf432",
+     "bfd239e6a1447208cd0f8f0ac53c03b53bd3560205d62fe722180bef09086738",
+     "977cf9cb109735edc500c0f85e403ad277905ebb563caf8420f64c639ddb09d4",
+     "7e463ef4aec459e3965f0ffb0af7e0d62806a7215a95949f49a23ac0a60eb11e"},
+    {"5c46ed13d3bc34cd1fcdadd0ceebaa1225669ed247021c12a564839a153d3237",
+     "e855f5476bd45b38637d9915377f08e7fee35403d9c8e9c2f8e46fec9d10d076",
+     "a1c96e3c94d7a85cb2d39770f954f080c4442c4ee7e020325fff310b3100fc95",
+     "67db85d791f3ee6a0f3ed01f380e4f4aa442f882bff4a85aa41021b4663d45cb"},
 };
 static_assert(std::size(CROPS) == std::size(GOLDEN));
 

@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 
 using strata::scene::parseScene;
 using strata::scene::Scene;
@@ -77,6 +78,40 @@ TEST(Scene, ErrorsNameFileLineAndKey)
     EXPECT_EQ(parseError("[material]\ntexture_size = 300\n"), "test.toml:2: material.texture_size = 300 must be a power of two");
     EXPECT_EQ(parseError("[region]\nmin = [0, 0, 0]\nmax = [1, 0, 1]\n"),
               "test.toml:3: region.max must be greater than region.min on every axis (axis y: 0 >= 0)");
+}
+
+TEST(Scene, NoiseVersionIsChosenPerSceneAndVersion1StaysTheDefault)
+{
+    const Scene unversioned = parseScene("", "a.toml");
+    const Scene one = parseScene("noise_version = 1\n", "b.toml");
+    const Scene two = parseScene("noise_version = 2\n", "c.toml");
+    EXPECT_EQ(unversioned.noiseVersion, 1);
+    EXPECT_EQ(two.noiseVersion, 2);
+    int differ = 0;
+    for (int i = 0; i < 64; ++i) {
+        const glm::dvec3 p(-90.0 + 2.9 * i, -20.0 + 0.6 * i, 70.0 - 2.3 * i);
+        const double a = unversioned.field->density(p), b = one.field->density(p), c = two.field->density(p);
+        EXPECT_EQ(std::memcmp(&a, &b, sizeof a), 0) << "a scene without the key is version 1, bit for bit";
+        differ += a != c;
+        EXPECT_TRUE(std::isfinite(c));
+    }
+    EXPECT_GT(differ, 24) << "version 2 is another pattern";
+    // Rebuilt for another seed, the tree keeps its version.
+    const auto oneAt5 = one.buildField(5), twoAt5 = two.buildField(5);
+    int differAt5 = 0;
+    for (int i = 0; i < 64; ++i) {
+        const glm::dvec3 p(-90.0 + 2.9 * i, -20.0 + 0.6 * i, 70.0 - 2.3 * i);
+        differAt5 += oneAt5->density(p) != twoAt5->density(p);
+    }
+    EXPECT_GT(differAt5, 24);
+}
+
+TEST(Scene, NoiseVersionErrorsNameTheKey)
+{
+    EXPECT_EQ(parseError("seed = 1\nnoise_version = 3\n"), "test.toml:2: noise_version = 3 is out of range [1, 2]");
+    EXPECT_EQ(parseError("noise_version = 2\n[terrain.height]\noctaves = 3\n"),
+              "test.toml:1: noise_version = 2 needs the node form of [terrain] (root and [terrain.nodes]): the "
+              "[terrain.height] and [terrain.caves] shorthand has noise version 1 only");
 }
 
 TEST(Scene, SyntaxErrorsGiveTheLine)

@@ -86,6 +86,9 @@ struct Scene
     /// The seed (terrain.seed) and, for the [terrain.height]/[terrain.caves]
     /// shorthand, its options.
     terrain::TerrainOptions terrain;
+    /// `noise_version`: 1 (the default, so scenes written before version 2
+    /// keep their bits) or 2 (terrain::FractalOptions::version).
+    int noiseVersion = 1;
     /// The terrain's root density field, built with terrain.seed (see
     /// SceneTerrain.h); never null after parseScene().
     std::shared_ptr<const terrain::DensityField> field;

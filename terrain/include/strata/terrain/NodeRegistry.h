@@ -90,6 +90,8 @@ struct NodeBuildContext
     /// Progress of a node's heavy work in [0, 1] (an erode node's pass);
     /// returning false stops it (strata::Error, Interrupted). May be empty.
     std::function<bool(double)> progress;
+    /// The scene's `noise_version` (FractalOptions::version), for every node's noise.
+    int noiseVersion = 1;
 };
 
 /// The checked values of one node's keys, given or defaulted. A reader
