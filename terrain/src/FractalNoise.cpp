@@ -341,12 +341,13 @@ Interval FractalNoise::bounds(const glm::dvec2& lo, const glm::dvec2& hi) const
         const glm::dvec2 offset(o.offset[0], o.offset[1]);
         const glm::dvec2 qlo = lo * o.frequency + offset, qhi = hi * o.frequency + offset;
         double n = 0.0, reach = slope * o.frequency * radius;
-        if (mOptions.version == 1 && mOptions.noise == NoiseType::GRADIENT && std::floor(qlo.x) == std::floor(qhi.x) &&
+        if (mOptions.noise == NoiseType::GRADIENT && std::floor(qlo.x) == std::floor(qhi.x) &&
             std::floor(qlo.y) == std::floor(qhi.y)) {
             // Inside one lattice cell: the mean value form, usually several
             // times tighter than the gradient bound (both are rigorous).
             double spread = 0.0;
-            n = noise2Spread(o.seed, qlo, qhi, spread);
+            n = mOptions.version == 2 ? noise2SpreadVersion2(std::uint32_t(o.seed >> 32), qlo, qhi, spread)
+                                      : noise2Spread(o.seed, qlo, qhi, spread);
             reach = std::min(reach, spread);
         } else {
             n = basis(o.seed, centre * o.frequency + offset);

@@ -65,7 +65,13 @@ inline Range affine(const double* g, double k, double xc, double yc, double hx, 
 
 } // namespace
 
-double noise2Spread(std::uint64_t s, const glm::dvec2& lo, const glm::dvec2& hi, double& spread)
+namespace {
+
+/// noise2 (either version's gradients g00, g01, g10, g11) over the rectangle
+/// [x0, x1] × [y0, y1] of fractions in one cell: the value at its centre,
+/// and in `spread` a bound of how far the value moves from it.
+double spreadInCell(const double* g00, const double* g01, const double* g10, const double* g11, double x0, double x1,
+                    double y0, double y1, double& spread)
 {
     // Inside one cell, with x, y the fractions and u = fade(x), v = fade(y):
     //   n / NOISE2_SCALE = n00 + v·D0 + u·(E + v·F),
@@ -81,13 +87,6 @@ double noise2Spread(std::uint64_t s, const glm::dvec2& lo, const glm::dvec2& hi,
     // interval arithmetic). For p in the rectangle the segment from the
     // centre c to p stays in it, so by the mean value theorem
     //   |n(p) − n(c)| = |∇n(ξ)·(p − c)| <= max|∂x|·hx + max|∂y|·hy.
-    const double fx = std::floor(lo.x), fy = std::floor(lo.y);
-    const double x0 = lo.x - fx, x1 = hi.x - fx, y0 = lo.y - fy, y1 = hi.y - fy;
-    const std::int64_t ix = latticeIndex(fx), iy = latticeIndex(fy);
-    GradientCell2 cell;
-    gradientCell(s, Split2{ix, iy, x0, y0}, cell);
-    const double *g00 = cell.g[0], *g01 = cell.g[1], *g10 = cell.g[2], *g11 = cell.g[3];
-
     const double xc = 0.5 * (x0 + x1), yc = 0.5 * (y0 + y1), hx = 0.5 * (x1 - x0), hy = 0.5 * (y1 - y0);
     const double d0[2] = {g01[0] - g00[0], g01[1] - g00[1]};
     const double e[2] = {g10[0] - g00[0], g10[1] - g00[1]};
@@ -108,6 +107,34 @@ double noise2Spread(std::uint64_t s, const glm::dvec2& lo, const glm::dvec2& hi,
     const double n11 = g11[0] * (xc - 1.0) + g11[1] * (yc - 1.0);
     const double uc = fade(xc), vc = fade(yc);
     return NOISE2_SCALE * lerp(lerp(n00, n01, vc), lerp(n10, n11, vc), uc);
+}
+
+} // namespace
+
+double noise2Spread(std::uint64_t s, const glm::dvec2& lo, const glm::dvec2& hi, double& spread)
+{
+    const double fx = std::floor(lo.x), fy = std::floor(lo.y);
+    GradientCell2 cell;
+    gradientCell(s, Split2{latticeIndex(fx), latticeIndex(fy), 0.0, 0.0}, cell);
+    return spreadInCell(cell.g[0], cell.g[1], cell.g[2], cell.g[3], lo.x - fx, hi.x - fx, lo.y - fy, hi.y - fy, spread);
+}
+
+double noise2SpreadVersion2(std::uint32_t seed, const glm::dvec2& lo, const glm::dvec2& hi, double& spread)
+{
+    const double fx = std::floor(lo.x), fy = std::floor(lo.y);
+    const std::int64_t ix = latticeIndex(fx), iy = latticeIndex(fy);
+    // Version 2 rounds the fractions to float: spread the rectangle by that
+    // rounding (half an ulp of numbers below 1) so it holds them.
+    constexpr double ROUNDING = 0x1.0p-25;
+    const double x0 = std::max(lo.x - fx - ROUNDING, 0.0), x1 = std::min(hi.x - fx + ROUNDING, 1.0);
+    const double y0 = std::max(lo.y - fy - ROUNDING, 0.0), y1 = std::min(hi.y - fy + ROUNDING, 1.0);
+    double g[4][2];
+    for (int a = 0; a < 2; ++a)
+        for (int b = 0; b < 2; ++b) {
+            const std::uint32_t h = hash32::corner(seed, hash32::term(ix + a, 0), hash32::term(iy + b, 1), 0);
+            hash32::gradient2(h, g[2 * a + b]);
+        }
+    return spreadInCell(g[0], g[1], g[2], g[3], x0, x1, y0, y1, spread);
 }
 
 } // namespace detail

@@ -69,5 +69,49 @@ double noise2(std::uint64_t hashedSeed, const glm::dvec2& p);
 /// (mean value form with an interval enclosure of the gradient; the proof
 /// is in Noise.cpp).
 double noise2Spread(std::uint64_t hashedSeed, const glm::dvec2& lo, const glm::dvec2& hi, double& spread);
+/// noise2Spread for version 2's 2D gradient noise with the 32-bit seed
+/// (NoiseLanes32.cpp; the fractions rounded to float are held too).
+double noise2SpreadVersion2(std::uint32_t seed, const glm::dvec2& lo, const glm::dvec2& hi, double& spread);
+
+/// Version 2's lattice hash, one corner at a time (NoiseLanes32.cpp does it
+/// in lanes, with these constants): the term of cell index i on axis a is
+/// T(i) = lo·P_a ^ hi·Q_a of its 32-bit words, a corner's hash
+/// lowbias32(seed ^ T(i) ^ T(j) ^ T(k)).
+namespace hash32 {
+
+inline constexpr std::uint32_t LOW_PRIME[3] = {0x9E3779B1u, 0x85EBCA77u, 0xC2B2AE3Du};
+inline constexpr std::uint32_t HIGH_PRIME[3] = {0x27D4EB2Fu, 0x165667B1u, 0xD3A2646Du};
+
+inline std::uint32_t term(std::int64_t i, int axis)
+{
+    const std::uint64_t u = std::uint64_t(i);
+    return (std::uint32_t(u) * LOW_PRIME[axis]) ^ (std::uint32_t(u >> 32) * HIGH_PRIME[axis]);
+}
+
+inline std::uint32_t corner(std::uint32_t seed, std::uint32_t tx, std::uint32_t ty, std::uint32_t tz)
+{
+    return strata::detail::lowbias32(seed ^ tx ^ ty ^ tz);
+}
+
+/// The 2D gradient the top 3 bits of a corner's hash pick: bit 31 a
+/// diagonal (±√½, ±√½; bit 29 the sign of x, bit 30 of y), else an axis
+/// (bit 30: y, else x; bit 29 its sign).
+inline void gradient2(std::uint32_t h, double* g)
+{
+    constexpr double DIAG = 0.70710678118654752440;
+    const double sx = (h & 0x20000000u) ? -1.0 : 1.0, sy = (h & 0x40000000u) ? -1.0 : 1.0;
+    if (h & 0x80000000u) {
+        g[0] = sx * DIAG;
+        g[1] = sy * DIAG;
+    } else if (h & 0x40000000u) {
+        g[0] = 0.0;
+        g[1] = sx;
+    } else {
+        g[0] = sx;
+        g[1] = 0.0;
+    }
+}
+
+} // namespace hash32
 
 } // namespace strata::terrain::detail

@@ -19,6 +19,7 @@
 #include <hwy/foreach_target.h> // IWYU pragma: keep
 #include <hwy/highway.h>
 
+#include "NoiseHash.h"
 #include "NoiseSimd.h"
 
 #include <algorithm>
@@ -40,20 +41,26 @@ constexpr std::size_t MAX_FLOAT_LANES = HWY_MAX_BYTES / sizeof(float);
 
 // ---- the lattice hash ----------------------------------------------------------
 
-// Odd multipliers per axis for the low and the high 32 bits of a cell index.
-constexpr std::uint32_t LOW_PRIME[3] = {0x9E3779B1u, 0x85EBCA77u, 0xC2B2AE3Du};
-constexpr std::uint32_t HIGH_PRIME[3] = {0x27D4EB2Fu, 0x165667B1u, 0xD3A2646Du};
+// Odd multipliers per axis for the low and the high 32 bits of a cell index
+// (NoiseHash.h's hash32, the scalar form).
+using hash32::HIGH_PRIME;
+using hash32::LOW_PRIME;
 
 /// One axis of a point's cell, i = hi·2^32 + lo, as the two products its
 /// term T(i) = lo·P ^ hi·Q is made of.
+// The structs of vectors below have user-provided constructors: GCC
+// defines implicit ones outside the target's attributes, which NEON's
+// always-inline vector constructors refuse.
 struct Axis
 {
     VU lo, loP, hiQ;
+    HWY_INLINE Axis() {}
+    HWY_INLINE Axis(VU low, VU lowP, VU highQ) : lo(low), loP(lowP), hiQ(highQ) {}
 };
 
 HWY_INLINE Axis axis(DU du, VU lo, VU hi, int a)
 {
-    return {lo, hn::Mul(lo, hn::Set(du, LOW_PRIME[a])), hn::Mul(hi, hn::Set(du, HIGH_PRIME[a]))};
+    return Axis(lo, hn::Mul(lo, hn::Set(du, LOW_PRIME[a])), hn::Mul(hi, hn::Set(du, HIGH_PRIME[a])));
 }
 
 /// T(i + k) for k in {−1, 0, 1}, from T(i)'s products: (lo + k)·P is lo·P + k·P
@@ -152,6 +159,7 @@ struct Point
 {
     Axis axes[3];
     VF f[3];
+    HWY_INLINE Point() {}
 };
 
 // ---- the bases -------------------------------------------------------------------
@@ -421,6 +429,7 @@ template <class DD, class VD = hn::Vec<DD>>
 struct SplitHalf
 {
     VD low[3], high[3], offset[3];
+    HWY_INLINE SplitHalf() {}
 };
 
 /// Splits the points at p[a] + j (a < 3; null: a zero coordinate) in this

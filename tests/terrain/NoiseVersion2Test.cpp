@@ -7,6 +7,7 @@
 // path; continuity across the 32-bit words of a cell index; the gradient
 // bounds and box bounds that sampling prunes with; and version 1 untouched.
 
+#include "NoiseHash.h"    // internal: noise2SpreadVersion2
 #include "NoiseKernels.h" // internal: splitCube, splitSimplex
 #include "NoiseSimd.h"    // internal: basisVersion2
 
@@ -352,6 +353,43 @@ TEST(NoiseVersion2, StaysWithinItsGradientAndBoxBounds)
             // Varied, not constant: the sum covers a good part of its range.
             EXPECT_GT(hi - lo, 0.5) << "basis " << int(type) << " fractal " << int(fractal);
         }
+}
+
+TEST(NoiseVersion2, TheMeanValueFormHoldsTheLanesAndIsTighterThanTheSlope)
+{
+    // 2D gradient octaves whose box lies in one cell take the mean value
+    // form (noise2SpreadVersion2, with the scalar hash32 gradients): its
+    // centre is the lanes' value there and its spread holds every point.
+    std::uint64_t state = 5;
+    const auto next = [&state] {
+        state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+        return double(state >> 11) * 0x1.0p-53;
+    };
+    const std::uint64_t hashedSeed = 0x9e3779b97f4a7c15ULL;
+    const std::uint32_t seed = std::uint32_t(hashedSeed >> 32);
+    double spreadSum = 0.0, slopeSum = 0.0;
+    for (int i = 0; i < 2000; ++i) {
+        const double cx = std::floor(400.0 * next() - 200.0) + (i == 0 ? 4294967296.0 : 0.0);
+        const double cy = std::floor(400.0 * next() - 200.0);
+        const glm::dvec2 lo(cx + 0.9 * next(), cy + 0.9 * next());
+        // Boxes of up to a tenth of a cell, as a block of voxels is to an octave.
+        const glm::dvec2 hi(lo.x + 0.1 * next(), lo.y + 0.1 * next());
+        double spread = 0.0;
+        const double centre = detail::noise2SpreadVersion2(seed, lo, hi, spread);
+        const glm::dvec2 c = 0.5 * (lo + hi);
+        double lanes = 0.0;
+        detail::basisVersion2(NoiseType::GRADIENT, hashedSeed, &c.x, &c.y, nullptr, 1, &lanes);
+        ASSERT_NEAR(lanes, centre, 1e-5) << "cell " << cx << ", " << cy << ": another gradient than the lanes'";
+        for (int k = 0; k < 8; ++k) {
+            const glm::dvec2 p(lo.x + (hi.x - lo.x) * next(), lo.y + (hi.y - lo.y) * next());
+            double value = 0.0;
+            detail::basisVersion2(NoiseType::GRADIENT, hashedSeed, &p.x, &p.y, nullptr, 1, &value);
+            EXPECT_LE(std::abs(value - centre), spread + 1e-5);
+        }
+        spreadSum += spread;
+        slopeSum += GRADIENT_NOISE_LIPSCHITZ_2D * 0.5 * glm::length(hi - lo);
+    }
+    EXPECT_LT(spreadSum, 0.8 * slopeSum) << "the mean value form should be tighter than the gradient bound";
 }
 
 TEST(NoiseVersion2, IsAnotherPatternAndLeavesVersion1Alone)
