@@ -5,7 +5,7 @@
 # cheap to measure, checked against the code's own output, so they cannot go
 # stale unnoticed:
 # - the default scene's active voxels and evaluated points per active voxel
-#   ("3.15 M active voxels, 2.52 evaluated points per active voxel"), from
+#   ("3.34 M active voxels, 2.49 evaluated points per active voxel"), from
 #   `strata generate --no-snapshot`'s report.json (the run is deterministic:
 #   the tolerance is the printed rounding);
 # - "about N tests": within 5% of what `ctest -N` lists in this build tree.
