@@ -73,9 +73,10 @@ begin=$(now)
 #    printing around the library calls run here; their hostile flags and
 #    files run in CI's main run, the files' readers under the fuzzers too.
 #  - InstalledPackage.*, Slurm.*, Python.*, GltfValidator.*, TilesClient.*,
-#    WebViewer.*, ReadmeFigures.* (no label): an uninstrumented compiler,
-#    python3, Blender, node or Chromium does the work, or (ReadmeFigures) the
-#    figures are gcc's; CI's main run has them.
+#    WebViewer.*, ReadmeFigures.MatchWhatTheCodeMeasures (no label): an
+#    uninstrumented compiler, python3, Blender, node, Chromium or ctest does
+#    the work; CI's main run has them. (The README's sampling figures are
+#    checked here: determinism_tests' ReadmeFigures.*.)
 #  - render_tests (issue 39 made room in CI's hour for the aarch64 golden
 #    table): the renderers' tests are Mesa's and the CPU renderer's work over
 #    whole images (232 tests, 156 CPU-s under ASan, plus about 5 CPU-minutes

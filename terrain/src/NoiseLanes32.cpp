@@ -164,15 +164,22 @@ struct Point
 
 // ---- the bases -------------------------------------------------------------------
 
+/// T(i) and T(i + 1) on each axis: the terms of the cell's 8 corners.
+HWY_INLINE void cellTerms(const Point& p, VU (&t)[3][2])
+{
+    const DU du;
+    for (int a = 0; a < 3; ++a) {
+        t[a][0] = term(du, p.axes[a], 0, a);
+        t[a][1] = term(du, p.axes[a], 1, a);
+    }
+}
+
 VF gradient3(VU s, const Point& p)
 {
     const DU du;
     const DF df;
     VU t[3][2];
-    for (int a = 0; a < 3; ++a) {
-        t[a][0] = term(du, p.axes[a], 0, a);
-        t[a][1] = term(du, p.axes[a], 1, a);
-    }
+    cellTerms(p, t);
     const VF one = hn::Set(df, 1.0f);
     const VF x = p.f[0], y = p.f[1], z = p.f[2];
     const VF x1 = hn::Sub(x, one), y1 = hn::Sub(y, one), z1 = hn::Sub(z, one);
@@ -210,10 +217,7 @@ VF value3(VU s, const Point& p)
 {
     const DU du;
     VU t[3][2];
-    for (int a = 0; a < 3; ++a) {
-        t[a][0] = term(du, p.axes[a], 0, a);
-        t[a][1] = term(du, p.axes[a], 1, a);
-    }
+    cellTerms(p, t);
     VF c[8];
     for (int corner = 0; corner < 8; ++corner)
         c[corner] = latticeValue(cornerHash(du, s, t[0][corner >> 2], t[1][(corner >> 1) & 1], t[2][corner & 1]));
@@ -257,10 +261,7 @@ VF simplex3(VU s, const Point& p)
     const DU du;
     const DF df;
     VU t[3][2];
-    for (int a = 0; a < 3; ++a) {
-        t[a][0] = term(du, p.axes[a], 0, a);
-        t[a][1] = term(du, p.axes[a], 1, a);
-    }
+    cellTerms(p, t);
     const VF x0 = p.f[0], y0 = p.f[1], z0 = p.f[2];
     const MF xy = hn::Ge(x0, y0), yz = hn::Ge(y0, z0), xz = hn::Ge(x0, z0);
     // The simplex's second corner steps along the largest offset, its third

@@ -138,30 +138,23 @@ std::vector<NoiseThroughput> measureNoiseThroughput(const NoiseThroughputOptions
                 };
                 row.scalarRate = rate(scalarOver(blocks), n, options.seconds);
                 row.scatteredRate = rate(scalarOver(scattered), n, options.seconds);
-                const auto blockPath = [&] {
+                // The block path of `f` over `points`, a block of 8³ at a time.
+                const auto blockOver = [&](const FractalNoise& f, const Blocks& points) {
+                    return [&f, &points, &out, &sink, n, dimensions] {
                         for (std::size_t at = 0; at < n; at += Blocks::BLOCK) {
                             if (dimensions == 3)
-                                noise.evaluate(&blocks.x[at], &blocks.y[at], &blocks.z[at], Blocks::BLOCK, &out[at]);
+                                f.evaluate(&points.x[at], &points.y[at], &points.z[at], Blocks::BLOCK, &out[at]);
                             else
-                                noise.evaluate(&blocks.x[at], &blocks.z[at], Blocks::BLOCK, &out[at]);
-                        }
-                        sink = sink + out[n / 2];
-                };
-                row.blockRate = rate(blockPath, n, options.seconds);
-                const FractalNoise version2(7, {basis.type, FractalType::FBM, octaves, 2.0, 0.5, 2});
-                const auto version2Over = [&](const Blocks& points) {
-                    return [&version2, &points, &out, &sink, n, dimensions] {
-                        for (std::size_t at = 0; at < n; at += Blocks::BLOCK) {
-                            if (dimensions == 3)
-                                version2.evaluate(&points.x[at], &points.y[at], &points.z[at], Blocks::BLOCK, &out[at]);
-                            else
-                                version2.evaluate(&points.x[at], &points.z[at], Blocks::BLOCK, &out[at]);
+                                f.evaluate(&points.x[at], &points.z[at], Blocks::BLOCK, &out[at]);
                         }
                         sink = sink + out[n / 2];
                     };
                 };
-                row.version2Rate = rate(version2Over(blocks), n, options.seconds);
-                row.version2ScatteredRate = rate(version2Over(scattered), n, options.seconds);
+                const auto blockPath = blockOver(noise, blocks);
+                row.blockRate = rate(blockPath, n, options.seconds);
+                const FractalNoise version2(7, {basis.type, FractalType::FBM, octaves, 2.0, 0.5, 2});
+                row.version2Rate = rate(blockOver(version2, blocks), n, options.seconds);
+                row.version2ScatteredRate = rate(blockOver(version2, scattered), n, options.seconds);
                 useSimdTarget(targets.back());
                 row.blockScalarTargetRate = rate(blockPath, n, options.seconds);
                 restore();
