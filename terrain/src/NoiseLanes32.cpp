@@ -373,18 +373,15 @@ VF basisAt(NoiseType type, bool threeD, VU s, const Point& p)
     return hn::Zero(df);
 }
 
-/// A cell index held as a double (an integer, or NaN) as the two 32-bit
-/// words of latticeIndex()'s int64 (saturated beyond ±2^62, NaN to −2^62):
-/// hi = floor(c / 2^32) and lo = c − hi·2^32 are exact in double, and
-/// both fit int32 once lo is shifted by 2^31 (undone by the caller).
+/// A cell index held as a double (an integer, or NaN) as latticeIndex()'s
+/// int64: saturated beyond ±2^62, NaN to −2^62 (comparisons with NaN are
+/// false on every target), then converted exactly.
 template <class DD, class VD = hn::Vec<DD>>
-HWY_INLINE void cellWords(DD dd, VD cell, VD& low, VD& high)
+HWY_INLINE hn::Vec<hn::RebindToSigned<DD>> cellIndex(DD dd, VD cell)
 {
     const VD limit = hn::Set(dd, 4611686018427387904.0); // 2^62
     const VD saturated = hn::IfThenElse(hn::Gt(cell, hn::Zero(dd)), limit, hn::Neg(limit));
-    const VD c = hn::IfThenElse(hn::Lt(hn::Abs(cell), limit), cell, saturated);
-    high = hn::Floor(hn::Mul(c, hn::Set(dd, 0x1.0p-32)));
-    low = hn::Sub(hn::Sub(c, hn::Mul(high, hn::Set(dd, 0x1.0p32))), hn::Set(dd, 0x1.0p31));
+    return hn::ConvertTo(hn::RebindToSigned<DD>(), hn::IfThenElse(hn::Lt(hn::Abs(cell), limit), cell, saturated));
 }
 
 // splitCube / splitSquare / splitSimplex (NoiseKernels.h) in double lanes:
@@ -429,7 +426,8 @@ HWY_INLINE VF shape(FractalType fractal, VF n)
 template <class DD, class VD = hn::Vec<DD>>
 struct SplitHalf
 {
-    VD low[3], high[3], offset[3];
+    hn::Vec<hn::RebindToSigned<DD>> cell[3]; ///< latticeIndex() per axis
+    VD offset[3];
     HWY_INLINE SplitHalf() {}
 };
 
@@ -446,41 +444,37 @@ HWY_INLINE SplitHalf<DD> splitHalf(DD dd, const OctaveLanes32& o, bool simplex, 
                     : hn::Zero(dd);
     }
     split(dd, simplex, threeD, q, cell, h.offset);
-    for (int a = 0; a < 3; ++a) cellWords(dd, cell[a], h.low[a], h.high[a]);
+    for (int a = 0; a < 3; ++a) h.cell[a] = cellIndex(dd, cell[a]);
     return h;
 }
 
-/// The point in a float vector's lanes: its cell's words (the low word
-/// shifted back by 2^31) and its offset rounded to float, from the double
-/// lanes of its halves.
+/// The point in a float vector's lanes: its cell's 32-bit words and its
+/// offset rounded to float, from the double lanes of its halves.
 HWY_INLINE Point pointOf(const double* const (&p)[3], const OctaveLanes32& o, bool simplex, bool threeD)
 {
     using DD = hn::ScalableTag<double>;
     const DD dd;
     const DF df;
     const DU du;
-    const DI di;
     Point point;
-    const VU signBit = hn::Set(du, 0x80000000u);
 #if HWY_TARGET == HWY_SCALAR
     // One lane each: no halves to combine.
     const SplitHalf<DD> h = splitHalf(dd, o, simplex, threeD, p, 0);
     for (int a = 0; a < 3; ++a) {
-        const VU low = hn::Xor(hn::BitCast(du, hn::DemoteTo(di, h.low[a])), signBit);
-        point.axes[a] = axis(du, low, hn::BitCast(du, hn::DemoteTo(di, h.high[a])), a);
+        const std::uint64_t index = std::uint64_t(hn::GetLane(h.cell[a]));
+        point.axes[a] = axis(du, hn::Set(du, std::uint32_t(index)), hn::Set(du, std::uint32_t(index >> 32)), a);
         point.f[a] = hn::DemoteTo(df, h.offset[a]);
     }
 #else
     const hn::Half<DF> dfHalf;
-    const hn::Half<DI> diHalf;
     const SplitHalf<DD> lower = splitHalf(dd, o, simplex, threeD, p, 0);
     const SplitHalf<DD> upper = splitHalf(dd, o, simplex, threeD, p, hn::Lanes(dd));
     for (int a = 0; a < 3; ++a) {
-        const auto words = [&](const hn::Vec<DD>& lo, const hn::Vec<DD>& hi) {
-            return hn::BitCast(du, hn::Combine(di, hn::DemoteTo(diHalf, hi), hn::DemoteTo(diHalf, lo)));
-        };
-        const VU low = hn::Xor(words(lower.low[a], upper.low[a]), signBit);
-        point.axes[a] = axis(du, low, words(lower.high[a], upper.high[a]), a);
+        // An int64 lane is two 32-bit lanes, the low word first (x86 and
+        // aarch64 are little-endian): the even lanes of both halves are the
+        // points' low words, the odd lanes their high words.
+        const VU first = hn::BitCast(du, lower.cell[a]), second = hn::BitCast(du, upper.cell[a]);
+        point.axes[a] = axis(du, hn::ConcatEven(du, second, first), hn::ConcatOdd(du, second, first), a);
         point.f[a] = hn::Combine(df, hn::DemoteTo(dfHalf, upper.offset[a]), hn::DemoteTo(dfHalf, lower.offset[a]));
     }
 #endif
