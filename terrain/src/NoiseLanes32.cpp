@@ -164,7 +164,7 @@ struct Point
 
 // ---- the bases -------------------------------------------------------------------
 
-/// T(i) and T(i + 1) on each axis: the terms of the cell's 8 corners.
+/// T(i) and T(i + 1) on each axis: the terms of the cell's 8 corners (4 in 2D).
 HWY_INLINE void cellTerms(const Point& p, VU (&t)[3][2])
 {
     const DU du;
@@ -200,8 +200,9 @@ VF gradient2(VU s, const Point& p)
 {
     const DU du;
     const DF df;
-    const VU tx0 = term(du, p.axes[0], 0, 0), tx1 = term(du, p.axes[0], 1, 0);
-    const VU ty0 = term(du, p.axes[1], 0, 1), ty1 = term(du, p.axes[1], 1, 1);
+    VU t[3][2];
+    cellTerms(p, t); // z's terms unused: a 2D corner's is 0
+    const VU tx0 = t[0][0], tx1 = t[0][1], ty0 = t[1][0], ty1 = t[1][1];
     const VU none = hn::Zero(du);
     const VF one = hn::Set(df, 1.0f);
     const VF x = p.f[0], y = p.f[1], x1 = hn::Sub(x, one), y1 = hn::Sub(y, one);
@@ -230,8 +231,9 @@ VF value3(VU s, const Point& p)
 VF value2(VU s, const Point& p)
 {
     const DU du;
-    const VU tx0 = term(du, p.axes[0], 0, 0), tx1 = term(du, p.axes[0], 1, 0);
-    const VU ty0 = term(du, p.axes[1], 0, 1), ty1 = term(du, p.axes[1], 1, 1);
+    VU t[3][2];
+    cellTerms(p, t); // z's terms unused: a 2D corner's is 0
+    const VU tx0 = t[0][0], tx1 = t[0][1], ty0 = t[1][0], ty1 = t[1][1];
     const VU none = hn::Zero(du);
     const VF c00 = latticeValue(cornerHash(du, s, tx0, ty0, none)), c01 = latticeValue(cornerHash(du, s, tx0, ty1, none));
     const VF c10 = latticeValue(cornerHash(du, s, tx1, ty0, none)), c11 = latticeValue(cornerHash(du, s, tx1, ty1, none));
@@ -292,8 +294,9 @@ VF simplex2(VU s, const Point& p)
 {
     const DU du;
     const DF df;
-    const VU tx0 = term(du, p.axes[0], 0, 0), tx1 = term(du, p.axes[0], 1, 0);
-    const VU ty0 = term(du, p.axes[1], 0, 1), ty1 = term(du, p.axes[1], 1, 1);
+    VU t[3][2];
+    cellTerms(p, t); // z's terms unused: a 2D corner's is 0
+    const VU tx0 = t[0][0], tx1 = t[0][1], ty0 = t[1][0], ty1 = t[1][1];
     const VU none = hn::Zero(du);
     const VF x0 = p.f[0], y0 = p.f[1];
     const MF alongX = hn::Gt(x0, y0); // the middle corner: (1, 0) below the diagonal, else (0, 1)
