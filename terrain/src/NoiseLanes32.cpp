@@ -21,6 +21,7 @@
 
 #include "NoiseHash.h"
 #include "NoiseSimd.h"
+#include "NoiseSplit-inl.h"
 
 #include <algorithm>
 
@@ -164,6 +165,12 @@ struct Point
 
 // ---- the bases -------------------------------------------------------------------
 
+/// The hash of 2D corner (a, b) from cellTerms()'s terms: a 2D corner's z term is 0.
+HWY_INLINE VU cornerHash2(VU s, const VU (&t)[3][2], int a, int b)
+{
+    return cornerHash(DU(), s, t[0][a], t[1][b], hn::Zero(DU()));
+}
+
 /// T(i) and T(i + 1) on each axis: the terms of the cell's 8 corners (4 in 2D).
 HWY_INLINE void cellTerms(const Point& p, VU (&t)[3][2])
 {
@@ -198,18 +205,15 @@ VF gradient3(VU s, const Point& p)
 
 VF gradient2(VU s, const Point& p)
 {
-    const DU du;
     const DF df;
     VU t[3][2];
-    cellTerms(p, t); // z's terms unused: a 2D corner's is 0
-    const VU tx0 = t[0][0], tx1 = t[0][1], ty0 = t[1][0], ty1 = t[1][1];
-    const VU none = hn::Zero(du);
+    cellTerms(p, t); // z's terms unused in 2D
     const VF one = hn::Set(df, 1.0f);
     const VF x = p.f[0], y = p.f[1], x1 = hn::Sub(x, one), y1 = hn::Sub(y, one);
-    const VF n00 = gradientDot2(cornerHash(du, s, tx0, ty0, none), x, y);
-    const VF n01 = gradientDot2(cornerHash(du, s, tx0, ty1, none), x, y1);
-    const VF n10 = gradientDot2(cornerHash(du, s, tx1, ty0, none), x1, y);
-    const VF n11 = gradientDot2(cornerHash(du, s, tx1, ty1, none), x1, y1);
+    const VF n00 = gradientDot2(cornerHash2(s, t, 0, 0), x, y);
+    const VF n01 = gradientDot2(cornerHash2(s, t, 0, 1), x, y1);
+    const VF n10 = gradientDot2(cornerHash2(s, t, 1, 0), x1, y);
+    const VF n11 = gradientDot2(cornerHash2(s, t, 1, 1), x1, y1);
     const VF u = fade(x), v = fade(y);
     return hn::Mul(hn::Set(df, 1.41421356237309504880f), lerp(lerp(n00, n01, v), lerp(n10, n11, v), u)); // NOISE2_SCALE
 }
@@ -230,13 +234,10 @@ VF value3(VU s, const Point& p)
 
 VF value2(VU s, const Point& p)
 {
-    const DU du;
     VU t[3][2];
-    cellTerms(p, t); // z's terms unused: a 2D corner's is 0
-    const VU tx0 = t[0][0], tx1 = t[0][1], ty0 = t[1][0], ty1 = t[1][1];
-    const VU none = hn::Zero(du);
-    const VF c00 = latticeValue(cornerHash(du, s, tx0, ty0, none)), c01 = latticeValue(cornerHash(du, s, tx0, ty1, none));
-    const VF c10 = latticeValue(cornerHash(du, s, tx1, ty0, none)), c11 = latticeValue(cornerHash(du, s, tx1, ty1, none));
+    cellTerms(p, t); // z's terms unused in 2D
+    const VF c00 = latticeValue(cornerHash2(s, t, 0, 0)), c01 = latticeValue(cornerHash2(s, t, 0, 1));
+    const VF c10 = latticeValue(cornerHash2(s, t, 1, 0)), c11 = latticeValue(cornerHash2(s, t, 1, 1));
     const VF u = fade(p.f[0]), v = fade(p.f[1]);
     return lerp(lerp(c00, c01, v), lerp(c10, c11, v), u);
 }
@@ -295,9 +296,7 @@ VF simplex2(VU s, const Point& p)
     const DU du;
     const DF df;
     VU t[3][2];
-    cellTerms(p, t); // z's terms unused: a 2D corner's is 0
-    const VU tx0 = t[0][0], tx1 = t[0][1], ty0 = t[1][0], ty1 = t[1][1];
-    const VU none = hn::Zero(du);
+    cellTerms(p, t); // z's terms unused in 2D
     const VF x0 = p.f[0], y0 = p.f[1];
     const MF alongX = hn::Gt(x0, y0); // the middle corner: (1, 0) below the diagonal, else (0, 1)
     const VF one = hn::Set(df, 1.0f);
@@ -307,11 +306,11 @@ VF simplex2(VU s, const Point& p)
         return hn::Mul(kernelWeight(hn::Add(hn::Mul(x, x), hn::Mul(y, y))), gradientDot2(h, x, y));
     };
     const auto mx = hn::RebindMask(du, alongX);
-    VF n = corner(cornerHash(du, s, tx0, ty0, none), x0, y0);
-    n = hn::Add(n, corner(cornerHash(du, s, hn::IfThenElse(mx, tx1, tx0), hn::IfThenElse(mx, ty0, ty1), none),
+    VF n = corner(cornerHash2(s, t, 0, 0), x0, y0);
+    n = hn::Add(n, corner(cornerHash(du, s, hn::IfThenElse(mx, t[0][1], t[0][0]), hn::IfThenElse(mx, t[1][0], t[1][1]), hn::Zero(du)),
                           hn::Add(hn::Sub(x0, hn::IfThenElseZero(alongX, one)), g),
                           hn::Add(hn::Sub(y0, hn::IfThenElse(alongX, hn::Zero(df), one)), g)));
-    n = hn::Add(n, corner(cornerHash(du, s, tx1, ty1, none), hn::Add(hn::Sub(x0, one), g2),
+    n = hn::Add(n, corner(cornerHash2(s, t, 1, 1), hn::Add(hn::Sub(x0, one), g2),
                           hn::Add(hn::Sub(y0, one), g2)));
     return hn::Mul(hn::Set(df, 99.0f), n); // SIMPLEX2_SCALE
 }
@@ -387,34 +386,6 @@ HWY_INLINE hn::Vec<hn::RebindToSigned<DD>> cellIndex(DD dd, VD cell)
     return hn::ConvertTo(hn::RebindToSigned<DD>(), hn::IfThenElse(hn::Lt(hn::Abs(cell), limit), cell, saturated));
 }
 
-// splitCube / splitSquare / splitSimplex (NoiseKernels.h) in double lanes:
-// the cell's floor and the offset in it, the scalar path's operations.
-template <class DD, class VD = hn::Vec<DD>>
-HWY_INLINE void split(DD dd, bool simplex, bool threeD, const VD (&q)[3], VD (&cell)[3], VD (&offset)[3])
-{
-    if (!simplex) {
-        for (int a = 0; a < 3; ++a) {
-            cell[a] = hn::Floor(q[a]);
-            offset[a] = hn::Sub(q[a], cell[a]);
-        }
-    } else if (threeD) {
-        const VD skew = hn::Mul(hn::Add(hn::Add(q[0], q[1]), q[2]), hn::Set(dd, 1.0 / 3.0));
-        for (int a = 0; a < 3; ++a) cell[a] = hn::Floor(hn::Add(q[a], skew));
-        const VD unskew = hn::Mul(hn::Add(hn::Add(cell[0], cell[1]), cell[2]), hn::Set(dd, 1.0 / 6.0));
-        for (int a = 0; a < 3; ++a) offset[a] = hn::Add(hn::Sub(q[a], cell[a]), unskew);
-    } else {
-        const double F2 = 0.5 * (1.7320508075688772 - 1.0), G2 = (3.0 - 1.7320508075688772) / 6.0;
-        const VD skew = hn::Mul(hn::Add(q[0], q[1]), hn::Set(dd, F2));
-        cell[0] = hn::Floor(hn::Add(q[0], skew));
-        cell[1] = hn::Floor(hn::Add(q[1], skew));
-        cell[2] = hn::Zero(dd);
-        const VD unskew = hn::Mul(hn::Add(cell[0], cell[1]), hn::Set(dd, G2));
-        offset[0] = hn::Add(hn::Sub(q[0], cell[0]), unskew);
-        offset[1] = hn::Add(hn::Sub(q[1], cell[1]), unskew);
-        offset[2] = hn::Zero(dd);
-    }
-}
-
 /// A fractal sum's shape of one octave's basis value, in float
 /// (fractalShape of NoiseKernels.h).
 HWY_INLINE VF shape(FractalType fractal, VF n)
@@ -446,7 +417,7 @@ HWY_INLINE SplitHalf<DD> splitHalf(DD dd, const OctaveLanes32& o, bool simplex, 
         q[a] = p[a] ? hn::Add(hn::Mul(hn::LoadU(dd, p[a] + j), hn::Set(dd, o.frequency)), hn::Set(dd, o.offset[a]))
                     : hn::Zero(dd);
     }
-    split(dd, simplex, threeD, q, cell, h.offset);
+    splitLattice(dd, simplex, threeD, q[0], q[1], q[2], cell[0], cell[1], cell[2], h.offset[0], h.offset[1], h.offset[2]);
     for (int a = 0; a < 3; ++a) h.cell[a] = cellIndex(dd, cell[a]);
     return h;
 }
@@ -492,7 +463,7 @@ void FractalLanes32Impl(const FractalLanes32& sum, const double* x, const double
     const std::size_t lanes = hn::Lanes(df);
     const bool threeD = z != nullptr, simplex = sum.type == NoiseType::SIMPLEX;
     HWY_ALIGN double tail[3][MAX_FLOAT_LANES] = {};
-    HWY_ALIGN float result[MAX_FLOAT_LANES];
+    HWY_ALIGN float result[MAX_FLOAT_LANES] = {};
     const double* input[3] = {x, y, z};
     for (std::size_t i = 0; i < n; i += lanes) {
         const bool full = i + lanes <= n;

@@ -13,6 +13,7 @@
 #include <hwy/highway.h>
 
 #include "NoiseSimd.h"
+#include "NoiseSplit-inl.h"
 
 #include <strata/terrain/SimdTarget.h>
 
@@ -620,7 +621,8 @@ void EvaluateRuns(InCell kind, const CellRuns& runs, const double* x, const doub
     }
 }
 
-// splitCube / splitSquare / splitSimplex (NoiseKernels.h), lane-wise.
+// splitCube / splitSquare / splitSimplex (NoiseKernels.h), lane-wise
+// (NoiseSplit-inl.h, shared with version 2).
 struct Splitter
 {
     Lattice lattice;
@@ -628,33 +630,7 @@ struct Splitter
 
     STRATA_LANES void operator()(D d, V x, V y, V z, V& cx, V& cy, V& cz, V& fx, V& fy, V& fz) const
     {
-        if (lattice == Lattice::CUBE) {
-            cx = hn::Floor(x);
-            cy = hn::Floor(y);
-            cz = hn::Floor(z);
-            fx = hn::Sub(x, cx);
-            fy = hn::Sub(y, cy);
-            fz = hn::Sub(z, cz);
-        } else if (threeD) {
-            const V skew = hn::Mul(hn::Add(hn::Add(x, y), z), hn::Set(d, 1.0 / 3.0));
-            cx = hn::Floor(hn::Add(x, skew));
-            cy = hn::Floor(hn::Add(y, skew));
-            cz = hn::Floor(hn::Add(z, skew));
-            const V unskew = hn::Mul(hn::Add(hn::Add(cx, cy), cz), hn::Set(d, 1.0 / 6.0));
-            fx = hn::Add(hn::Sub(x, cx), unskew);
-            fy = hn::Add(hn::Sub(y, cy), unskew);
-            fz = hn::Add(hn::Sub(z, cz), unskew);
-        } else {
-            const double F2 = 0.5 * (1.7320508075688772 - 1.0), G2 = (3.0 - 1.7320508075688772) / 6.0;
-            const V skew = hn::Mul(hn::Add(x, y), hn::Set(d, F2));
-            cx = hn::Floor(hn::Add(x, skew));
-            cy = hn::Floor(hn::Add(y, skew));
-            cz = hn::Zero(d);
-            const V unskew = hn::Mul(hn::Add(cx, cy), hn::Set(d, G2));
-            fx = hn::Add(hn::Sub(x, cx), unskew);
-            fy = hn::Add(hn::Sub(y, cy), unskew);
-            fz = hn::Zero(d);
-        }
+        splitLattice(d, lattice == Lattice::SIMPLEX, threeD, x, y, z, cx, cy, cz, fx, fy, fz);
     }
 };
 
