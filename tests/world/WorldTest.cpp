@@ -153,6 +153,11 @@ public:
     void densities(const terrain::PointBlock& points, double* out) const override
     {
         const Running running(*this);
+        if (hold) {
+            ++held;
+            while (hold) std::this_thread::sleep_for(std::chrono::microseconds(100));
+            --held;
+        }
         std::this_thread::sleep_for(std::chrono::microseconds(200));
         mSphere.densities(points, out);
     }
@@ -167,6 +172,8 @@ public:
     mutable std::atomic<long> calls{0};       ///< calls so far
     mutable std::atomic<long> lateCalls{0};   ///< calls that began after `closed` was set
     std::atomic<bool> closed{false};          ///< set by the test once the World is gone
+    std::atomic<bool> hold{false};            ///< block evaluations wait while this is set
+    mutable std::atomic<int> held{0};         ///< block evaluations waiting on `hold` now
 
 private:
     struct Running
@@ -204,6 +211,10 @@ TEST(World, DestroyedWhileChunksAreMeshed)
     }
     for (int i = 0; i < 3; ++i) {
         auto field = std::make_shared<WatchedSphere>();
+        // Block evaluations wait at a gate, so one is surely running when the
+        // destructor starts; a second thread opens the gate while ~World waits.
+        field->hold = true;
+        std::thread opener;
         std::size_t inFlight = 0;
         {
             World w(field, smallOptions());
@@ -216,9 +227,15 @@ TEST(World, DestroyedWhileChunksAreMeshed)
                 if (inFlight == 0) std::this_thread::sleep_for(std::chrono::milliseconds(1));
             }
             ASSERT_GT(inFlight, 0u) << "no chunk task ever started";
-            while (field->running == 0 && std::chrono::steady_clock::now() < deadline) std::this_thread::yield();
-            EXPECT_GT(field->running.load(), 0) << "destroyed with no evaluation running: the test proves less";
-        } // ~World
+            while (field->held == 0 && std::chrono::steady_clock::now() < deadline) std::this_thread::yield();
+            if (field->held == 0) field->hold = false; // let ~World finish before failing
+            ASSERT_GT(field->held.load(), 0) << "no block evaluation ever started";
+            opener = std::thread([&field] {
+                std::this_thread::sleep_for(std::chrono::milliseconds(50));
+                field->hold = false;
+            });
+        } // ~World, with an evaluation held at the gate
+        opener.join();
         EXPECT_EQ(field->running.load(), 0) << "an evaluation was still running after ~World returned";
         const long atDestruction = field->calls;
         field->closed = true;
