@@ -318,9 +318,21 @@ Interval FractalNoise::bounds(const glm::dvec3& lo, const glm::dvec3& hi) const
     Interval sum{0.0, 0.0};
     for (int i = 0; i < mCount; ++i) {
         const Octave& o = mOctaves[i];
-        const glm::dvec3 q = centre * o.frequency + glm::dvec3(o.offset[0], o.offset[1], o.offset[2]);
-        // The octave sees a box of half diagonal f_i·radius around q.
-        const double n = basis(o.seed, q), reach = slope * o.frequency * radius + rounding;
+        const glm::dvec3 offset(o.offset[0], o.offset[1], o.offset[2]);
+        const glm::dvec3 qlo = lo * o.frequency + offset, qhi = hi * o.frequency + offset;
+        // The octave sees a box of half diagonal f_i·radius around its centre.
+        double n = 0.0, reach = slope * o.frequency * radius;
+        if (mOptions.noise == NoiseType::GRADIENT && std::floor(qlo.x) == std::floor(qhi.x) &&
+            std::floor(qlo.y) == std::floor(qhi.y) && std::floor(qlo.z) == std::floor(qhi.z)) {
+            // Inside one lattice cell: the mean value form, as in 2D.
+            double spread = 0.0;
+            n = mOptions.version == 2 ? noise3SpreadVersion2(std::uint32_t(o.seed >> 32), qlo, qhi, spread)
+                                      : noise3Spread(o.seed, qlo, qhi, spread);
+            reach = std::min(reach, spread);
+        } else {
+            n = basis(o.seed, centre * o.frequency + offset);
+        }
+        reach += rounding;
         const Interval shaped =
             shapeInterval(mOptions.fractal, std::max(n - reach, range.lo), std::min(n + reach, range.hi));
         sum.lo += o.weight * shaped.lo;

@@ -137,6 +137,132 @@ double noise2SpreadVersion2(std::uint32_t seed, const glm::dvec2& lo, const glm:
     return spreadInCell(g[0], g[1], g[2], g[3], x0, x1, y0, y1, spread);
 }
 
+namespace {
+
+/// An affine function of the cell fractions: c·(x, y, z) + k.
+struct Affine3
+{
+    double c[3];
+    double k;
+};
+
+/// noise3 (either version's gradients, corner (a, b, c) at index 4a + 2b + c)
+/// over the box lo..hi of fractions in one cell: the value at its centre, and
+/// in `spread` a bound of how far the value moves from it. The 3D analogue of
+/// spreadInCell (same proof): with u, v, w the fades of x, y, z,
+///   n = Σ_S (Π_{a∈S} fade_a) · T_S   over the subsets S of {x, y, z},
+/// T_S = Σ_{C⊆S} (−1)^{|S|−|C|} n_C the affine finite differences of the
+/// corner functions n_C = g_C·(p − C). Its partial derivative on axis j, with
+/// k and l the other two axes, grouped so that each fade range is used once
+/// per product (interval arithmetic is subdistributive, so this is the tighter
+/// grouping):
+///   ∂_j n = T_∅.c_j + f'_j·(T_j + f_k·T_jk + f_l·(T_jl + f_k·T_jkl))
+///         + f_j·(T_j.c_j + f_k·T_jk.c_j + f_l·(T_jl.c_j + f_k·T_jkl.c_j))
+///         + f_k·T_k.c_j + f_l·(T_l.c_j + f_k·T_kl.c_j).
+/// Every T_S is exact over the box (affine), the fades are increasing and
+/// fadeSlope bounds their slopes, so the ranges enclose ∇n over the box, and
+/// |n(p) − n(centre)| <= Σ_j max|∂_j n|·h_j (mean value theorem).
+double spreadInCell3(const double* const g[8], const double lo[3], const double hi[3], double& spread)
+{
+    double centre[3], half[3];
+    for (int a = 0; a < 3; ++a) {
+        centre[a] = 0.5 * (lo[a] + hi[a]);
+        half[a] = 0.5 * (hi[a] - lo[a]);
+    }
+    // Corner bit of axis a in the index 4a + 2b + c: x 4, y 2, z 1.
+    constexpr int BIT[3] = {4, 2, 1};
+    Affine3 t[8];
+    for (int set = 0; set < 8; ++set) {
+        Affine3 sum{{0.0, 0.0, 0.0}, 0.0};
+        for (int corner = 0; corner < 8; ++corner) {
+            if ((corner & ~set) != 0) continue; // corners inside the set only
+            const int odd = __builtin_popcount(unsigned(set ^ corner)) & 1;
+            const double sign = odd ? -1.0 : 1.0;
+            double k = 0.0;
+            for (int a = 0; a < 3; ++a) {
+                sum.c[a] += sign * g[corner][a];
+                if (corner & BIT[a]) k -= g[corner][a];
+            }
+            sum.k += sign * k;
+        }
+        t[set] = sum;
+    }
+    const auto range = [&](const Affine3& f) {
+        double c = f.k, r = 0.0;
+        for (int a = 0; a < 3; ++a) {
+            c += f.c[a] * centre[a];
+            r += std::abs(f.c[a]) * half[a];
+        }
+        return Range{c - r, c + r};
+    };
+    Range f[3], df[3];
+    for (int a = 0; a < 3; ++a) {
+        f[a] = {fade(lo[a]), fade(hi[a])};
+        df[a] = fadeSlope(lo[a], hi[a]);
+    }
+    spread = 0.0;
+    for (int j = 0; j < 3; ++j) {
+        const int k = (j + 1) % 3, l = (j + 2) % 3;
+        const int J = BIT[j], K = BIT[k], L = BIT[l];
+        const Range inner = range(t[J]) + f[k] * range(t[J | K]) + f[l] * (range(t[J | L]) + f[k] * range(t[J | K | L]));
+        const Range own = point(t[J].c[j]) + f[k] * point(t[J | K].c[j]) +
+                          f[l] * (point(t[J | L].c[j]) + f[k] * point(t[J | K | L].c[j]));
+        const Range rest = f[k] * point(t[K].c[j]) + f[l] * (point(t[L].c[j]) + f[k] * point(t[K | L].c[j]));
+        const Range slope = point(t[0].c[j]) + df[j] * inner + f[j] * own + rest;
+        spread += magnitude(slope) * half[j];
+    }
+
+    // The centre value as noise3 computes it (the same gradients).
+    const double x = centre[0], y = centre[1], z = centre[2];
+    const auto dot = [&](int corner) {
+        const double* gc = g[corner];
+        return gc[0] * (x - double((corner >> 2) & 1)) + gc[1] * (y - double((corner >> 1) & 1)) +
+               gc[2] * (z - double(corner & 1));
+    };
+    const double u = fade(x), v = fade(y), w = fade(z);
+    const double n00 = lerp(dot(0), dot(1), w), n01 = lerp(dot(2), dot(3), w);
+    const double n10 = lerp(dot(4), dot(5), w), n11 = lerp(dot(6), dot(7), w);
+    return lerp(lerp(n00, n01, v), lerp(n10, n11, v), u);
+}
+
+} // namespace
+
+double noise3Spread(std::uint64_t s, const glm::dvec3& lo, const glm::dvec3& hi, double& spread)
+{
+    const double fx = std::floor(lo.x), fy = std::floor(lo.y), fz = std::floor(lo.z);
+    GradientCell3 cell;
+    gradientCell(s, Split3{latticeIndex(fx), latticeIndex(fy), latticeIndex(fz), 0.0, 0.0, 0.0}, cell);
+    const double a[3] = {lo.x - fx, lo.y - fy, lo.z - fz}, b[3] = {hi.x - fx, hi.y - fy, hi.z - fz};
+    return spreadInCell3(cell.g, a, b, spread);
+}
+
+double noise3SpreadVersion2(std::uint32_t seed, const glm::dvec3& lo, const glm::dvec3& hi, double& spread)
+{
+    const double floors[3] = {std::floor(lo.x), std::floor(lo.y), std::floor(lo.z)};
+    const double los[3] = {lo.x, lo.y, lo.z}, his[3] = {hi.x, hi.y, hi.z};
+    std::uint32_t terms[3][2];
+    double a[3], b[3];
+    for (int axis = 0; axis < 3; ++axis) {
+        const std::int64_t i = latticeIndex(floors[axis]);
+        terms[axis][0] = hash32::term(i, axis);
+        terms[axis][1] = hash32::term(i + 1, axis);
+        // Version 2 rounds the fractions to float: spread the box by that
+        // rounding (half an ulp of numbers below 1) so it holds them.
+        constexpr double ROUNDING = 0x1.0p-25;
+        a[axis] = std::max(los[axis] - floors[axis] - ROUNDING, 0.0);
+        b[axis] = std::min(his[axis] - floors[axis] + ROUNDING, 1.0);
+    }
+    double gradients[8][3];
+    const double* g[8];
+    for (int corner = 0; corner < 8; ++corner) {
+        const std::uint32_t h =
+            hash32::corner(seed, terms[0][corner >> 2], terms[1][(corner >> 1) & 1], terms[2][corner & 1]);
+        hash32::gradient3(h, gradients[corner]);
+        g[corner] = gradients[corner];
+    }
+    return spreadInCell3(g, a, b, spread);
+}
+
 } // namespace detail
 
 using namespace detail;

@@ -73,6 +73,11 @@ double noise2Spread(std::uint64_t hashedSeed, const glm::dvec2& lo, const glm::d
 /// (NoiseLanes32.cpp; the fractions rounded to float are held too).
 double noise2SpreadVersion2(std::uint32_t seed, const glm::dvec2& lo, const glm::dvec2& hi, double& spread);
 
+/// noise3 over the box [lo, hi] in one lattice cell, as noise2Spread (the
+/// 3D mean value form; proof in Noise.cpp), and its version-2 form.
+double noise3Spread(std::uint64_t hashedSeed, const glm::dvec3& lo, const glm::dvec3& hi, double& spread);
+double noise3SpreadVersion2(std::uint32_t seed, const glm::dvec3& lo, const glm::dvec3& hi, double& spread);
+
 /// Version 2's lattice hash, one corner at a time (NoiseLanes32.cpp does it
 /// in lanes, with these constants): the term of cell index i on axis a is
 /// T(i) = lo·P_a ^ hi·Q_a of its 32-bit words, a corner's hash
@@ -110,6 +115,20 @@ inline void gradient2(std::uint32_t h, double* g)
         g[0] = sx;
         g[1] = 0.0;
     }
+}
+
+/// The 3D gradient the top 4 bits of a corner's hash pick, as the lanes'
+/// gradientDot3 (improved Perlin noise's 12 edge directions, 4 repeated):
+/// g·p = ±u ± v with u = x below 8, else y; v = y below 4, z from 4 (x at
+/// 12 and 14); bit 28 the sign of u, bit 29 of v.
+inline void gradient3(std::uint32_t h, double* g)
+{
+    const unsigned index = h >> 28;
+    const int u = index < 8 ? 0 : 1;
+    const int v = index < 4 ? 1 : ((index | 2u) == 14u ? 0 : 2);
+    g[0] = g[1] = g[2] = 0.0;
+    g[u] += (h & 0x10000000u) ? -1.0 : 1.0;
+    g[v] += (h & 0x20000000u) ? -1.0 : 1.0;
 }
 
 } // namespace hash32

@@ -176,6 +176,36 @@ TEST(FractalNoise, DomainWarpStaysWithinItsBound)
     }
 }
 
+// The box bounds sampling prunes with hold the sum at every point of the box,
+// and the 3D gradient octaves that take the mean value form (their box in
+// one lattice cell) make them much tighter than the slope bound alone.
+TEST(FractalNoise, Gradient3DBoxBoundsHoldEveryPointAndAreTighterThanTheSlope)
+{
+    for (const int version : {1, 2}) {
+        const FractalNoise noise(13, {NoiseType::GRADIENT, FractalType::FBM, 3, 2.0, 0.5, version});
+        Points points(version);
+        double width = 0.0, slopeWidth = 0.0;
+        for (int i = 0; i < 400; ++i) {
+            const glm::dvec3 lo = points.point3(-300.0, 300.0);
+            const double size = points.uniform(0.005, 0.08); // a block of voxels against the octaves
+            const glm::dvec3 hi = lo + glm::dvec3(size, 0.7 * size, 1.3 * size);
+            const Interval box = noise.bounds(lo, hi);
+            for (int x = 0; x <= 4; ++x)
+                for (int y = 0; y <= 4; ++y)
+                    for (int z = 0; z <= 4; ++z) {
+                        const glm::dvec3 p = lo + (hi - lo) * glm::dvec3(x, y, z) / 4.0;
+                        const double value = noise(p);
+                        ASSERT_GE(value, box.lo) << "version " << version << " box at " << lo.x << ", " << lo.y;
+                        ASSERT_LE(value, box.hi) << "version " << version << " box at " << lo.x << ", " << lo.y;
+                    }
+            width += box.hi - box.lo;
+            slopeWidth += 2.0 * noise.lipschitz(3) * 0.5 * glm::length(hi - lo);
+        }
+        std::cout << "version " << version << ": box bounds " << width / slopeWidth << " of the slope bound's width\n";
+        EXPECT_LT(width, 0.85 * slopeWidth) << "version " << version; // octaves whose box straddles a cell take the slope
+    }
+}
+
 TEST(FractalNoise, BadOptionsThrowNamingTheKey)
 {
     for (const auto& [options, key] : std::vector<std::pair<FractalOptions, std::string>>{

@@ -7,7 +7,7 @@
 // path; continuity across the 32-bit words of a cell index; the gradient
 // bounds and box bounds that sampling prunes with; and version 1 untouched.
 
-#include "NoiseHash.h"    // internal: noise2SpreadVersion2
+#include "NoiseHash.h"    // internal: noise2SpreadVersion2, noise3SpreadVersion2
 #include "NoiseKernels.h" // internal: splitCube, splitSimplex
 #include "NoiseSimd.h"    // internal: basisVersion2
 
@@ -21,6 +21,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <cstring>
 #include <string>
 #include <vector>
@@ -390,6 +391,48 @@ TEST(NoiseVersion2, TheMeanValueFormHoldsTheLanesAndIsTighterThanTheSlope)
         slopeSum += GRADIENT_NOISE_LIPSCHITZ_2D * 0.5 * glm::length(hi - lo);
     }
     EXPECT_LT(spreadSum, 0.8 * slopeSum) << "the mean value form should be tighter than the gradient bound";
+}
+
+TEST(NoiseVersion2, The3DMeanValueFormHoldsTheLanesAndIsTighterThanTheSlope)
+{
+    // 3D gradient octaves whose box lies in one cell take the mean value form
+    // too (noise3SpreadVersion2, with hash32::gradient3): its centre is the
+    // lanes' value there (so the scalar gradients are the lanes' own) and its
+    // spread holds every point of the box, near a 32-bit word's wrap as well.
+    std::uint64_t state = 11;
+    const auto next = [&state] {
+        state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+        return double(state >> 11) * 0x1.0p-53;
+    };
+    const std::uint64_t hashedSeed = 0x2545f4914f6cdd1dULL;
+    const std::uint32_t seed = std::uint32_t(hashedSeed >> 32);
+    double spreadSum = 0.0, slopeSum = 0.0;
+    for (int i = 0; i < 2000; ++i) {
+        const double wrap = (i % 3 == 0) ? 4294967295.0 : 0.0; // the cell just below 2^32 on x
+        const glm::dvec3 cell(std::floor(200.0 * next() - 100.0) + wrap, std::floor(200.0 * next() - 100.0),
+                              std::floor(200.0 * next() - 100.0));
+        const glm::dvec3 lo = cell + glm::dvec3(0.9 * next(), 0.9 * next(), 0.9 * next());
+        const glm::dvec3 hi = lo + glm::dvec3(0.1 * next(), 0.1 * next(), 0.1 * next());
+        double spread = 0.0;
+        const double centre = detail::noise3SpreadVersion2(seed, lo, hi, spread);
+        const glm::dvec3 c = 0.5 * (lo + hi);
+        double lanes = 0.0;
+        detail::basisVersion2(NoiseType::GRADIENT, hashedSeed, &c.x, &c.y, &c.z, 1, &lanes);
+        ASSERT_NEAR(lanes, centre, 1e-5) << "cell " << cell.x << ", " << cell.y << ", " << cell.z
+                                         << ": another gradient than the lanes'";
+        for (int k = 0; k < 12; ++k) {
+            // Corners first (the extremes of an affine part), then inside.
+            const glm::dvec3 t = k < 8 ? glm::dvec3(k >> 2, (k >> 1) & 1, k & 1) : glm::dvec3(next(), next(), next());
+            const glm::dvec3 p = lo + (hi - lo) * t;
+            double value = 0.0;
+            detail::basisVersion2(NoiseType::GRADIENT, hashedSeed, &p.x, &p.y, &p.z, 1, &value);
+            EXPECT_LE(std::abs(value - centre), spread + 1e-5);
+        }
+        spreadSum += spread;
+        slopeSum += GRADIENT_NOISE_LIPSCHITZ * 0.5 * glm::length(hi - lo);
+    }
+    std::printf("3D mean value form: %.3f of the gradient bound\n", spreadSum / slopeSum);
+    EXPECT_LT(spreadSum, 0.6 * slopeSum) << "the mean value form should be tighter than the gradient bound";
 }
 
 TEST(NoiseVersion2, IsAnotherPatternAndLeavesVersion1Alone)

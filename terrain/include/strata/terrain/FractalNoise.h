@@ -135,7 +135,7 @@ public:
     /// (noise units, lo <= hi). Per octave i the basis lies within
     /// n_i(c_i) ± L_b·f_i·r (L_b the basis' gradient bound, f_i the
     /// octave's frequency, r the box's half diagonal) and within the basis'
-    /// rigorous range (basisRange); in 2D, for gradient noise, an octave
+    /// rigorous range (basisRange); for gradient noise (2D and 3D), an octave
     /// whose box lies in one lattice cell uses the mean value form instead
     /// when tighter (an interval enclosure of the gradient over the box,
     /// typically several times tighter on small boxes; proof in Noise.cpp).
