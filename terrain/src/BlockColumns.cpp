@@ -3,19 +3,22 @@
 
 #include "BlockColumns.h"
 
+#include <algorithm>
 #include <cstring>
 
 namespace strata::terrain::detail {
 
-void findColumns(const PointBlock& points, BlockColumns& columns)
+BlockColumns findColumns(const PointBlock& points, ScratchFrame& scratch)
 {
     // A block of voxels (x outer, z inner) repeats its first column after
     // one row of z: 4 or 8 points in the sampler's and the World's blocks.
     constexpr std::size_t PROBE = 16;
     const std::size_t n = points.count;
-    columns.of.resize(n);
-    columns.x.clear();
-    columns.z.clear();
+    BlockColumns columns;
+    columns.of = scratch.array<std::uint32_t>(n);
+    columns.x = scratch.array<double>(n);
+    columns.z = scratch.array<double>(n);
+    std::size_t& count = columns.count;
     // Open addressing in a table at least twice the block's size.
     std::size_t slots = 16;
     int shift = 64 - 4;
@@ -23,8 +26,8 @@ void findColumns(const PointBlock& points, BlockColumns& columns)
         slots *= 2;
         --shift;
     }
-    thread_local std::vector<std::uint32_t> table; // calls nothing: one per thread is safe
-    table.assign(slots, UINT32_MAX);
+    std::uint32_t* table = scratch.array<std::uint32_t>(slots);
+    std::fill(table, table + slots, UINT32_MAX);
     const auto bits = [](double v) {
         std::uint64_t b;
         std::memcpy(&b, &v, sizeof b);
@@ -35,23 +38,22 @@ void findColumns(const PointBlock& points, BlockColumns& columns)
     // row later). A point that repeats the column of the point one period
     // back takes it without hashing; the others are hashed.
     std::size_t period = 0;
-    thread_local std::vector<std::uint32_t> firstPoint; // per column
-    firstPoint.clear();
+    std::uint32_t* firstPoint = scratch.array<std::uint32_t>(n); // per column
     for (std::size_t i = 0; i < n; ++i) {
         if (period != 0 && i >= period && bits(points.x[i]) == bits(points.x[i - period]) &&
             bits(points.z[i]) == bits(points.z[i - period])) {
             columns.of[i] = columns.of[i - period];
             continue;
         }
-        if (i == PROBE && columns.x.size() == PROBE) {
+        if (i == PROBE && count == PROBE) {
             // No two of the first PROBE points share a column (a domain warp
             // moved them apart): hashing the rest would find none either, so
             // each is its own column. Only the work depends on this: a
             // column found twice gives the same values twice.
             for (; i < n; ++i) {
-                columns.of[i] = std::uint32_t(columns.x.size());
-                columns.x.push_back(points.x[i]);
-                columns.z.push_back(points.z[i]);
+                columns.of[i] = std::uint32_t(count);
+                columns.x[count] = points.x[i];
+                columns.z[count++] = points.z[i];
             }
             break;
         }
@@ -63,11 +65,11 @@ void findColumns(const PointBlock& points, BlockColumns& columns)
         for (;; slot = (slot + 1) & (slots - 1)) {
             const std::uint32_t c = table[slot];
             if (c == UINT32_MAX) {
-                table[slot] = std::uint32_t(columns.x.size());
-                columns.of[i] = std::uint32_t(columns.x.size());
-                columns.x.push_back(points.x[i]);
-                columns.z.push_back(points.z[i]);
-                firstPoint.push_back(std::uint32_t(i));
+                table[slot] = std::uint32_t(count);
+                columns.of[i] = std::uint32_t(count);
+                firstPoint[count] = std::uint32_t(i);
+                columns.x[count] = points.x[i];
+                columns.z[count++] = points.z[i];
                 break;
             }
             if (bits(columns.x[c]) == bx && bits(columns.z[c]) == bz) {
@@ -77,6 +79,7 @@ void findColumns(const PointBlock& points, BlockColumns& columns)
             }
         }
     }
+    return columns;
 }
 
 } // namespace strata::terrain::detail

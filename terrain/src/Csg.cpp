@@ -3,6 +3,7 @@
 
 #include <strata/terrain/Csg.h>
 
+#include "BlockScratch.h"
 #include "NodeRegistrations.h"
 #include <strata/terrain/NodeRegistry.h>
 
@@ -72,27 +73,28 @@ void CsgField::densities(const PointBlock& points, double* out) const
 {
     const std::size_t n = points.count;
     mChildren[0]->densities(points, out);
-    std::vector<std::size_t> need;
-    std::vector<double> buffer;
+    detail::ScratchFrame scratch;
+    std::size_t* need = scratch.array<std::size_t>(n);
+    double *x = scratch.array<double>(4 * n), *y = x + n, *z = y + n, *c = z + n;
     for (std::size_t i = 1; i < mChildren.size(); ++i) {
         const DensityField& child = *mChildren[i];
         // The points where density() would evaluate this child.
         const double floor = child.minDensity();
-        need.clear();
+        std::size_t m = 0;
         double dLo = HUGE_VAL, dHi = -HUGE_VAL;
         for (std::size_t j = 0; j < n; ++j) {
             const double d = out[j];
             if (mOperation == CsgOperation::SUBTRACT && d >= mSmooth - floor) continue;
             if (mOperation == CsgOperation::UNION && d <= floor - mSmooth) continue;
-            need.push_back(j);
+            need[m++] = j;
             dLo = std::min(dLo, d);
             dHi = std::max(dHi, d);
         }
-        if (need.empty()) continue;
+        if (m == 0) continue;
         // Outside the blend, smooth-min/max return the unchanged operand
         // exactly: d when c + d >= k (subtract), c − d >= k (union),
         // d − c >= k (intersect). A bound costs about one evaluation.
-        if (need.size() >= 8) {
+        if (m >= 8) {
             const Interval c = child.bounds(points.box);
             const double margin = mSmooth + skipMargin(c, dLo, dHi);
             if ((mOperation == CsgOperation::SUBTRACT && c.lo + dLo >= margin) ||
@@ -100,9 +102,6 @@ void CsgField::densities(const PointBlock& points, double* out) const
                 (mOperation == CsgOperation::INTERSECT && dLo - c.hi >= margin))
                 continue;
         }
-        const std::size_t m = need.size();
-        buffer.resize(4 * m);
-        double *x = buffer.data(), *y = x + m, *z = y + m, *c = z + m;
         for (std::size_t k = 0; k < m; ++k) {
             x[k] = points.x[need[k]];
             y[k] = points.y[need[k]];

@@ -50,10 +50,10 @@ void HeightfieldBase::densities(const PointBlock& points, double* out) const
 {
     const std::size_t n = points.count;
     if (n == 0) return;
-    detail::BlockColumns columns;
-    detail::findColumns(points, columns);
-    std::vector<double> h(columns.x.size());
-    heights(columns.x.data(), columns.z.data(), h.size(), h.data());
+    detail::ScratchFrame scratch;
+    const detail::BlockColumns columns = detail::findColumns(points, scratch);
+    double* h = scratch.array<double>(columns.count);
+    heights(columns.x, columns.z, columns.count, h);
     for (std::size_t i = 0; i < n; ++i) out[i] = (points.y[i] - h[columns.of[i]]) * mScale;
 }
 
@@ -87,13 +87,13 @@ void NoiseHeightfield::heights(const double* x, const double* z, std::size_t n, 
 {
     // As height(): base + amplitude·noise(x / wavelength, z / wavelength).
     const double w = mOptions.wavelength;
-    thread_local std::vector<double> q; // only FractalNoise::evaluate runs meanwhile
-    q.resize(2 * n);
+    detail::ScratchFrame scratch;
+    double* q = scratch.array<double>(2 * n);
     for (std::size_t i = 0; i < n; ++i) {
         q[i] = x[i] / w;
         q[n + i] = z[i] / w;
     }
-    mNoise.evaluate(q.data(), q.data() + n, n, out);
+    mNoise.evaluate(q, q + n, n, out);
     for (std::size_t i = 0; i < n; ++i) out[i] = mOptions.base + mOptions.amplitude * out[i];
 }
 

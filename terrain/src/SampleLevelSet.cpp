@@ -190,7 +190,15 @@ public:
     void operator()(const PointBlock& points, double* out) const
     {
         mField.densities(points, out);
-        if (!mClosed) return;
+        if (!mClosed || points.count == 0) return;
+        // Where the region's box term is at most every density of the block
+        // (the block lies deep enough inside the region) max leaves each
+        // value as it is: the box term is 1-Lipschitz, so box(c) + radius
+        // bounds it over the block's box.
+        const double boxMost = box(points.box.centre()) + points.box.radius();
+        double least = out[0];
+        for (std::size_t i = 1; i < points.count; ++i) least = std::min(least, out[i]);
+        if (boxMost <= least) return;
         for (std::size_t i = 0; i < points.count; ++i)
             out[i] = std::max(out[i], box({points.x[i], points.y[i], points.z[i]}));
     }

@@ -12,6 +12,7 @@
 #include <cmath>
 #include <sstream>
 #include <string>
+#include <vector>
 
 namespace strata::terrain {
 
@@ -148,18 +149,18 @@ void TerrainField::densities(const PointBlock& points, double* out) const
     const CaveOptions& c = mOptions.caves;
 
     // A leaf (Fbm calls nothing back): scratch kept per thread, not per call.
+    detail::ScratchFrame frame;
     thread_local struct
     {
-        detail::BlockColumns columns;
         std::vector<double> qx, qy, qz;
         std::vector<float> n1, n2;
         std::vector<std::uint32_t> deep;
     } scratch;
-    auto& [columns, qx, qy, qz, n1, n2, deep] = scratch;
+    auto& [qx, qy, qz, n1, n2, deep] = scratch;
 
     // height() once per column: q = (x, z) / wavelength, as height() divides.
-    detail::findColumns(points, columns);
-    const std::size_t m = columns.x.size();
+    const detail::BlockColumns columns = detail::findColumns(points, frame);
+    const std::size_t m = columns.count;
     qx.resize(m);
     qz.resize(m);
     n1.resize(m); // the columns' height noise first, the first cave noise after

@@ -3,6 +3,7 @@
 
 #include <strata/terrain/Transforms.h>
 
+#include "BlockScratch.h"
 #include "NodeRegistrations.h"
 #include <strata/Format.h>
 #include <strata/terrain/NodeRegistry.h>
@@ -12,6 +13,9 @@
 #include <strata/DeterministicMath.h>
 #include <strata/Error.h>
 
+#include <algorithm>
+#include <atomic>
+#include <bit>
 #include <cmath>
 #include <vector>
 
@@ -56,8 +60,8 @@ void WarpField::densities(const PointBlock& points, double* out) const
 {
     const std::size_t n = points.count;
     if (n == 0) return;
-    std::vector<double> buffer(6 * n);
-    double *qx = buffer.data(), *qy = qx + n, *qz = qy + n, *fx = qz + n, *fy = fx + n, *fz = fy + n;
+    detail::ScratchFrame scratch;
+    double *qx = scratch.array<double>(6 * n), *qy = qx + n, *qz = qy + n, *fx = qz + n, *fy = fx + n, *fz = fy + n;
     // As warp(): q = p / wavelength, then p + amplitude·(fx, v·fy or 0, fz).
     const double w = mOptions.wavelength, a = mOptions.amplitude;
     for (std::size_t i = 0; i < n; ++i) {
@@ -103,8 +107,27 @@ Interval WarpField::bounds(const WorldBox& box) const
     return mChild->bounds({lo, hi});
 }
 
+namespace {
+
+std::atomic<std::uint64_t> gNextTerraceIdentity{1};
+
+/// A direct-mapped memo of terrace heights, per thread (no locks), shared by
+/// every terrace node on it: an entry holds its node's identity and the
+/// height's bits, so a hit is the value terrace() would compute.
+struct TerraceMemo
+{
+    static constexpr int BITS = 9;
+    std::uint64_t node[1 << BITS] = {};
+    std::uint64_t height[1 << BITS] = {};
+    double value[1 << BITS] = {};
+};
+
+thread_local TerraceMemo tTerraceMemo;
+
+} // namespace
+
 TerraceField::TerraceField(DensityFieldPtr child, double step, double sharpness)
-    : mChild(std::move(child)), mStep(step), mSharpness(sharpness)
+    : mChild(std::move(child)), mStep(step), mSharpness(sharpness), mIdentity(gNextTerraceIdentity.fetch_add(1))
 {
     if (!(std::isfinite(step) && step > 0.0)) throw Error(ErrorKind::BadInput, "step = " + show(step) + " must be a finite number > 0");
     if (!(std::isfinite(sharpness) && sharpness >= 1.0 && sharpness <= 64.0)) {
@@ -118,6 +141,19 @@ double TerraceField::terrace(double y) const
     return mStep * (k + dmath::pow(s - k, mSharpness));
 }
 
+double TerraceField::terraceMemo(double y) const
+{
+    const std::uint64_t bits = std::bit_cast<std::uint64_t>(y);
+    const std::size_t slot = std::size_t(((bits ^ mIdentity) * 0x9E3779B97F4A7C15ULL) >> (64 - TerraceMemo::BITS));
+    TerraceMemo& memo = tTerraceMemo;
+    if (memo.node[slot] == mIdentity && memo.height[slot] == bits) return memo.value[slot];
+    const double t = terrace(y);
+    memo.node[slot] = mIdentity;
+    memo.height[slot] = bits;
+    memo.value[slot] = t;
+    return t;
+}
+
 double TerraceField::density(const glm::dvec3& p) const
 {
     return mChild->density({p.x, terrace(p.y), p.z});
@@ -127,12 +163,13 @@ void TerraceField::densities(const PointBlock& points, double* out) const
 {
     const std::size_t n = points.count;
     if (n == 0) return;
-    std::vector<double> terraced(n);
+    detail::ScratchFrame scratch;
+    double* terraced = scratch.array<double>(n);
     for (std::size_t i = 0; i < n; ++i) {
         const double y = points.y[i];
-        terraced[i] = (i > 0 && y == points.y[i - 1]) ? terraced[i - 1] : terrace(y);
+        terraced[i] = (i > 0 && y == points.y[i - 1]) ? terraced[i - 1] : terraceMemo(y);
     }
-    PointBlock child{points.x, terraced.data(), points.z, n, points.box};
+    PointBlock child{points.x, terraced, points.z, n, points.box};
     const WorldBox spanned = spannedBox(child);
     child.box.min.y = spanned.min.y;
     child.box.max.y = spanned.max.y;
@@ -152,7 +189,7 @@ Interval TerraceField::bounds(const WorldBox& box) const
 {
     // A relative widening of 1e-12 plus 1e-12 m covers the rounding of the
     // division, floor and pow (far below any voxel).
-    const double lo = terrace(box.min.y), hi = terrace(box.max.y);
+    const double lo = terraceMemo(box.min.y), hi = terraceMemo(box.max.y);
     const double slack = 1e-12 * (std::abs(lo) + std::abs(hi) + mStep);
     return mChild->bounds({{box.min.x, lo - slack, box.min.z}, {box.max.x, hi + slack, box.max.z}});
 }
@@ -164,8 +201,8 @@ namespace strata::terrain {
 void TranslateField::densities(const PointBlock& points, double* out) const
 {
     const std::size_t n = points.count;
-    std::vector<double> moved(3 * n);
-    double *x = moved.data(), *y = x + n, *z = y + n;
+    detail::ScratchFrame scratch;
+    double *x = scratch.array<double>(3 * n), *y = x + n, *z = y + n;
     for (std::size_t i = 0; i < n; ++i) {
         x[i] = points.x[i] - mOffset.x;
         y[i] = points.y[i] - mOffset.y;

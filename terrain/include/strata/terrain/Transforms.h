@@ -9,6 +9,8 @@
 #include <strata/terrain/Csg.h>
 #include <strata/terrain/FractalNoise.h>
 
+#include <cstdint>
+
 namespace strata::terrain {
 
 /// Warps the child's domain with 3D fractal noise:
@@ -68,8 +70,7 @@ public:
     /// step > 0 (metres), sharpness >= 1; throws strata::Error otherwise.
     TerraceField(DensityFieldPtr child, double step, double sharpness);
     double density(const glm::dvec3& p) const override;
-    /// One terrace() per run of equal heights (a block of voxels has one
-    /// per layer), then the child's block.
+    /// terrace() per point through the memo, then the child's block.
     void densities(const PointBlock& points, double* out) const override;
     double lipschitz() const override { return mChild->lipschitz() * std::max(1.0, mSharpness); }
     double distanceBound(const glm::dvec3& p) const override;
@@ -85,8 +86,14 @@ public:
     double terrace(double y) const;
 
 private:
+    /// terrace(y), remembered per thread: a pow costs as much as a noise
+    /// octave, and sampling asks for the same few hundred heights (one per
+    /// voxel layer) millions of times, in densities() and bounds() alike.
+    double terraceMemo(double y) const;
+
     DensityFieldPtr mChild;
     double mStep, mSharpness;
+    std::uint64_t mIdentity; ///< tells this node's memo entries from another's
 };
 
 /// The child moved by `offset` metres: density(p) = child(p − offset).
