@@ -308,69 +308,129 @@ Interval shapeInterval(FractalType fractal, double lo, double hi)
 
 } // namespace
 
-Interval FractalNoise::bounds(const glm::dvec3& lo, const glm::dvec3& hi) const
+template <class Vec>
+Interval FractalNoise::boxBounds(const Vec& lo, const Vec& hi) const
 {
-    const double slope = noiseLipschitz(mOptions.noise, 3);
-    const Interval range = basisRange(mOptions.noise, 3);
-    const glm::dvec3 centre = 0.5 * (lo + hi);
-    const double radius = 0.5 * glm::length(hi - lo);
+    constexpr int D = Vec::length();
+    const double slope = noiseLipschitz(mOptions.noise, D);
+    const Interval range = basisRange(mOptions.noise, D);
+    const Vec centre = 0.5 * (lo + hi), half = 0.5 * (hi - lo);
+    const double radius = glm::length(half);
     const double rounding = mOptions.version == 2 ? BASIS_ROUNDING_V2 : BASIS_ROUNDING;
+    // Octave by octave: each one's interval (shaped and clamped to the
+    // basis' range), summed with the weights.
     Interval sum{0.0, 0.0};
+    // An fBm of gradient noise is also bounded as one function: its value at
+    // the centre plus its gradient's enclosure times the half extents, the
+    // octaves' gradient enclosures summed first. Octaves of similar slope
+    // point their gradients in unrelated directions, so the slope of the sum
+    // is well below the sum of their slopes (about √octaves times): this
+    // form takes that, the per-octave form cannot. Octaves whose box spans
+    // cells add their reach as they are. Both forms are rigorous; the
+    // result is their intersection.
+    const bool asOne = mOptions.fractal == FractalType::FBM && mOptions.noise == NoiseType::GRADIENT;
+    double centreSum = 0.0, reachSum = 0.0;
+    Interval slopeSum[D] = {};
     for (int i = 0; i < mCount; ++i) {
         const Octave& o = mOctaves[i];
-        const glm::dvec3 offset(o.offset[0], o.offset[1], o.offset[2]);
-        const glm::dvec3 qlo = lo * o.frequency + offset, qhi = hi * o.frequency + offset;
+        Vec offset;
+        for (int a = 0; a < D; ++a) offset[a] = o.offset[a];
+        const Vec qlo = lo * o.frequency + offset, qhi = hi * o.frequency + offset;
+        // Gradient noise over a box within one cell, or cut by the lattice
+        // into at most two pieces per axis: the mean value form per piece.
+        bool inCell = mOptions.noise == NoiseType::GRADIENT, inCells = inCell;
+        for (int a = 0; a < D; ++a) {
+            const double first = std::floor(qlo[a]), last = std::floor(qhi[a]);
+            inCell = inCell && first == last;
+            inCells = inCells && last - first <= 1.0;
+        }
         // The octave sees a box of half diagonal f_i·radius around its centre.
         double n = 0.0, reach = slope * o.frequency * radius;
-        if (mOptions.noise == NoiseType::GRADIENT && std::floor(qlo.x) == std::floor(qhi.x) &&
-            std::floor(qlo.y) == std::floor(qhi.y) && std::floor(qlo.z) == std::floor(qhi.z)) {
-            // Inside one lattice cell: the mean value form, as in 2D.
+        Interval gradient[D];
+        const std::uint32_t seed32 = std::uint32_t(o.seed >> 32);
+        const auto spreadOver = [&](const Vec& plo, const Vec& phi, double& spread, Interval* g) {
+            if constexpr (D == 3) {
+                return mOptions.version == 2 ? noise3SpreadVersion2(seed32, plo, phi, spread, g)
+                                             : noise3Spread(o.seed, plo, phi, spread, g);
+            } else {
+                return mOptions.version == 2 ? noise2SpreadVersion2(seed32, plo, phi, spread, g)
+                                             : noise2Spread(o.seed, plo, phi, spread, g);
+            }
+        };
+        Interval piecewise{-HUGE_VAL, HUGE_VAL};
+        if (inCell) {
+            // Inside one lattice cell: the mean value form, usually several
+            // times tighter than the gradient bound (both are rigorous).
             double spread = 0.0;
-            n = mOptions.version == 2 ? noise3SpreadVersion2(std::uint32_t(o.seed >> 32), qlo, qhi, spread)
-                                      : noise3Spread(o.seed, qlo, qhi, spread);
+            n = spreadOver(qlo, qhi, spread, gradient);
             reach = std::min(reach, spread);
         } else {
             n = basis(o.seed, centre * o.frequency + offset);
+            if (inCells) {
+                // The pieces between the cell faces (a face value belongs to
+                // both cells: the noise is continuous): the hull of their
+                // intervals, and of their gradient enclosures.
+                piecewise = {HUGE_VAL, -HUGE_VAL};
+                for (int a = 0; a < D; ++a) gradient[a] = {HUGE_VAL, -HUGE_VAL};
+                for (int piece = 0; piece < (1 << D); ++piece) {
+                    Vec plo = qlo, phi = qhi;
+                    bool exists = true;
+                    for (int a = 0; a < D; ++a) {
+                        const double face = std::floor(qlo[a]) + 1.0;
+                        const bool upper = (piece >> a) & 1;
+                        if (face > qhi[a]) exists = exists && !upper; // one cell on this axis
+                        else if (upper) plo[a] = face;
+                        else phi[a] = face;
+                    }
+                    if (!exists) continue;
+                    double spread = 0.0;
+                    Interval g[D];
+                    const double value = spreadOver(plo, phi, spread, g);
+                    piecewise.lo = std::min(piecewise.lo, value - spread);
+                    piecewise.hi = std::max(piecewise.hi, value + spread);
+                    for (int a = 0; a < D; ++a) {
+                        gradient[a].lo = std::min(gradient[a].lo, g[a].lo);
+                        gradient[a].hi = std::max(gradient[a].hi, g[a].hi);
+                    }
+                }
+            }
         }
         reach += rounding;
-        const Interval shaped =
-            shapeInterval(mOptions.fractal, std::max(n - reach, range.lo), std::min(n + reach, range.hi));
+        const Interval shaped = shapeInterval(mOptions.fractal, std::max({n - reach, range.lo, piecewise.lo - rounding}),
+                                              std::min({n + reach, range.hi, piecewise.hi + rounding}));
         sum.lo += o.weight * shaped.lo;
         sum.hi += o.weight * shaped.hi;
+        if (!asOne) continue;
+        centreSum += o.weight * n;
+        if (inCell || inCells) {
+            // ∂/∂p of weight·n(p·f + offset) = weight·f·∇n (weight, f >= 0).
+            const double scale = o.weight * o.frequency;
+            for (int a = 0; a < D; ++a) {
+                slopeSum[a].lo += scale * gradient[a].lo;
+                slopeSum[a].hi += scale * gradient[a].hi;
+            }
+            reachSum += o.weight * rounding;
+        } else {
+            reachSum += o.weight * reach;
+        }
+    }
+    if (asOne) {
+        double spread = reachSum;
+        for (int a = 0; a < D; ++a) spread += std::max(std::abs(slopeSum[a].lo), std::abs(slopeSum[a].hi)) * half[a];
+        sum.lo = std::max(sum.lo, centreSum - spread);
+        sum.hi = std::min(sum.hi, centreSum + spread);
     }
     return sum;
 }
 
+Interval FractalNoise::bounds(const glm::dvec3& lo, const glm::dvec3& hi) const
+{
+    return boxBounds(lo, hi);
+}
+
 Interval FractalNoise::bounds(const glm::dvec2& lo, const glm::dvec2& hi) const
 {
-    const double slope = noiseLipschitz(mOptions.noise, 2);
-    const Interval range = basisRange(mOptions.noise, 2);
-    const glm::dvec2 centre = 0.5 * (lo + hi);
-    const double radius = 0.5 * glm::length(hi - lo);
-    Interval sum{0.0, 0.0};
-    for (int i = 0; i < mCount; ++i) {
-        const Octave& o = mOctaves[i];
-        const glm::dvec2 offset(o.offset[0], o.offset[1]);
-        const glm::dvec2 qlo = lo * o.frequency + offset, qhi = hi * o.frequency + offset;
-        double n = 0.0, reach = slope * o.frequency * radius;
-        if (mOptions.noise == NoiseType::GRADIENT && std::floor(qlo.x) == std::floor(qhi.x) &&
-            std::floor(qlo.y) == std::floor(qhi.y)) {
-            // Inside one lattice cell: the mean value form, usually several
-            // times tighter than the gradient bound (both are rigorous).
-            double spread = 0.0;
-            n = mOptions.version == 2 ? noise2SpreadVersion2(std::uint32_t(o.seed >> 32), qlo, qhi, spread)
-                                      : noise2Spread(o.seed, qlo, qhi, spread);
-            reach = std::min(reach, spread);
-        } else {
-            n = basis(o.seed, centre * o.frequency + offset);
-        }
-        reach += mOptions.version == 2 ? BASIS_ROUNDING_V2 : BASIS_ROUNDING;
-        const Interval shaped =
-            shapeInterval(mOptions.fractal, std::max(n - reach, range.lo), std::min(n + reach, range.hi));
-        sum.lo += o.weight * shaped.lo;
-        sum.hi += o.weight * shaped.hi;
-    }
-    return sum;
+    return boxBounds(lo, hi);
 }
 
 DomainWarp::DomainWarp(std::uint64_t seed, const FractalOptions& options, double amplitude)

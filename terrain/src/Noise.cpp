@@ -71,7 +71,7 @@ namespace {
 /// [x0, x1] × [y0, y1] of fractions in one cell: the value at its centre,
 /// and in `spread` a bound of how far the value moves from it.
 double spreadInCell(const double* g00, const double* g01, const double* g10, const double* g11, double x0, double x1,
-                    double y0, double y1, double& spread)
+                    double y0, double y1, double& spread, Interval* gradient)
 {
     // Inside one cell, with x, y the fractions and u = fade(x), v = fade(y):
     //   n / NOISE2_SCALE = n00 + v·D0 + u·(E + v·F),
@@ -99,6 +99,10 @@ double spreadInCell(const double* g00, const double* g01, const double* g10, con
     const Range gx = point(g00[0]) + v * point(d0[0]) + du * (E + v * F) + u * (point(e[0]) + v * point(f[0]));
     const Range gy = point(g00[1]) + dv * D0 + v * point(d0[1]) + u * (point(e[1]) + dv * F + v * point(f[1]));
     spread = NOISE2_SCALE * (magnitude(gx) * hx + magnitude(gy) * hy);
+    if (gradient) {
+        gradient[0] = {NOISE2_SCALE * gx.lo, NOISE2_SCALE * gx.hi};
+        gradient[1] = {NOISE2_SCALE * gy.lo, NOISE2_SCALE * gy.hi};
+    }
 
     // The centre value as noise2 computes it (grad2 with the same gradients).
     const double n00 = g00[0] * xc + g00[1] * yc;
@@ -111,15 +115,17 @@ double spreadInCell(const double* g00, const double* g01, const double* g10, con
 
 } // namespace
 
-double noise2Spread(std::uint64_t s, const glm::dvec2& lo, const glm::dvec2& hi, double& spread)
+double noise2Spread(std::uint64_t s, const glm::dvec2& lo, const glm::dvec2& hi, double& spread, Interval* gradient)
 {
     const double fx = std::floor(lo.x), fy = std::floor(lo.y);
     GradientCell2 cell;
     gradientCell(s, Split2{latticeIndex(fx), latticeIndex(fy), 0.0, 0.0}, cell);
-    return spreadInCell(cell.g[0], cell.g[1], cell.g[2], cell.g[3], lo.x - fx, hi.x - fx, lo.y - fy, hi.y - fy, spread);
+    return spreadInCell(cell.g[0], cell.g[1], cell.g[2], cell.g[3], lo.x - fx, hi.x - fx, lo.y - fy, hi.y - fy, spread,
+                        gradient);
 }
 
-double noise2SpreadVersion2(std::uint32_t seed, const glm::dvec2& lo, const glm::dvec2& hi, double& spread)
+double noise2SpreadVersion2(std::uint32_t seed, const glm::dvec2& lo, const glm::dvec2& hi, double& spread,
+                            Interval* gradient)
 {
     const double fx = std::floor(lo.x), fy = std::floor(lo.y);
     const std::int64_t ix = latticeIndex(fx), iy = latticeIndex(fy);
@@ -134,7 +140,7 @@ double noise2SpreadVersion2(std::uint32_t seed, const glm::dvec2& lo, const glm:
             const std::uint32_t h = hash32::corner(seed, hash32::term(ix + a, 0), hash32::term(iy + b, 1), 0);
             hash32::gradient2(h, g[2 * a + b]);
         }
-    return spreadInCell(g[0], g[1], g[2], g[3], x0, x1, y0, y1, spread);
+    return spreadInCell(g[0], g[1], g[2], g[3], x0, x1, y0, y1, spread, gradient);
 }
 
 namespace {
@@ -162,7 +168,7 @@ struct Affine3
 /// Every T_S is exact over the box (affine), the fades are increasing and
 /// fadeSlope bounds their slopes, so the ranges enclose ∇n over the box, and
 /// |n(p) − n(centre)| <= Σ_j max|∂_j n|·h_j (mean value theorem).
-double spreadInCell3(const double* const g[8], const double lo[3], const double hi[3], double& spread)
+double spreadInCell3(const double* const g[8], const double lo[3], const double hi[3], double& spread, Interval* gradient)
 {
     double centre[3], half[3];
     for (int a = 0; a < 3; ++a) {
@@ -171,30 +177,34 @@ double spreadInCell3(const double* const g[8], const double lo[3], const double 
     }
     // Corner bit of axis a in the index 4a + 2b + c: x 4, y 2, z 1.
     constexpr int BIT[3] = {4, 2, 1};
+    // The corner functions, then their finite differences in place, one
+    // axis at a time (T_S for S ∋ a becomes T_S − T_{S∖a}): after the three
+    // passes t[S] is the alternating sum over the corners in S.
     Affine3 t[8];
-    for (int set = 0; set < 8; ++set) {
-        Affine3 sum{{0.0, 0.0, 0.0}, 0.0};
-        for (int corner = 0; corner < 8; ++corner) {
-            if ((corner & ~set) != 0) continue; // corners inside the set only
-            const int odd = __builtin_popcount(unsigned(set ^ corner)) & 1;
-            const double sign = odd ? -1.0 : 1.0;
-            double k = 0.0;
-            for (int a = 0; a < 3; ++a) {
-                sum.c[a] += sign * g[corner][a];
-                if (corner & BIT[a]) k -= g[corner][a];
-            }
-            sum.k += sign * k;
-        }
-        t[set] = sum;
-    }
-    const auto range = [&](const Affine3& f) {
-        double c = f.k, r = 0.0;
+    for (int corner = 0; corner < 8; ++corner) {
+        double k = 0.0;
         for (int a = 0; a < 3; ++a) {
-            c += f.c[a] * centre[a];
-            r += std::abs(f.c[a]) * half[a];
+            t[corner].c[a] = g[corner][a];
+            if (corner & BIT[a]) k -= g[corner][a];
         }
-        return Range{c - r, c + r};
-    };
+        t[corner].k = k;
+    }
+    for (int a = 0; a < 3; ++a)
+        for (int set = 0; set < 8; ++set) {
+            if (!(set & BIT[a])) continue;
+            const Affine3& without = t[set ^ BIT[a]];
+            for (int b = 0; b < 3; ++b) t[set].c[b] -= without.c[b];
+            t[set].k -= without.k;
+        }
+    Range ranges[8]; // of each T_S over the box: exact, as T_S is affine
+    for (int set = 1; set < 8; ++set) {
+        double c = t[set].k, r = 0.0;
+        for (int a = 0; a < 3; ++a) {
+            c += t[set].c[a] * centre[a];
+            r += std::abs(t[set].c[a]) * half[a];
+        }
+        ranges[set] = Range{c - r, c + r};
+    }
     Range f[3], df[3];
     for (int a = 0; a < 3; ++a) {
         f[a] = {fade(lo[a]), fade(hi[a])};
@@ -204,12 +214,13 @@ double spreadInCell3(const double* const g[8], const double lo[3], const double 
     for (int j = 0; j < 3; ++j) {
         const int k = (j + 1) % 3, l = (j + 2) % 3;
         const int J = BIT[j], K = BIT[k], L = BIT[l];
-        const Range inner = range(t[J]) + f[k] * range(t[J | K]) + f[l] * (range(t[J | L]) + f[k] * range(t[J | K | L]));
+        const Range inner = ranges[J] + f[k] * ranges[J | K] + f[l] * (ranges[J | L] + f[k] * ranges[J | K | L]);
         const Range own = point(t[J].c[j]) + f[k] * point(t[J | K].c[j]) +
                           f[l] * (point(t[J | L].c[j]) + f[k] * point(t[J | K | L].c[j]));
         const Range rest = f[k] * point(t[K].c[j]) + f[l] * (point(t[L].c[j]) + f[k] * point(t[K | L].c[j]));
         const Range slope = point(t[0].c[j]) + df[j] * inner + f[j] * own + rest;
         spread += magnitude(slope) * half[j];
+        if (gradient) gradient[j] = {slope.lo, slope.hi};
     }
 
     // The centre value as noise3 computes it (the same gradients).
@@ -227,16 +238,17 @@ double spreadInCell3(const double* const g[8], const double lo[3], const double 
 
 } // namespace
 
-double noise3Spread(std::uint64_t s, const glm::dvec3& lo, const glm::dvec3& hi, double& spread)
+double noise3Spread(std::uint64_t s, const glm::dvec3& lo, const glm::dvec3& hi, double& spread, Interval* gradient)
 {
     const double fx = std::floor(lo.x), fy = std::floor(lo.y), fz = std::floor(lo.z);
     GradientCell3 cell;
     gradientCell(s, Split3{latticeIndex(fx), latticeIndex(fy), latticeIndex(fz), 0.0, 0.0, 0.0}, cell);
     const double a[3] = {lo.x - fx, lo.y - fy, lo.z - fz}, b[3] = {hi.x - fx, hi.y - fy, hi.z - fz};
-    return spreadInCell3(cell.g, a, b, spread);
+    return spreadInCell3(cell.g, a, b, spread, gradient);
 }
 
-double noise3SpreadVersion2(std::uint32_t seed, const glm::dvec3& lo, const glm::dvec3& hi, double& spread)
+double noise3SpreadVersion2(std::uint32_t seed, const glm::dvec3& lo, const glm::dvec3& hi, double& spread,
+                            Interval* gradient)
 {
     const double floors[3] = {std::floor(lo.x), std::floor(lo.y), std::floor(lo.z)};
     const double los[3] = {lo.x, lo.y, lo.z}, his[3] = {hi.x, hi.y, hi.z};
@@ -260,7 +272,7 @@ double noise3SpreadVersion2(std::uint32_t seed, const glm::dvec3& lo, const glm:
         hash32::gradient3(h, gradients[corner]);
         g[corner] = gradients[corner];
     }
-    return spreadInCell3(g, a, b, spread);
+    return spreadInCell3(g, a, b, spread, gradient);
 }
 
 } // namespace detail

@@ -7,6 +7,7 @@
 /// sources (not installed).
 
 #include <strata/detail/IntegerHash.h>
+#include <strata/terrain/DensityField.h> // Interval
 
 #include <cmath>
 #include <cstdint>
@@ -67,16 +68,21 @@ double noise2(std::uint64_t hashedSeed, const glm::dvec2& p);
 /// (floor(lo) == floor(hi) per axis): returns noise2 at its centre c and
 /// sets `spread` to a bound of |noise2(p) − noise2(c)| for every p in it
 /// (mean value form with an interval enclosure of the gradient; the proof
-/// is in Noise.cpp).
-double noise2Spread(std::uint64_t hashedSeed, const glm::dvec2& lo, const glm::dvec2& hi, double& spread);
+/// is in Noise.cpp). With `gradient`, the enclosure itself too: gradient[a]
+/// holds ∂noise2/∂a at every point of the rectangle.
+double noise2Spread(std::uint64_t hashedSeed, const glm::dvec2& lo, const glm::dvec2& hi, double& spread,
+                    Interval* gradient = nullptr);
 /// noise2Spread for version 2's 2D gradient noise with the 32-bit seed
 /// (NoiseLanes32.cpp; the fractions rounded to float are held too).
-double noise2SpreadVersion2(std::uint32_t seed, const glm::dvec2& lo, const glm::dvec2& hi, double& spread);
+double noise2SpreadVersion2(std::uint32_t seed, const glm::dvec2& lo, const glm::dvec2& hi, double& spread,
+                            Interval* gradient = nullptr);
 
 /// noise3 over the box [lo, hi] in one lattice cell, as noise2Spread (the
 /// 3D mean value form; proof in Noise.cpp), and its version-2 form.
-double noise3Spread(std::uint64_t hashedSeed, const glm::dvec3& lo, const glm::dvec3& hi, double& spread);
-double noise3SpreadVersion2(std::uint32_t seed, const glm::dvec3& lo, const glm::dvec3& hi, double& spread);
+double noise3Spread(std::uint64_t hashedSeed, const glm::dvec3& lo, const glm::dvec3& hi, double& spread,
+                    Interval* gradient = nullptr);
+double noise3SpreadVersion2(std::uint32_t seed, const glm::dvec3& lo, const glm::dvec3& hi, double& spread,
+                            Interval* gradient = nullptr);
 
 /// Version 2's lattice hash, one corner at a time (NoiseLanes32.cpp does it
 /// in lanes, with these constants): the term of cell index i on axis a is
