@@ -336,73 +336,38 @@ Interval FractalNoise::boxBounds(const Vec& lo, const Vec& hi) const
         Vec offset;
         for (int a = 0; a < D; ++a) offset[a] = o.offset[a];
         const Vec qlo = lo * o.frequency + offset, qhi = hi * o.frequency + offset;
-        // Gradient noise over a box within one cell, or cut by the lattice
-        // into at most two pieces per axis: the mean value form per piece.
-        bool inCell = mOptions.noise == NoiseType::GRADIENT, inCells = inCell;
-        for (int a = 0; a < D; ++a) {
-            const double first = std::floor(qlo[a]), last = std::floor(qhi[a]);
-            inCell = inCell && first == last;
-            inCells = inCells && last - first <= 1.0;
-        }
+        bool inCell = mOptions.noise == NoiseType::GRADIENT;
+        for (int a = 0; a < D; ++a) inCell = inCell && std::floor(qlo[a]) == std::floor(qhi[a]);
         // The octave sees a box of half diagonal f_i·radius around its centre.
         double n = 0.0, reach = slope * o.frequency * radius;
         Interval gradient[D];
-        const std::uint32_t seed32 = std::uint32_t(o.seed >> 32);
-        const auto spreadOver = [&](const Vec& plo, const Vec& phi, double& spread, Interval* g) {
-            if constexpr (D == 3) {
-                return mOptions.version == 2 ? noise3SpreadVersion2(seed32, plo, phi, spread, g)
-                                             : noise3Spread(o.seed, plo, phi, spread, g);
-            } else {
-                return mOptions.version == 2 ? noise2SpreadVersion2(seed32, plo, phi, spread, g)
-                                             : noise2Spread(o.seed, plo, phi, spread, g);
-            }
-        };
-        Interval piecewise{-HUGE_VAL, HUGE_VAL};
         if (inCell) {
             // Inside one lattice cell: the mean value form, usually several
             // times tighter than the gradient bound (both are rigorous).
+            // (Cutting a box that crosses a cell face into pieces, each with
+            // its own mean value form, evaluated 3 % fewer points on the
+            // default scene and took 10 % longer: left out.)
             double spread = 0.0;
-            n = spreadOver(qlo, qhi, spread, gradient);
+            const std::uint32_t seed32 = std::uint32_t(o.seed >> 32);
+            if constexpr (D == 3) {
+                n = mOptions.version == 2 ? noise3SpreadVersion2(seed32, qlo, qhi, spread, gradient)
+                                          : noise3Spread(o.seed, qlo, qhi, spread, gradient);
+            } else {
+                n = mOptions.version == 2 ? noise2SpreadVersion2(seed32, qlo, qhi, spread, gradient)
+                                          : noise2Spread(o.seed, qlo, qhi, spread, gradient);
+            }
             reach = std::min(reach, spread);
         } else {
             n = basis(o.seed, centre * o.frequency + offset);
-            if (inCells) {
-                // The pieces between the cell faces (a face value belongs to
-                // both cells: the noise is continuous): the hull of their
-                // intervals, and of their gradient enclosures.
-                piecewise = {HUGE_VAL, -HUGE_VAL};
-                for (int a = 0; a < D; ++a) gradient[a] = {HUGE_VAL, -HUGE_VAL};
-                for (int piece = 0; piece < (1 << D); ++piece) {
-                    Vec plo = qlo, phi = qhi;
-                    bool exists = true;
-                    for (int a = 0; a < D; ++a) {
-                        const double face = std::floor(qlo[a]) + 1.0;
-                        const bool upper = (piece >> a) & 1;
-                        if (face > qhi[a]) exists = exists && !upper; // one cell on this axis
-                        else if (upper) plo[a] = face;
-                        else phi[a] = face;
-                    }
-                    if (!exists) continue;
-                    double spread = 0.0;
-                    Interval g[D];
-                    const double value = spreadOver(plo, phi, spread, g);
-                    piecewise.lo = std::min(piecewise.lo, value - spread);
-                    piecewise.hi = std::max(piecewise.hi, value + spread);
-                    for (int a = 0; a < D; ++a) {
-                        gradient[a].lo = std::min(gradient[a].lo, g[a].lo);
-                        gradient[a].hi = std::max(gradient[a].hi, g[a].hi);
-                    }
-                }
-            }
         }
         reach += rounding;
-        const Interval shaped = shapeInterval(mOptions.fractal, std::max({n - reach, range.lo, piecewise.lo - rounding}),
-                                              std::min({n + reach, range.hi, piecewise.hi + rounding}));
+        const Interval shaped =
+            shapeInterval(mOptions.fractal, std::max(n - reach, range.lo), std::min(n + reach, range.hi));
         sum.lo += o.weight * shaped.lo;
         sum.hi += o.weight * shaped.hi;
         if (!asOne) continue;
         centreSum += o.weight * n;
-        if (inCell || inCells) {
+        if (inCell) {
             // ∂/∂p of weight·n(p·f + offset) = weight·f·∇n (weight, f >= 0).
             const double scale = o.weight * o.frequency;
             for (int a = 0; a < D; ++a) {
