@@ -68,7 +68,7 @@ void* ScratchFrame::take(std::size_t bytes)
         // An empty chunk at s.chunk that is too small, or none: (re)make it.
         // Only a chunk this frame's stack has not used yet is replaced.
         const std::size_t size = std::max(CHUNK_BYTES, bytes);
-        Chunk made{std::make_unique<std::byte[]>(size + ALIGN), size};
+        Chunk made{std::make_unique_for_overwrite<std::byte[]>(size + ALIGN), size};
         if (s.chunk < s.chunks.size()) s.chunks[s.chunk] = std::move(made);
         else s.chunks.push_back(std::move(made));
     }

@@ -194,8 +194,14 @@ public:
         // Where the region's box term is at most every density of the block
         // (the block lies deep enough inside the region) max leaves each
         // value as it is: the box term is 1-Lipschitz, so box(c) + radius
-        // bounds it over the block's box.
-        const double boxMost = box(points.box.centre()) + points.box.radius();
+        // bounds it over the block's box (plus a margin far above the
+        // rounding of box(), centre() and radius() at these coordinates, so
+        // that the bound holds for the computed box(p) as well).
+        const glm::dvec3 c = points.box.centre();
+        const double radius = points.box.radius();
+        const glm::dvec3 extent = glm::abs(c) + glm::abs(mBoxCentre) + mBoxHalf;
+        const double scale = extent.x + extent.y + extent.z + radius;
+        const double boxMost = box(c) + radius + 1e-12 * scale;
         double least = out[0];
         for (std::size_t i = 1; i < points.count; ++i) least = std::min(least, out[i]);
         if (boxMost <= least) return;

@@ -143,7 +143,7 @@ void streaming(const std::shared_ptr<terrain::TerrainField>& field, bool quick, 
         const double duration = quick ? 2.0 : 6.0;
         const world::WorldStats before = w.stats();
         const Clock::time_point start = Clock::now();
-        std::vector<double> pollMs, pollCpuMs, pending;
+        std::vector<double> pollMs, pollCpuMs, pending, holes;
         std::size_t retained = 0;
         int frames = 0;
         while (seconds(Clock::now() - start) < duration) {
@@ -156,6 +156,7 @@ void streaming(const std::shared_ptr<terrain::TerrainField>& field, bool quick, 
             pollMs.push_back(1e3 * seconds(Clock::now() - f0));
             const world::WorldStats now = w.stats();
             retained = std::max(retained, now.retained);
+            holes.push_back(double(now.holes)); // every frame: the view must be whole from the start
             // Pending after the first second: the backlog once the motion is under way.
             if (seconds(Clock::now() - start) >= 1.0) pending.push_back(double(now.pending));
             ++frames;
@@ -166,6 +167,7 @@ void streaming(const std::shared_ptr<terrain::TerrainField>& field, bool quick, 
         const world::WorldStats after = w.stats();
         std::printf("POI at %3.0f m/s for %.1f s: %.0f chunks generated/s, %.0f re-meshed/s (LOD changes), "
                     "%.0f evicted/s, %zu pending at the end (after the first second: median %.0f, p95 %.0f, max %.0f), "
+                    "holes in the view (chunks with nothing shown) in any frame: median %.0f, p95 %.0f, max %.0f, "
                     "poll() median %.2f ms, p99 %.2f ms, max %.2f ms over %d "
                     "frames (CPU time of the polling thread: median %.2f ms, p99 %.2f ms, max %.2f ms); at most %zu "
                     "chunks retained until replaced; meshed ahead: %.0f used/s, %.0f dropped/s, %zu held at the end "
@@ -173,7 +175,8 @@ void streaming(const std::shared_ptr<terrain::TerrainField>& field, bool quick, 
                     speed, elapsed, double(after.generated - before.generated) / elapsed,
                     double(after.remeshed - before.remeshed) / elapsed,
                     double(after.evicted - before.evicted) / elapsed, after.pending, percentile(pending, 0.5),
-                    percentile(pending, 0.95), percentile(pending, 1.0), percentile(pollMs, 0.5),
+                    percentile(pending, 0.95), percentile(pending, 1.0), percentile(holes, 0.5), percentile(holes, 0.95),
+                    percentile(holes, 1.0), percentile(pollMs, 0.5),
                     percentile(pollMs, 0.99), percentile(pollMs, 1.0), frames, percentile(pollCpuMs, 0.5),
                     percentile(pollCpuMs, 0.99), percentile(pollCpuMs, 1.0), retained,
                     double(after.prefetched - before.prefetched) / elapsed,

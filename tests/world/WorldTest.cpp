@@ -249,6 +249,52 @@ TEST(World, DestroyedWhileChunksAreMeshed)
     }
 }
 
+// Chunks that come into view with nothing to show are meshed before the
+// chunks whose old or retired meshes stand in for them: when the pool falls
+// behind, the backlog is refinement and the view has no hole.
+TEST(World, HolesAreMeshedBeforeChunksWithAStandIn)
+{
+    WorldOptions o = smallOptions();
+    o.threads = 1;
+    o.maxInFlight = 2;
+    o.lookAhead = false;
+    World w(std::make_shared<terrain::PlaneField>(glm::dvec3(0.0, 1.0, 0.0), 0.2), o);
+    w.setPointsOfInterest({glm::dvec3(0.0)});
+    w.waitIdle();
+    w.poll();
+    ASSERT_EQ(w.stats().holes, 0u);
+    // A move of 40 m: new ground at the far edge, LOD changes all along.
+    w.setPointsOfInterest({glm::dvec3(40.0, 0.0, 0.0)});
+    // The new resident set is computed off this thread: poll until it is in.
+    world::WorldStats start = w.stats();
+    for (auto until = std::chrono::steady_clock::now() + std::chrono::seconds(20);
+         start.holes == 0 && std::chrono::steady_clock::now() < until; start = w.stats()) {
+        w.poll();
+        std::this_thread::sleep_for(std::chrono::microseconds(100));
+    }
+    ASSERT_GT(start.holes, 0u) << "the move brought no new ground: the test proves less";
+    ASSERT_GT(start.pending, start.holes + 8) << "the move changed no LOD: the test proves less";
+    std::size_t standInsWhenWhole = 0;
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+    while (std::chrono::steady_clock::now() < deadline) {
+        w.poll();
+        const world::WorldStats s = w.stats();
+        if (s.holes == 0) {
+            standInsWhenWhole = s.pending;
+            break;
+        }
+        std::this_thread::sleep_for(std::chrono::microseconds(200));
+    }
+    std::printf("after the move: %zu holes and %zu chunks with a stand-in pending; %zu of those still pending when "
+                "the view was whole\n",
+                start.holes, start.pending - start.holes, standInsWhenWhole);
+    EXPECT_GE(standInsWhenWhole, (start.pending - start.holes) / 2)
+        << "the chunks with a stand-in were meshed before the holes";
+    w.waitIdle();
+    EXPECT_EQ(w.stats().holes, 0u);
+    EXPECT_EQ(w.stats().pending, 0u);
+}
+
 TEST(World, PollReportsEveryMeshOnceAndEvictions)
 {
     World w(std::make_shared<terrain::PlaneField>(glm::dvec3(0.0, 1.0, 0.0), 0.2), smallOptions());

@@ -6,6 +6,7 @@
 #include <strata/detail/TsanHandOver.h>
 
 #include <algorithm>
+#include <tuple>
 
 namespace strata::world::detail {
 
@@ -48,20 +49,26 @@ double ChunkScheduler::order(const ChunkKey& key, double distance) const
 
 void ChunkScheduler::schedule()
 {
-    std::vector<std::pair<double, ChunkKey>> candidates;
+    // Holes first: chunks the caller holds nothing for (they just came into
+    // view, mostly coarse ones at its edge); then the look-ahead chunks that
+    // will be holes when the points cross the next border; then chunks whose
+    // old or retired meshes stand in until they are replaced (an LOD change,
+    // an edit); then the rest of the look-ahead. Nearest first within each.
+    // When the pool cannot keep up, the view stays whole and the backlog is
+    // refinement.
+    enum Rank { HOLE, HOLE_AHEAD, STAND_IN, AHEAD };
+    std::vector<std::tuple<Rank, double, ChunkKey, bool>> candidates;
     for (auto& [key, state] : mTracker.chunks) {
         if (state.inFlight || !state.dirty() || mTracker.aheadCovers(key, state)) continue;
-        candidates.push_back({order(key, state.distance), key});
+        candidates.emplace_back(mTracker.uncovered(key, state) ? HOLE : STAND_IN, order(key, state.distance), key, false);
     }
+    for (auto& [key, chunk] : mTracker.ahead)
+        if (chunk.wanted && !chunk.inFlight && !chunk.mesh)
+            candidates.emplace_back(mTracker.aheadWouldBeHole(key) ? HOLE_AHEAD : AHEAD, order(key, chunk.distance), key,
+                                    true);
     std::sort(candidates.begin(), candidates.end());
     mQueue.clear();
-    for (const auto& candidate : candidates) mQueue.push_back({candidate.second, false});
-    // Then the chunks the points will need next.
-    candidates.clear();
-    for (auto& [key, chunk] : mTracker.ahead)
-        if (chunk.wanted && !chunk.inFlight && !chunk.mesh) candidates.push_back({order(key, chunk.distance), key});
-    std::sort(candidates.begin(), candidates.end());
-    for (const auto& candidate : candidates) mQueue.push_back({candidate.second, true});
+    for (const auto& candidate : candidates) mQueue.push_back({std::get<2>(candidate), std::get<3>(candidate)});
     mQueueNext = 0;
     launchQueued();
 }

@@ -108,6 +108,19 @@ public:
     /// current mesh? Then the scheduler does not launch the chunk again.
     bool aheadCovers(const ChunkKey& key, const ChunkState& state) const;
 
+    /// Does the caller hold nothing for this chunk's box: never meshed, and
+    /// no retired mesh of a split or merge stands in for it (a chunk that
+    /// just came into view)? The view has a hole there until it is meshed.
+    bool uncovered(const ChunkKey& key, const ChunkState& state) const
+    {
+        return !state.everMeshed && groupOf.find(key) == groupOf.end();
+    }
+
+    /// Would this look-ahead chunk be a hole when its partition arrives: no
+    /// resident chunk of its key, ancestor or descendants tiling it has a
+    /// mesh that could stand in for it (new ground coming into view)?
+    bool aheadWouldBeHole(const ChunkKey& key) const { return chunks.count(key) == 0 && cover(key).empty(); }
+
     /// Marks the resident chunks whose sample footprint holds a changed
     /// lattice point (`chunkSize` cells per chunk edge).
     EditResult mark(const std::vector<openvdb::Coord>& changed, int chunkSize);

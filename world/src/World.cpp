@@ -314,6 +314,7 @@ WorldStats World::stats() const
             }
         for (const auto& [key, state] : mImpl->tracker.chunks) {
             if (state.dirty()) ++s.pending;
+            if (mImpl->tracker.uncovered(key, state)) ++s.holes;
             if (state.cache) {
                 // A task that holds the cache is filling it: count it next time.
                 std::unique_lock<std::mutex> cacheLock(state.cache->mutex, std::try_to_lock);

@@ -148,6 +148,10 @@ struct WorldStats
     std::size_t resident = 0;    ///< chunks in the resident set now (empty ones included)
     std::size_t withSurface = 0; ///< resident chunks whose current mesh has triangles
     std::size_t pending = 0;     ///< resident chunks waiting for a (re)mesh
+    /// Of `pending`: chunks the caller holds nothing for yet (never meshed,
+    /// and no retired mesh stands in): holes in the view. The World meshes
+    /// them before any other pending chunk.
+    std::size_t holes = 0;
     /// Chunks split or merged away whose meshes the caller still holds until
     /// every chunk replacing them is meshed (see World::poll()).
     std::size_t retained = 0;
