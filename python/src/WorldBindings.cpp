@@ -191,6 +191,7 @@ void bindWorld(py::module_& m)
             d["resident"] = s.resident;
             d["with_surface"] = s.withSurface;
             d["pending"] = s.pending;
+            d["holes"] = s.holes;
             d["in_flight"] = s.inFlight;
             d["mesh_bytes"] = s.meshBytes;
             d["prefetched"] = s.prefetched;

@@ -48,6 +48,7 @@ def test_world_streams_digs_and_fills(small_scene):
     world.move_to((0.0, 0.0, 0.0))
     world.wait_idle()
     updates = world.poll()
+    assert world.stats["holes"] == 0 and world.stats["pending"] == 0  # the view is whole once idle
     meshes = {key: mesh for key, mesh in updates if mesh is not None}
     assert meshes, "no chunk meshes after the first view filled"
     key, mesh = next(iter(meshes.items()))
