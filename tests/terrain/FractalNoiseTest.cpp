@@ -11,6 +11,7 @@
 #include <cmath>
 #include <functional>
 #include <iostream>
+#include <string>
 #include <vector>
 
 using namespace strata::terrain;
@@ -176,34 +177,50 @@ TEST(FractalNoise, DomainWarpStaysWithinItsBound)
     }
 }
 
+namespace {
+
+/// Asserts that the noise's bounds over [lo, hi] hold its value at every
+/// point of a lattice of `steps` cells per axis over the box, and adds the
+/// bound's width and the slope bound's width to the sums.
+template <class Vec>
+void checkBoxBounds(const FractalNoise& noise, const Vec& lo, const Vec& hi, int steps, double& width, double& slopeWidth)
+{
+    constexpr int D = Vec::length();
+    const Interval box = noise.bounds(lo, hi);
+    int count = 1;
+    for (int a = 0; a < D; ++a) count *= steps + 1;
+    for (int i = 0; i < count; ++i) {
+        Vec t;
+        for (int a = 0, rest = i; a < D; ++a, rest /= steps + 1) t[a] = double(rest % (steps + 1)) / steps;
+        const double value = noise(lo + (hi - lo) * t);
+        ASSERT_GE(value, box.lo) << D << "D box at " << lo[0] << ", " << lo[1];
+        ASSERT_LE(value, box.hi) << D << "D box at " << lo[0] << ", " << lo[1];
+    }
+    width += box.hi - box.lo;
+    slopeWidth += 2.0 * noise.lipschitz(D) * 0.5 * glm::length(hi - lo);
+}
+
+} // namespace
+
 // The box bounds sampling prunes with hold the sum at every point of the box
-// (2D and 3D, boxes inside one cell and across cell faces),
-// and the 3D gradient octaves that take the mean value form (their box in
-// one lattice cell) make them much tighter than the slope bound alone.
+// (2D and 3D, boxes inside one cell and across cell faces), and the gradient
+// octaves that take the mean value form (their box in one lattice cell)
+// make them much tighter than the slope bound alone.
 TEST(FractalNoise, GradientBoxBoundsHoldEveryPointAndAreTighterThanTheSlope)
 {
     for (const int version : {1, 2}) {
+        SCOPED_TRACE("version " + std::to_string(version));
         const FractalNoise noise(13, {NoiseType::GRADIENT, FractalType::FBM, 3, 2.0, 0.5, version});
         Points points(version);
         double width = 0.0, slopeWidth = 0.0;
         for (int i = 0; i < 400; ++i) {
             const glm::dvec3 lo = points.point3(-300.0, 300.0);
             const double size = points.uniform(0.005, 0.08); // a block of voxels against the octaves
-            const glm::dvec3 hi = lo + glm::dvec3(size, 0.7 * size, 1.3 * size);
-            const Interval box = noise.bounds(lo, hi);
-            for (int x = 0; x <= 4; ++x)
-                for (int y = 0; y <= 4; ++y)
-                    for (int z = 0; z <= 4; ++z) {
-                        const glm::dvec3 p = lo + (hi - lo) * glm::dvec3(x, y, z) / 4.0;
-                        const double value = noise(p);
-                        ASSERT_GE(value, box.lo) << "version " << version << " box at " << lo.x << ", " << lo.y;
-                        ASSERT_LE(value, box.hi) << "version " << version << " box at " << lo.x << ", " << lo.y;
-                    }
-            width += box.hi - box.lo;
-            slopeWidth += 2.0 * noise.lipschitz(3) * 0.5 * glm::length(hi - lo);
+            checkBoxBounds(noise, lo, lo + glm::dvec3(size, 0.7 * size, 1.3 * size), 4, width, slopeWidth);
+            if (HasFatalFailure()) return;
         }
         std::cout << "version " << version << ": box bounds " << width / slopeWidth << " of the slope bound's width\n";
-        EXPECT_LT(width, 0.8 * slopeWidth) << "version " << version;
+        EXPECT_LT(width, 0.8 * slopeWidth);
         // 2D, 6 octaves (a heightfield's): boxes up to a third of the last
         // octave's cell, so most of its boxes cross a cell face.
         const FractalNoise noise2(17, {NoiseType::GRADIENT, FractalType::FBM, 6, 2.0, 0.45, version});
@@ -211,19 +228,11 @@ TEST(FractalNoise, GradientBoxBoundsHoldEveryPointAndAreTighterThanTheSlope)
         for (int i = 0; i < 400; ++i) {
             const glm::dvec2 lo(points.uniform(-300.0, 300.0), points.uniform(-300.0, 300.0));
             const double size = points.uniform(0.001, 0.011);
-            const glm::dvec2 hi = lo + glm::dvec2(size, 0.8 * size);
-            const Interval box = noise2.bounds(lo, hi);
-            for (int x = 0; x <= 8; ++x)
-                for (int z = 0; z <= 8; ++z) {
-                    const double value = noise2(lo + (hi - lo) * glm::dvec2(x, z) / 8.0);
-                    ASSERT_GE(value, box.lo) << "version " << version << " 2D box at " << lo.x << ", " << lo.y;
-                    ASSERT_LE(value, box.hi) << "version " << version << " 2D box at " << lo.x << ", " << lo.y;
-                }
-            width += box.hi - box.lo;
-            slopeWidth += 2.0 * noise2.lipschitz(2) * 0.5 * glm::length(hi - lo);
+            checkBoxBounds(noise2, lo, lo + glm::dvec2(size, 0.8 * size), 8, width, slopeWidth);
+            if (HasFatalFailure()) return;
         }
         std::cout << "version " << version << ": 2D box bounds " << width / slopeWidth << " of the slope bound's width\n";
-        EXPECT_LT(width, 0.5 * slopeWidth) << "version " << version;
+        EXPECT_LT(width, 0.5 * slopeWidth);
     }
 }
 

@@ -197,6 +197,18 @@ const NoiseType BASES[] = {NoiseType::GRADIENT, NoiseType::SIMPLEX, NoiseType::V
 
 bool sameBits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
 
+/// Deterministic uniform numbers in [0, 1) for test points (a 64-bit LCG's
+/// top 53 bits; no std:: distributions, whose output differs by library).
+struct Unit
+{
+    std::uint64_t state;
+    double operator()()
+    {
+        state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+        return double(state >> 11) * 0x1.0p-53;
+    }
+};
+
 /// Points in noise units: lattice-ordered runs, scattered ones, points on
 /// cell faces and corners, and points around the words of a cell index
 /// (2^32, −2^32, 0) and far out (2^40, 1e12), where the carry between the
@@ -207,11 +219,8 @@ std::vector<glm::dvec3> testPoints()
     for (int i = 0; i < 6; ++i)
         for (int j = 0; j < 6; ++j)
             for (int k = 0; k < 6; ++k) points.emplace_back(-1.3 + 0.37 * i, 0.11 + 0.29 * j, 2.9 - 0.43 * k);
-    std::uint64_t state = 12345;
-    const auto next = [&state] {
-        state = state * 6364136223846793005ULL + 1442695040888963407ULL;
-        return double(state >> 11) * 0x1.0p-53 - 0.5;
-    };
+    Unit unit{12345};
+    const auto next = [&unit] { return unit() - 0.5; };
     for (int i = 0; i < 300; ++i) points.emplace_back(400.0 * next(), 400.0 * next(), 400.0 * next());
     for (const double base : {0.0, 4294967296.0, -4294967296.0, 1099511627776.0, 1e12, -3e15}) {
         for (int i = 0; i < 40; ++i) points.emplace_back(base + 3.0 * next(), base + 3.0 * next(), -base + 3.0 * next());
@@ -320,11 +329,7 @@ TEST(NoiseVersion2, IsContinuousAcrossTheWordsOfACellIndex)
 
 TEST(NoiseVersion2, StaysWithinItsGradientAndBoxBounds)
 {
-    std::uint64_t state = 99;
-    const auto next = [&state] {
-        state = state * 6364136223846793005ULL + 1442695040888963407ULL;
-        return double(state >> 11) * 0x1.0p-53;
-    };
+    Unit next{99};
     for (const NoiseType type : BASES)
         for (const FractalType fractal : {FractalType::FBM, FractalType::RIDGED}) {
             const FractalNoise noise(11, {type, fractal, 3, 2.0, 0.5, 2});
@@ -356,18 +361,42 @@ TEST(NoiseVersion2, StaysWithinItsGradientAndBoxBounds)
         }
 }
 
+namespace {
+
+/// One in-cell box [lo, hi] of version 2's gradient noise (2D or 3D): the
+/// mean value form's centre is the lanes' value there (so its scalar
+/// gradients are the lanes' own), and its spread holds the lanes' value at
+/// every corner (the extremes of an affine part) and at points inside.
+/// Returns the spread.
+template <class Vec>
+double checkedSpread(Unit& next, std::uint64_t hashedSeed, const Vec& lo, const Vec& hi)
+{
+    constexpr int D = Vec::length();
+    const std::uint32_t seed = std::uint32_t(hashedSeed >> 32);
+    const auto lanes = [hashedSeed](const Vec& p) {
+        double value = 0.0;
+        detail::basisVersion2(NoiseType::GRADIENT, hashedSeed, &p[0], &p[1], D == 3 ? &p[D - 1] : nullptr, 1, &value);
+        return value;
+    };
+    double spread = 0.0, centre = 0.0;
+    if constexpr (D == 3) centre = detail::noise3SpreadVersion2(seed, lo, hi, spread);
+    else centre = detail::noise2SpreadVersion2(seed, lo, hi, spread);
+    EXPECT_NEAR(lanes(0.5 * (lo + hi)), centre, 1e-5) << "cell at " << lo[0] << ", " << lo[1] << ": another gradient than the lanes'";
+    for (int k = 0; k < (1 << D) + 4; ++k) {
+        Vec t;
+        for (int a = 0; a < D; ++a) t[a] = k < (1 << D) ? double((k >> a) & 1) : next();
+        EXPECT_LE(std::abs(lanes(lo + (hi - lo) * t) - centre), spread + 1e-5);
+    }
+    return spread;
+}
+
+} // namespace
+
 TEST(NoiseVersion2, TheMeanValueFormHoldsTheLanesAndIsTighterThanTheSlope)
 {
     // 2D gradient octaves whose box lies in one cell take the mean value
-    // form (noise2SpreadVersion2, with the scalar hash32 gradients): its
-    // centre is the lanes' value there and its spread holds every point.
-    std::uint64_t state = 5;
-    const auto next = [&state] {
-        state = state * 6364136223846793005ULL + 1442695040888963407ULL;
-        return double(state >> 11) * 0x1.0p-53;
-    };
-    const std::uint64_t hashedSeed = 0x9e3779b97f4a7c15ULL;
-    const std::uint32_t seed = std::uint32_t(hashedSeed >> 32);
+    // form (noise2SpreadVersion2, with the scalar hash32 gradients).
+    Unit next{5};
     double spreadSum = 0.0, slopeSum = 0.0;
     for (int i = 0; i < 2000; ++i) {
         const double cx = std::floor(400.0 * next() - 200.0) + (i == 0 ? 4294967296.0 : 0.0);
@@ -375,19 +404,7 @@ TEST(NoiseVersion2, TheMeanValueFormHoldsTheLanesAndIsTighterThanTheSlope)
         const glm::dvec2 lo(cx + 0.9 * next(), cy + 0.9 * next());
         // Boxes of up to a tenth of a cell, as a block of voxels is to an octave.
         const glm::dvec2 hi(lo.x + 0.1 * next(), lo.y + 0.1 * next());
-        double spread = 0.0;
-        const double centre = detail::noise2SpreadVersion2(seed, lo, hi, spread);
-        const glm::dvec2 c = 0.5 * (lo + hi);
-        double lanes = 0.0;
-        detail::basisVersion2(NoiseType::GRADIENT, hashedSeed, &c.x, &c.y, nullptr, 1, &lanes);
-        ASSERT_NEAR(lanes, centre, 1e-5) << "cell " << cx << ", " << cy << ": another gradient than the lanes'";
-        for (int k = 0; k < 8; ++k) {
-            const glm::dvec2 p(lo.x + (hi.x - lo.x) * next(), lo.y + (hi.y - lo.y) * next());
-            double value = 0.0;
-            detail::basisVersion2(NoiseType::GRADIENT, hashedSeed, &p.x, &p.y, nullptr, 1, &value);
-            EXPECT_LE(std::abs(value - centre), spread + 1e-5);
-        }
-        spreadSum += spread;
+        spreadSum += checkedSpread(next, 0x9e3779b97f4a7c15ULL, lo, hi);
         slopeSum += GRADIENT_NOISE_LIPSCHITZ_2D * 0.5 * glm::length(hi - lo);
     }
     EXPECT_LT(spreadSum, 0.8 * slopeSum) << "the mean value form should be tighter than the gradient bound";
@@ -396,16 +413,9 @@ TEST(NoiseVersion2, TheMeanValueFormHoldsTheLanesAndIsTighterThanTheSlope)
 TEST(NoiseVersion2, The3DMeanValueFormHoldsTheLanesAndIsTighterThanTheSlope)
 {
     // 3D gradient octaves whose box lies in one cell take the mean value form
-    // too (noise3SpreadVersion2, with hash32::gradient3): its centre is the
-    // lanes' value there (so the scalar gradients are the lanes' own) and its
-    // spread holds every point of the box, near a 32-bit word's wrap as well.
-    std::uint64_t state = 11;
-    const auto next = [&state] {
-        state = state * 6364136223846793005ULL + 1442695040888963407ULL;
-        return double(state >> 11) * 0x1.0p-53;
-    };
-    const std::uint64_t hashedSeed = 0x2545f4914f6cdd1dULL;
-    const std::uint32_t seed = std::uint32_t(hashedSeed >> 32);
+    // too (noise3SpreadVersion2, with hash32::gradient3), near a 32-bit
+    // word's wrap as well.
+    Unit next{11};
     double spreadSum = 0.0, slopeSum = 0.0;
     for (int i = 0; i < 2000; ++i) {
         const double wrap = (i % 3 == 0) ? 4294967295.0 : 0.0; // the cell just below 2^32 on x
@@ -413,22 +423,7 @@ TEST(NoiseVersion2, The3DMeanValueFormHoldsTheLanesAndIsTighterThanTheSlope)
                               std::floor(200.0 * next() - 100.0));
         const glm::dvec3 lo = cell + glm::dvec3(0.9 * next(), 0.9 * next(), 0.9 * next());
         const glm::dvec3 hi = lo + glm::dvec3(0.1 * next(), 0.1 * next(), 0.1 * next());
-        double spread = 0.0;
-        const double centre = detail::noise3SpreadVersion2(seed, lo, hi, spread);
-        const glm::dvec3 c = 0.5 * (lo + hi);
-        double lanes = 0.0;
-        detail::basisVersion2(NoiseType::GRADIENT, hashedSeed, &c.x, &c.y, &c.z, 1, &lanes);
-        ASSERT_NEAR(lanes, centre, 1e-5) << "cell " << cell.x << ", " << cell.y << ", " << cell.z
-                                         << ": another gradient than the lanes'";
-        for (int k = 0; k < 12; ++k) {
-            // Corners first (the extremes of an affine part), then inside.
-            const glm::dvec3 t = k < 8 ? glm::dvec3(k >> 2, (k >> 1) & 1, k & 1) : glm::dvec3(next(), next(), next());
-            const glm::dvec3 p = lo + (hi - lo) * t;
-            double value = 0.0;
-            detail::basisVersion2(NoiseType::GRADIENT, hashedSeed, &p.x, &p.y, &p.z, 1, &value);
-            EXPECT_LE(std::abs(value - centre), spread + 1e-5);
-        }
-        spreadSum += spread;
+        spreadSum += checkedSpread(next, 0x2545f4914f6cdd1dULL, lo, hi);
         slopeSum += GRADIENT_NOISE_LIPSCHITZ * 0.5 * glm::length(hi - lo);
     }
     std::printf("3D mean value form: %.3f of the gradient bound\n", spreadSum / slopeSum);
