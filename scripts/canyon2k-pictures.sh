@@ -5,7 +5,7 @@
 
 # The pictures of examples/worlds/canyon2k.toml in the README and
 # docs/geology.md: from the canyon floor at 1.7 m eye height (a 400 m crop at
-# 1 m voxels; the floor at (-120, -332) is at 15.94 m) and the whole plateau from the
+# 1 m voxels; the floor at (-680, -336) is at 16.05 m) and the whole plateau from the
 # scene's orbit camera at 4 m voxels. CPU renderer. About 2 minutes here.
 # Usage: scripts/canyon2k-pictures.sh [STRATA] [OUT_DIR]
 set -euo pipefail
@@ -16,13 +16,13 @@ work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 
 # The crop: the same scene over a smaller region; texture paths made absolute.
-sed -e 's/^min = \[-1024.0, -20.0, -1024.0\]/min = [-320.0, -20.0, -540.0]/' \
-    -e 's/^max = \[1024.0, 200.0, 1024.0\]/max = [80.0, 200.0, -140.0]/' \
+sed -e 's/^min = \[-1024.0, -20.0, -1024.0\]/min = [-900.0, -20.0, -520.0]/' \
+    -e 's/^max = \[1024.0, 200.0, 1024.0\]/max = [-500.0, 200.0, -120.0]/' \
     -e "s|\"\\.\\./\\.\\./docs/|\"$PWD/docs/|" examples/worlds/canyon2k.toml > "$work/crop.toml"
-grep -q '^min = \[-320.0' "$work/crop.toml" # the region lines were found
+grep -q '^min = \[-900.0' "$work/crop.toml" # the region lines were found
 
 "$strata" generate "$work/crop.toml" -o "$work/ground" --backend cpu --size 1280x720 --fov 70 \
-  --camera-position=-120,17.64,-332 --camera-target=0,32,-364
+  --camera-position=-680,17.75,-336 --camera-target=-800,32,-330
 cp "$work/ground/snapshot.png" "$out/canyon2k-ground.png"
 "$strata" generate examples/worlds/canyon2k.toml -o "$work/above" --quality voxel_size=4 --backend cpu --size 1280x720
 cp "$work/above/snapshot.png" "$out/canyon2k-above.png"

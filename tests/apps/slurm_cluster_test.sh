@@ -195,7 +195,7 @@ note "cluster up: ctl ${addr_of[ctl]}; n1 ${addr_of[n1]}, n2 ${addr_of[n2]} (x86
 # rills and talus, rock relief, a worm tunnel 3-15 m under the ground,
 # the landform masks in its layers), 4 × 4 × 4 tiles of 16 m, two levels.
 scene=$work/jobs/mountains4k-crop.toml
-python3 "$source/tests/apps/crop_scene.py" "$source/examples/worlds/mountains4k.toml" "$scene" -360 296 64 90 154
+python3 "$source/tests/apps/crop_scene.py" "$source/examples/worlds/mountains4k.toml" "$scene" -1408 512 64 120 184
 flags=(--tile-size 16 --lods 2)
 per_worker=4
 tiles=64
