@@ -284,3 +284,20 @@ TEST(Cli, NoGlContextForBackendGlExitsWithOne)
     EXPECT_NE(run.output.find("--backend gl: no OpenGL context"), std::string::npos) << run.output;
     EXPECT_FALSE(std::filesystem::exists(out)) << "a run that cannot render wrote files";
 }
+
+TEST(Cli, FinalizeNamesTilesWithoutProvenance)
+{
+    // A worker's provenance is a best-effort log (a full disk may refuse it
+    // after the tile is written): finalize names such tiles, not drops them.
+    const auto dir = strata::test::freshTestDir();
+    const auto bake = dir / "bake";
+    const CommandResult worker =
+        runStrata("bake -o " + bake.string() + " --tile-size 64 --lods 1 --worker --tile 0 --tiles-per-worker 64 -q", dir);
+    ASSERT_EQ(worker.exitCode, 0) << worker.output;
+    ASSERT_TRUE(std::filesystem::remove(bake / "provenance" / "1.json"));
+    const CommandResult finalize = runStrata("bake " + bake.string() + " --finalize", dir);
+    ASSERT_EQ(finalize.exitCode, 0) << finalize.output;
+    EXPECT_NE(finalize.output.find("tiles: 0, 2-17\n"), std::string::npos) << finalize.output;
+    EXPECT_NE(finalize.output.find("baked by  unknown (no provenance file): 1 tiles: 1\n"), std::string::npos)
+        << finalize.output;
+}

@@ -335,6 +335,10 @@ compare() { # the bake against the single process, byte for byte; no litter, no 
 
 report() { # which node baked which tile, from finalize's report; every tile once
   grep 'baked by' "$finalize_out" | sed 's/^ */  /'
+  # Only a full disk may keep a tile whose provenance it could not write.
+  if [[ $case_name != disk-full ]] && grep -q 'baked by  unknown' "$finalize_out"; then
+    fail "tiles without provenance: $(grep 'baked by  unknown' "$finalize_out")"
+  fi
   local total
   total=$(sed -n 's/.*baked by  [^ ]* ([^)]*): \([0-9]*\) tiles.*/\1/p' "$finalize_out" | awk '{n += $1} END {print n + 0}')
   [[ $total -eq $tiles ]] || fail "the report accounts for ${total:-0} of $tiles tiles"
@@ -465,7 +469,9 @@ disk-full)
   first=${failed%%,*}
   out=$work/jobs/strata-bake-${array_job}_$first.out
   grep -q 'No space left on device' "$out" || fail "task $first did not name the cause: $(tail -3 "$out")"
-  grep -qE "tile [0-9]+ \(" "$out" || fail "task $first did not name the tile: $(tail -3 "$out")"
+  # A task names the tile it was writing, or the file (a task whose first
+  # write, the bake's scene.toml, finds the disk already full).
+  grep -qE "tile [0-9]+ \(|cannot write '[^']+'" "$out" || fail "task $first did not name the tile or file: $(tail -3 "$out")"
   note "the folder filled: tasks $failed failed ($(head -c 300 "$out"))"
   whole_tiles "on a full disk"
   litter=$(find "$bake" -name '.*partial-*' | head -3)
