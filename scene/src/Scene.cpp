@@ -72,12 +72,7 @@ void readTerrain(TableReader& root, Scene& scene, const SceneLoadOptions& load)
                                                scene.terrain.seed, nullptr, 0, {}, scene.noiseVersion));
         return;
     }
-    if (scene.noiseVersion != 1) {
-        root.fail(root.node("noise_version"), "noise_version",
-                  "= " + std::to_string(scene.noiseVersion) +
-                      " needs the node form of [terrain] (root and [terrain.nodes]): the [terrain.height] and "
-                      "[terrain.caves] shorthand has noise version 1 only");
-    }
+    scene.terrain.noiseVersion = scene.noiseVersion;
     TableReader height = terrainTable.table("height");
     terrain::HeightfieldOptions& h = scene.terrain.height;
     h.baseHeight = height.number("base", h.baseHeight, -HUGE_LENGTH, HUGE_LENGTH);

@@ -78,7 +78,35 @@ const TerrainOptions& validated(const TerrainOptions& o)
     if (std::isnan(o.caves.maxHeight)) {
         throw Error(ErrorKind::BadInput, "terrain: caves.max_height = nan must be a number");
     }
+    if (o.noiseVersion < NOISE_VERSION_MIN || o.noiseVersion > NOISE_VERSION_MAX) {
+        throw Error(ErrorKind::BadInput, "terrain: noise_version = " + std::to_string(o.noiseVersion) +
+                                             " is out of range " + std::to_string(NOISE_VERSION_MIN) + ".." +
+                                             std::to_string(NOISE_VERSION_MAX));
+    }
     return o;
+}
+
+/// Version 2's fBm: gradient noise summed as Fbm sums it (the same seed,
+/// octaves and normalisation), in float lanes.
+std::optional<FractalNoise> version2Fbm(const TerrainOptions& o, std::uint64_t seed, const FbmOptions& fbm)
+{
+    if (o.noiseVersion != 2) return std::nullopt;
+    FractalOptions f;
+    f.noise = NoiseType::GRADIENT;
+    f.fractal = FractalType::FBM;
+    f.octaves = fbm.octaves;
+    f.lacunarity = fbm.lacunarity;
+    f.gain = fbm.gain;
+    f.version = 2;
+    return FractalNoise(seed, f);
+}
+
+/// [lo, hi] of x² over x in [lo, hi].
+Interval squared(const Interval& x)
+{
+    const double a = x.lo * x.lo, b = x.hi * x.hi;
+    if (x.lo <= 0.0 && x.hi >= 0.0) return {0.0, std::max(a, b)};
+    return {std::min(a, b), std::max(a, b)};
 }
 
 } // namespace
@@ -88,6 +116,9 @@ TerrainField::TerrainField(const TerrainOptions& options)
     , mHeight(deriveSeed(options.seed, HEIGHT_STREAM), options.height.fbm)
     , mCaveA(deriveSeed(options.seed, CAVE_A_STREAM), options.caves.fbm)
     , mCaveB(deriveSeed(options.seed, CAVE_B_STREAM), options.caves.fbm)
+    , mHeight2(version2Fbm(options, deriveSeed(options.seed, HEIGHT_STREAM), options.height.fbm))
+    , mCaveA2(version2Fbm(options, deriveSeed(options.seed, CAVE_A_STREAM), options.caves.fbm))
+    , mCaveB2(version2Fbm(options, deriveSeed(options.seed, CAVE_B_STREAM), options.caves.fbm))
 {
     const HeightfieldOptions& h = mOptions.height;
     const CaveOptions& c = mOptions.caves;
@@ -114,6 +145,7 @@ double TerrainField::height(double x, double z) const
 {
     const HeightfieldOptions& h = mOptions.height;
     const glm::dvec2 q(x / h.wavelength, z / h.wavelength);
+    if (mHeight2) return h.baseHeight + h.amplitude * (*mHeight2)(q);
     return h.baseHeight + h.amplitude * double(mHeight(q));
 }
 
@@ -121,8 +153,8 @@ double TerrainField::caveDistance(const glm::dvec3& p) const
 {
     const CaveOptions& c = mOptions.caves;
     const glm::dvec3 q(p.x / c.wavelength, p.y * c.verticalSquash / c.wavelength, p.z / c.wavelength);
-    const double n1 = mCaveA(q);
-    const double n2 = mCaveB(q);
+    const double n1 = mCaveA2 ? (*mCaveA2)(q) : double(mCaveA(q));
+    const double n2 = mCaveB2 ? (*mCaveB2)(q) : double(mCaveB(q));
     const double tube = (std::sqrt(n1 * n1 + n2 * n2) - mCaveNoiseRadius) * mCaveScale;
     // Above maxHeight the term rises with slope 1: no tunnels, still 1-Lipschitz.
     return std::max(tube, p.y - c.maxHeight);
@@ -153,10 +185,11 @@ void TerrainField::densities(const PointBlock& points, double* out) const
     thread_local struct
     {
         std::vector<double> qx, qy, qz;
-        std::vector<float> n1, n2;
+        std::vector<float> n1, n2;         // version 1 (Fbm is float)
+        std::vector<double> n1v2, n2v2;    // version 2
         std::vector<std::uint32_t> deep;
     } scratch;
-    auto& [qx, qy, qz, n1, n2, deep] = scratch;
+    auto& [qx, qy, qz, n1, n2, n1v2, n2v2, deep] = scratch;
 
     // height() once per column: q = (x, z) / wavelength, as height() divides.
     const detail::BlockColumns columns = detail::findColumns(points, frame);
@@ -168,10 +201,19 @@ void TerrainField::densities(const PointBlock& points, double* out) const
         qx[i] = columns.x[i] / h.wavelength;
         qz[i] = columns.z[i] / h.wavelength;
     }
-    mHeight.evaluate(qx.data(), qz.data(), m, n1.data());
-    for (std::size_t i = 0; i < n; ++i) {
-        const double height = h.baseHeight + h.amplitude * double(n1[columns.of[i]]);
-        out[i] = (points.y[i] - height) * mHeightScale;
+    if (mHeight2) {
+        n1v2.resize(m);
+        mHeight2->evaluate(qx.data(), qz.data(), m, n1v2.data());
+        for (std::size_t i = 0; i < n; ++i) {
+            const double height = h.baseHeight + h.amplitude * n1v2[columns.of[i]];
+            out[i] = (points.y[i] - height) * mHeightScale;
+        }
+    } else {
+        mHeight.evaluate(qx.data(), qz.data(), m, n1.data());
+        for (std::size_t i = 0; i < n; ++i) {
+            const double height = h.baseHeight + h.amplitude * double(n1[columns.of[i]]);
+            out[i] = (points.y[i] - height) * mHeightScale;
+        }
     }
     if (!c.enabled) return;
 
@@ -194,15 +236,56 @@ void TerrainField::densities(const PointBlock& points, double* out) const
         qy[j] = points.y[i] * c.verticalSquash / c.wavelength;
         qz[j] = points.z[i] / c.wavelength;
     }
-    mCaveA.evaluate(qx.data(), qy.data(), qz.data(), k, n1.data());
-    mCaveB.evaluate(qx.data(), qy.data(), qz.data(), k, n2.data());
+    if (mCaveA2) {
+        n1v2.resize(k);
+        n2v2.resize(k);
+        mCaveA2->evaluate(qx.data(), qy.data(), qz.data(), k, n1v2.data());
+        mCaveB2->evaluate(qx.data(), qy.data(), qz.data(), k, n2v2.data());
+    } else {
+        mCaveA.evaluate(qx.data(), qy.data(), qz.data(), k, n1.data());
+        mCaveB.evaluate(qx.data(), qy.data(), qz.data(), k, n2.data());
+    }
     for (std::size_t j = 0; j < k; ++j) {
         const std::size_t i = deep[j];
-        const double a = n1[j], b = n2[j];
+        const double a = mCaveA2 ? n1v2[j] : double(n1[j]), b = mCaveA2 ? n2v2[j] : double(n2[j]);
         const double tube = (std::sqrt(a * a + b * b) - mCaveNoiseRadius) * mCaveScale;
         const double caveDistance = std::max(tube, points.y[i] - c.maxHeight);
         out[i] = std::max(out[i], -caveDistance);
     }
+}
+
+Interval TerrainField::bounds(const WorldBox& box) const
+{
+    if (!mHeight2) return DensityField::bounds(box);
+    const HeightfieldOptions& h = mOptions.height;
+    const CaveOptions& c = mOptions.caves;
+    // The double arithmetic after the fBms (a few operations on values of
+    // order one to 1e7) rounds far below this; the fBms' own rounding is in
+    // their bounds.
+    const auto widened = [](Interval v) {
+        const double slack = 1e-9 * (1.0 + std::max(std::abs(v.lo), std::abs(v.hi)));
+        return Interval{v.lo - slack, v.hi + slack};
+    };
+    const Interval n = mHeight2->bounds(glm::dvec2(box.min.x, box.min.z) / h.wavelength,
+                                        glm::dvec2(box.max.x, box.max.z) / h.wavelength);
+    const Interval height{h.baseHeight + h.amplitude * n.lo, h.baseHeight + h.amplitude * n.hi};
+    const Interval ground =
+        widened({(box.min.y - height.hi) * mHeightScale, (box.max.y - height.lo) * mHeightScale});
+    if (!c.enabled) return ground;
+
+    // The box in noise units, as caveDistance() divides.
+    const auto noiseUnits = [&c](const glm::dvec3& p) {
+        return glm::dvec3(p.x / c.wavelength, p.y * c.verticalSquash / c.wavelength, p.z / c.wavelength);
+    };
+    const glm::dvec3 lo = noiseUnits(box.min), hi = noiseUnits(box.max);
+    const Interval a = squared(mCaveA2->bounds(lo, hi));
+    const Interval b = squared(mCaveB2->bounds(lo, hi));
+    const Interval tube{(std::sqrt(a.lo + b.lo) - mCaveNoiseRadius) * mCaveScale,
+                        (std::sqrt(a.hi + b.hi) - mCaveNoiseRadius) * mCaveScale};
+    const Interval cave = widened({std::max(tube.lo, box.min.y - c.maxHeight), std::max(tube.hi, box.max.y - c.maxHeight)});
+    // density = max(ground, −caveDistance) (density()'s early return takes
+    // the same value).
+    return {std::max(ground.lo, -cave.hi), std::max(ground.hi, -cave.lo)};
 }
 
 } // namespace strata::terrain

@@ -7,8 +7,9 @@
 // triangles and time per LOD level. The terrain is the default TerrainField
 // (fBm hills and cave tunnels, seed 1), 0.5 m voxels, 32³ chunks.
 //
-//   world_bench [--quick|--lod|--stream]   (--quick: fewer repetitions, shorter runs; --lod: LOD levels
-//                                           only; --stream: streaming only, with look-ahead and without)
+//   world_bench [--quick|--lod|--stream] [--noise-version=1|2]   (--quick: fewer repetitions, shorter runs;
+//       --lod: LOD levels only; --stream: streaming only, with look-ahead and without; the noise version of
+//       the terrain's fBms, 2 by default, as the examples)
 
 #include <strata/terrain/TerrainField.h>
 #include <strata/world/World.h>
@@ -17,6 +18,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <ctime>
 #include <memory>
@@ -52,9 +54,11 @@ double percentile(std::vector<double> v, double q)
     return i + 1 < v.size() ? v[i] * (1.0 - f) + v[i + 1] * f : v.back();
 }
 
-std::shared_ptr<terrain::TerrainField> terrainField()
+std::shared_ptr<terrain::TerrainField> terrainField(int noiseVersion)
 {
-    return std::make_shared<terrain::TerrainField>(terrain::TerrainOptions{});
+    terrain::TerrainOptions options;
+    options.noiseVersion = noiseVersion;
+    return std::make_shared<terrain::TerrainField>(options);
 }
 
 glm::dvec3 groundBelow(const world::World& w, double x, double z)
@@ -232,7 +236,15 @@ int main(int argc, char** argv)
     const bool quick = argc > 1 && std::strcmp(argv[1], "--quick") == 0;
     const bool lodOnly = argc > 1 && std::strcmp(argv[1], "--lod") == 0;
     const bool streamOnly = argc > 1 && std::strcmp(argv[1], "--stream") == 0;
-    const auto field = terrainField();
+    // The examples' noise version unless told (the last argument).
+    int noiseVersion = 2;
+    if (argc > 1 && std::strncmp(argv[argc - 1], "--noise-version=", 16) == 0) noiseVersion = std::atoi(argv[argc - 1] + 16);
+    if (noiseVersion != 1 && noiseVersion != 2) {
+        std::fprintf(stderr, "world_bench: --noise-version=%s: 1 or 2\n", argv[argc - 1] + 16);
+        return 2;
+    }
+    std::printf("terrain: TerrainField, noise version %d\n", noiseVersion);
+    const auto field = terrainField(noiseVersion);
     if (streamOnly) {
         std::printf("== streaming ==\n");
         streaming(field, false, true);

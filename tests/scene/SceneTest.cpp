@@ -109,9 +109,27 @@ TEST(Scene, NoiseVersionIsChosenPerSceneAndVersion1StaysTheDefault)
 TEST(Scene, NoiseVersionErrorsNameTheKey)
 {
     EXPECT_EQ(parseError("seed = 1\nnoise_version = 3\n"), "test.toml:2: noise_version = 3 is out of range [1, 2]");
-    EXPECT_EQ(parseError("noise_version = 2\n[terrain.height]\noctaves = 3\n"),
-              "test.toml:1: noise_version = 2 needs the node form of [terrain] (root and [terrain.nodes]): the "
-              "[terrain.height] and [terrain.caves] shorthand has noise version 1 only");
+}
+
+TEST(Scene, TheShorthandTakesTheNoiseVersion)
+{
+    // [terrain.height] and [terrain.caves] (TerrainField) at version 2: another
+    // pattern than version 1, kept when the field is rebuilt for another seed.
+    const std::string text = "[terrain.height]\noctaves = 3\n[terrain.caves]\nradius = 6.0\n";
+    const Scene one = parseScene(text, "one.toml");
+    const Scene two = parseScene("noise_version = 2\n" + text, "two.toml");
+    EXPECT_EQ(one.terrain.noiseVersion, 1);
+    EXPECT_EQ(two.terrain.noiseVersion, 2);
+    int differ = 0, differAt5 = 0;
+    const auto oneAt5 = one.buildField(5), twoAt5 = two.buildField(5);
+    for (int i = 0; i < 64; ++i) {
+        const glm::dvec3 p(-90.0 + 2.9 * i, -20.0 + 0.6 * i, 70.0 - 2.3 * i);
+        differ += one.field->density(p) != two.field->density(p);
+        differAt5 += oneAt5->density(p) != twoAt5->density(p);
+        EXPECT_TRUE(std::isfinite(two.field->density(p)));
+    }
+    EXPECT_GT(differ, 24);
+    EXPECT_GT(differAt5, 24);
 }
 
 TEST(Scene, SyntaxErrorsGiveTheLine)

@@ -203,6 +203,9 @@ TEST(BlockEvaluation, EverySimdTargetGivesTheScalarBits)
         expectNoiseSameAsScalar(target);
         expectSameAsScalar(*strata::test::defaultSceneTree(true), target + ": default scene (terraced)");
         expectSameAsScalar(TerrainField(TerrainOptions{}), target + ": terrain field with caves");
+        TerrainOptions version2;
+        version2.noiseVersion = 2;
+        expectSameAsScalar(TerrainField(version2), target + ": terrain field with caves, noise version 2");
     }
     useSimdTarget("");
     EXPECT_EQ(simdTarget(), targets.front());
@@ -424,6 +427,10 @@ TEST(BlockEvaluation, SmoothCsgAndTheDefaultSceneGiveTheScalarBits)
     expectSameAsScalar(TerrainField(terrain), "terrain field with caves");
     terrain.caves.enabled = false;
     expectSameAsScalar(TerrainField(terrain), "terrain field without caves");
+    terrain.noiseVersion = 2;
+    expectSameAsScalar(TerrainField(terrain), "terrain field without caves, noise version 2");
+    terrain.caves.enabled = true;
+    expectSameAsScalar(TerrainField(terrain), "terrain field with caves, noise version 2");
     const DensityFieldPtr hills = std::make_shared<NoiseHeightfield>(5, NoiseHeightfieldOptions{});
     const DensityFieldPtr ball = std::make_shared<SphereField>(glm::dvec3(-8.0, -2.0, -9.0), 12.0);
     for (const CsgOperation op : {CsgOperation::UNION, CsgOperation::SUBTRACT, CsgOperation::INTERSECT})

@@ -252,6 +252,7 @@ TEST(TerrainField, BadOptionsThrowNamingTheKey)
     expectError(make([](TerrainOptions& o) { o.caves.radius = 0.0; }), "caves.radius");
     expectError(make([](TerrainOptions& o) { o.caves.verticalSquash = std::nan(""); }), "caves.vertical_squash");
     expectError(make([](TerrainOptions& o) { o.caves.maxHeight = std::nan(""); }), "caves.max_height");
+    expectError(make([](TerrainOptions& o) { o.noiseVersion = 3; }), "noise_version = 3 is out of range 1..2");
     // Amplitude 0 is a flat plane, and allowed.
     TerrainOptions flat;
     flat.height.amplitude = 0.0;
@@ -266,4 +267,43 @@ TEST(TerrainField, SphereFieldIsTheExactDistance)
     EXPECT_DOUBLE_EQ(sphere.density({1.0, 2.0, 10.0}), 3.0);
     EXPECT_DOUBLE_EQ(sphere.density({5.0, 2.0, 3.0}), 0.0);
     EXPECT_EQ(sphere.lipschitz(), 1.0);
+}
+
+TEST(TerrainField, Version2BoxBoundsHoldEveryPointAndBeatTheLipschitzBound)
+{
+    // Boxes of 0.5 to 8 m across the surface, the tunnels and far from both
+    // (1e6 m out too): every point of a 5×5×5 lattice in each lies inside
+    // the box's bounds; on average they are tighter than density ± radius.
+    TerrainOptions options;
+    options.noiseVersion = 2;
+    options.caves.maxHeight = 10.0;
+    const TerrainField field(options);
+    std::uint64_t state = 7;
+    const auto unit = [&state] {
+        state = state * 6364136223846793005ull + 1442695040888963407ull;
+        return double(state >> 11) * 0x1.0p-53;
+    };
+    double width = 0.0, lipschitzWidth = 0.0;
+    int boxes = 0;
+    for (const double far : {0.0, 1e6}) {
+        for (int i = 0; i < 300; ++i) {
+            const double size = 0.5 * std::pow(2.0, 4.0 * unit());
+            const glm::dvec3 lo(far + 200.0 * unit() - 100.0, 70.0 * unit() - 45.0, -far + 200.0 * unit() - 100.0);
+            const WorldBox box{lo, lo + glm::dvec3(size, 0.7 * size, 1.3 * size)};
+            const Interval bounds = field.bounds(box);
+            for (int a = 0; a < 5; ++a)
+                for (int b = 0; b < 5; ++b)
+                    for (int c = 0; c < 5; ++c) {
+                        const glm::dvec3 p = box.min + (box.max - box.min) * glm::dvec3(a, b, c) / 4.0;
+                        const double d = field.density(p);
+                        ASSERT_GE(d, bounds.lo) << "at (" << p.x << ", " << p.y << ", " << p.z << ")";
+                        ASSERT_LE(d, bounds.hi) << "at (" << p.x << ", " << p.y << ", " << p.z << ")";
+                    }
+            width += bounds.hi - bounds.lo;
+            lipschitzWidth += 2.0 * box.radius();
+            ++boxes;
+        }
+    }
+    EXPECT_EQ(boxes, 600);
+    EXPECT_LT(width, 0.9 * lipschitzWidth) << "the fBms' box bounds are no tighter than the slope";
 }

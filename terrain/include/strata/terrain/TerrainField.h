@@ -7,9 +7,11 @@
 /// carved out of it.
 
 #include <strata/terrain/DensityField.h>
+#include <strata/terrain/FractalNoise.h>
 #include <strata/terrain/Noise.h>
 
 #include <cstdint>
+#include <optional>
 
 namespace strata::terrain {
 
@@ -59,6 +61,10 @@ struct TerrainOptions
     std::uint64_t seed = 1;
     HeightfieldOptions height;
     CaveOptions caves;
+    /// The noise version (a scene's `noise_version`, FractalOptions::version):
+    /// 1 keeps this field's values bit for bit; 2 evaluates the three fBms
+    /// in float lanes (another pattern, 2–4× faster).
+    int noiseVersion = 1;
 };
 
 /// Heightfield minus caves, as a distance-like field (negative in rock):
@@ -78,6 +84,11 @@ public:
     double lipschitz() const override { return 1.0; }
     /// density() / lipschitz() = densities(): the block path.
     void distanceBounds(const PointBlock& points, double* out) const override { densities(points, out); }
+    /// Version 1: DensityField's (density at the centre ± the half
+    /// diagonal). Version 2: the fBms' own box bounds (FractalNoise::bounds,
+    /// rounding included) through the height and tunnel terms, which is
+    /// also rigorous for its float evaluation.
+    Interval bounds(const WorldBox& box) const override;
 
     /// The heightfield alone: surface height at (x, z), metres.
     double height(double x, double z) const;
@@ -91,7 +102,9 @@ public:
 
 private:
     TerrainOptions mOptions;
-    Fbm mHeight, mCaveA, mCaveB; ///< seeds derived from options.seed
+    Fbm mHeight, mCaveA, mCaveB; ///< seeds derived from options.seed (version 1)
+    /// The same fBms at noise version 2 (empty at version 1).
+    std::optional<FractalNoise> mHeight2, mCaveA2, mCaveB2;
     double mHeightScale;     ///< 1 / Lipschitz bound of (y − h), keeps density 1-Lipschitz
     double mCaveScale;       ///< the same for the cave term (metres per noise unit)
     double mCaveNoiseRadius; ///< tunnel radius in noise units (see the constructor)
