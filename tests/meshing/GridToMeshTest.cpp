@@ -130,3 +130,34 @@ TEST(GridToMesh, TorusAndBoxAreWatertightWithTheRightVolume)
         EXPECT_NEAR(signedVolume(mesh) / shape.volume, 1.0, 0.01) << shape.name;
     }
 }
+
+TEST(GridToMesh, SurfaceBetweenVoxelsPastTheBandIsClosed)
+{
+    // A field far steeper than 1 per metre (beds' contacts under a ledge):
+    // a 12³ block of rock whose every voxel, and the air around it, lies
+    // past the band (±background, inactive), with one active voxel on its
+    // top. The surface crosses only between inactive voxels, or between an
+    // active and an inactive one: volumeToMesh alone meshed nothing of it
+    // but the corner of the active voxel (slits at 0.25 m in canyon2k).
+    openvdb::initialize();
+    const float background = 0.75f;
+    const openvdb::FloatGrid::Ptr grid = openvdb::FloatGrid::create(background);
+    grid->setGridClass(openvdb::GRID_LEVEL_SET);
+    grid->setTransform(openvdb::math::Transform::createLinearTransform(0.25));
+    auto accessor = grid->getAccessor();
+    for (int x = -2; x < 14; ++x)
+        for (int y = -2; y < 14; ++y)
+            for (int z = -2; z < 14; ++z) {
+                const bool rock = x >= 0 && x < 12 && y >= 0 && y < 12 && z >= 0 && z < 12;
+                accessor.setValueOff({x, y, z}, rock ? -background : background);
+            }
+    accessor.setValueOn({5, 12, 5}, 0.3f);
+
+    const TriangleMesh mesh = gridToMesh(*grid);
+    ASSERT_GT(mesh.triangleCount(), 6u * 12u * 12u);
+    EXPECT_TRUE(analyzeTopology(mesh).watertight());
+    // The block is 12 voxels (3 m) on a side; the surface lies between
+    // voxel centres, half a voxel out of the rock's: 3.0 m³, a little more
+    // for the active voxel's bump and the bevelled edges' inward cut.
+    EXPECT_NEAR(signedVolume(mesh), 27.0, 27.0 * 0.1);
+}
