@@ -4,10 +4,14 @@
 #include <strata/meshing/GridToMesh.h>
 
 #include <strata/Error.h>
+#include <strata/detail/TsanHandOver.h>
 #include <strata/meshing/GridNormals.h>
 #include <strata/meshing/ProjectToSurface.h>
 
 #include <openvdb/tools/VolumeToMesh.h>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 
 #include <cmath>
 #include <string>
@@ -38,25 +42,60 @@ double distance2(const openvdb::Vec3s& a, const openvdb::Vec3s& b)
 /// 16,916 open edges before, none after.
 openvdb::FloatGrid::ConstPtr withBothSidesActive(const openvdb::FloatGrid::ConstPtr& grid, float isovalue)
 {
-    static const openvdb::Coord STEPS[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
-    std::vector<openvdb::Coord> inactive;
-    const auto accessor = grid->getConstAccessor();
-    for (auto leaf = grid->tree().cbeginLeaf(); leaf; ++leaf) {
-        for (auto voxel = leaf->cbeginValueAll(); voxel; ++voxel) {
-            const bool inside = *voxel < isovalue;
-            const openvdb::Coord c = voxel.getCoord();
-            for (const openvdb::Coord& step : STEPS) {
-                const openvdb::Coord n = c + step;
-                if ((accessor.getValue(n) < isovalue) == inside) continue;
-                if (!voxel.isValueOn()) inactive.push_back(c);
-                if (!accessor.isValueOn(n) && accessor.probeConstLeaf(n)) inactive.push_back(n);
+    using Leaf = openvdb::FloatTree::LeafNodeType;
+    std::vector<const Leaf*> leaves;
+    leaves.reserve(grid->tree().leafCount());
+    for (auto leaf = grid->tree().cbeginLeaf(); leaf; ++leaf) leaves.push_back(leaf.getLeaf());
+    // Per leaf (in parallel, each with its own accessor for the neighbours
+    // across its faces; inside it the value array and the mask): the
+    // voxels to make active. The set is the same whatever the split.
+    std::vector<std::vector<openvdb::Coord>> found(leaves.size());
+    detail::tsanHandOff(&leaves); // TBB's fork and join, told to ThreadSanitizer
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, leaves.size(), 64), [&](const tbb::blocked_range<std::size_t>& r) {
+        detail::tsanTakeOver(&leaves);
+        const auto accessor = grid->getConstAccessor();
+        for (std::size_t l = r.begin(); l != r.end(); ++l) {
+            const Leaf& leaf = *leaves[l];
+            const float* values = leaf.buffer().data();
+            const auto& mask = leaf.getValueMask();
+            const openvdb::Coord origin = leaf.origin();
+            for (openvdb::Index i = 0; i < Leaf::SIZE; ++i) {
+                const bool inside = values[i] < isovalue;
+                const int x = int(i >> 6), y = int((i >> 3) & 7), z = int(i & 7);
+                const int coords[3] = {x, y, z};
+                static constexpr int STRIDE[3] = {64, 8, 1};
+                for (int axis = 0; axis < 3; ++axis) {
+                    for (const int step : {-1, 1}) {
+                        const int along = coords[axis] + step;
+                        bool neighbourInside, neighbourOn, neighbourInLeaf = true;
+                        openvdb::Coord n = origin + openvdb::Coord(x, y, z);
+                        n[axis] += step;
+                        if (along >= 0 && along < 8) {
+                            const openvdb::Index j = openvdb::Index(int(i) + step * STRIDE[axis]);
+                            neighbourInside = values[j] < isovalue;
+                            neighbourOn = mask.isOn(j);
+                        } else {
+                            neighbourInside = accessor.getValue(n) < isovalue;
+                            neighbourOn = accessor.isValueOn(n);
+                            neighbourInLeaf = accessor.probeConstLeaf(n) != nullptr;
+                        }
+                        if (neighbourInside == inside) continue;
+                        if (!mask.isOn(i)) found[l].push_back(origin + openvdb::Coord(x, y, z));
+                        if (!neighbourOn && neighbourInLeaf) found[l].push_back(n);
+                    }
+                }
             }
         }
-    }
-    if (inactive.empty()) return grid;
+        detail::tsanHandOff(&found);
+    });
+    detail::tsanTakeOver(&found);
+    bool any = false;
+    for (const auto& f : found) any = any || !f.empty();
+    if (!any) return grid;
     const openvdb::FloatGrid::Ptr closed = grid->deepCopy();
     auto write = closed->getAccessor();
-    for (const openvdb::Coord& n : inactive) write.setValueOn(n, write.getValue(n));
+    for (const auto& f : found)
+        for (const openvdb::Coord& n : f) write.setValueOn(n, write.getValue(n));
     return closed;
 }
 
