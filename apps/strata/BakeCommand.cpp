@@ -162,19 +162,6 @@ void printSummary(const BakeSummary& summary, bool worker = false)
     for (const BakeHostTiles& host : summary.bakedBy)
         std::cout << "  baked by  " << host.host << " (" << host.arch << "): " << host.tiles.size() << " tiles: "
                   << indexRanges(host.tiles, ", ") << "\n";
-    if (!summary.bakedBy.empty()) {
-        // Workers' tiles whose provenance could not be written (a full disk:
-        // the log is best effort, the tile stands): named, not dropped.
-        std::vector<bool> reported(std::size_t(summary.tiles), false);
-        for (const BakeHostTiles& host : summary.bakedBy)
-            for (const int tile : host.tiles) reported[std::size_t(tile)] = true;
-        std::vector<int> unknown;
-        for (int tile = 0; tile < summary.tiles; ++tile)
-            if (!reported[std::size_t(tile)]) unknown.push_back(tile);
-        if (!unknown.empty())
-            std::cout << "  baked by  unknown (no provenance file): " << unknown.size() << " tiles: "
-                      << indexRanges(unknown, ", ") << "\n";
-    }
     const double perMinute = summary.seconds > 0.0 ? 60.0 * summary.baked / summary.seconds : 0.0;
     std::cout << "  total     " << std::fixed << std::setprecision(3) << std::setw(8) << summary.seconds << " s";
     if (summary.baked > 0) std::cout << "   " << std::setprecision(1) << perMinute << " tiles/min";

@@ -9,6 +9,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdlib>
 #include <fstream>
@@ -103,7 +104,20 @@ std::vector<BakeHostTiles> readProvenance(const fs::path& dir, int count)
         byHost[{json["host"].get<std::string>(), json["arch"].get<std::string>()}].push_back(index);
     }
     std::vector<BakeHostTiles> out;
-    for (auto& [key, tiles] : byHost) out.push_back({key.first, key.second, std::move(tiles)});
+    std::vector<bool> reported(std::size_t(std::max(count, 0)), false);
+    for (auto& [key, tiles] : byHost) {
+        for (const int tile : tiles) reported[std::size_t(tile)] = true;
+        out.push_back({key.first, key.second, std::move(tiles)});
+    }
+    // Workers' tiles whose provenance could not be written (a full disk:
+    // the log is best effort, the tile stands) are named, not dropped. A
+    // bake with no provenance at all (one process) reports nothing.
+    if (!out.empty()) {
+        BakeHostTiles unknown{"unknown", "no provenance file", {}};
+        for (int index = 0; index < count; ++index)
+            if (!reported[std::size_t(index)]) unknown.tiles.push_back(index);
+        if (!unknown.tiles.empty()) out.push_back(std::move(unknown));
+    }
     return out;
 }
 

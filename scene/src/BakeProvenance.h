@@ -26,7 +26,8 @@ void writeTileProvenance(const std::filesystem::path& dir, int index, double sec
 
 /// The tiles of `dir` grouped by the host and architecture that baked
 /// them, from the provenance files of tiles 0..count−1 (hosts in name
-/// order; tiles with no readable file are left out).
+/// order; tiles with no readable file last, as host "unknown", arch "no
+/// provenance file", when any tile has one).
 std::vector<BakeHostTiles> readProvenance(const std::filesystem::path& dir, int count);
 
 /// The architecture this build runs on: "x86_64", "aarch64", ...

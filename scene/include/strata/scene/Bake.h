@@ -170,7 +170,8 @@ struct BakeSummary
     std::vector<double> errorPerLevel; ///< the tileset's geometric error per level (metres)
     /// finalizeBake(): which machine baked which tile, from the files
     /// workers write to provenance/ (a log beside the bake, not part of
-    /// it: tiles are the same bytes whoever baked them).
+    /// it: tiles are the same bytes whoever baked them). Tiles whose file
+    /// is missing come last, as host "unknown" (arch "no provenance file").
     std::vector<BakeHostTiles> bakedBy;
     double seconds = 0.0;
 };
