@@ -785,11 +785,15 @@ TEST(Bake, WorkersRecordWhichHostBakedEachTileAndFinalizeReportsIt)
     std::erase_if(workers, [](const auto& file) { return file.first.starts_with("provenance/"); });
     EXPECT_EQ(workers, filesUnder(dir / "single"));
 
-    // A damaged provenance file is left out of the report, nothing more,
-    // and so is one far larger than a worker writes (it is not read).
+    // A damaged provenance file is not read, nor is one far larger than a
+    // worker writes: their tiles are reported as baked by "unknown".
     std::ofstream(dir / "workers" / "provenance" / "3.json") << "{not json";
     fs::resize_file(dir / "workers" / "provenance" / "2.json", std::uintmax_t(1) << 32); // sparse: 4 GiB claimed
-    EXPECT_EQ(finalizeBake(dir / "workers").bakedBy.at(0).tiles, (std::vector<int>{0, 1}));
+    const BakeSummary damaged = finalizeBake(dir / "workers");
+    EXPECT_EQ(damaged.bakedBy.at(0).tiles, (std::vector<int>{0, 1}));
+    ASSERT_EQ(damaged.bakedBy.size(), 2u);
+    EXPECT_EQ(damaged.bakedBy[1].host, "unknown");
+    EXPECT_EQ(damaged.bakedBy[1].tiles, (std::vector<int>{2, 3}));
 
     // A bake of another scene forced over the folder removes the old log.
     options.worker = false;
